@@ -1,0 +1,126 @@
+# hairbsdf. `make` builds the libraries and the tool, `make test` runs the tests on
+# every ISA this CPU has, `make bench` times the kernels against bench/budgets.txt.
+# `make test CROSS=aarch64` cross-compiles with gcc-aarch64-linux-gnu and runs the
+# suite under qemu-aarch64. `make CC=clang` builds with clang.
+
+CROSS ?=
+ifeq ($(CROSS),aarch64)
+  CC := aarch64-linux-gnu-gcc
+  AR := aarch64-linux-gnu-ar
+  ARCH := aarch64
+  RUN := qemu-aarch64
+  LDSTATIC := -static
+else ifneq ($(CROSS),)
+  $(error CROSS=$(CROSS) is not supported; use CROSS=aarch64)
+else
+  ARCH := $(shell uname -m)
+  RUN :=
+  LDSTATIC :=
+endif
+
+SANITIZE ?=
+PREFIX ?= /usr/local
+B := build/$(ARCH)-$(notdir $(firstword $(CC)))$(if $(SANITIZE),-san)
+
+ifeq ($(ARCH),x86_64)
+  ISAS := scalar sse41 avx2 avx512
+else ifeq ($(ARCH),aarch64)
+  ISAS := scalar neon
+else
+  ISAS := scalar
+endif
+
+ISA_FLAGS_scalar := -fno-tree-vectorize
+ISA_FLAGS_sse41 := -msse4.1
+ISA_FLAGS_avx2 := -mavx2 -mfma
+ISA_FLAGS_avx512 := -mavx512f -mavx2 -mfma
+ISA_FLAGS_neon :=
+ISA_MACRO_scalar := HB_TARGET_SCALAR
+ISA_MACRO_sse41 := HB_TARGET_SSE41
+ISA_MACRO_avx2 := HB_TARGET_AVX2
+ISA_MACRO_avx512 := HB_TARGET_AVX512
+ISA_MACRO_neon := HB_TARGET_NEON
+
+WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes
+# No -ffast-math and no implicit contraction: every fused multiply-add is explicit,
+# so results are reproducible per ISA.
+CFLAGS ?= -O2 -g
+BASE_CFLAGS := -std=c11 -D_GNU_SOURCE $(WARN) -fPIC -ffp-contract=off -fno-math-errno -Iinclude -Isrc
+ifneq ($(SANITIZE),)
+  BASE_CFLAGS += -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+  LDFLAGS += -fsanitize=address,undefined
+endif
+ALL_CFLAGS = $(BASE_CFLAGS) $(CFLAGS)
+LDLIBS := -lm
+
+LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/ref/deon_ref.c
+LIB_OBJS := $(LIB_SRCS:%.c=$(B)/%.o) $(ISAS:%=$(B)/kernel_%.o)
+TOOL_SRCS := $(wildcard tools/*.c)
+TEST_SRCS := $(wildcard tests/*.c)
+BENCH_SRCS := $(wildcard bench/*.c)
+
+STATIC_LIB := $(B)/libhairbsdf.a
+SHARED_LIB := $(B)/libhairbsdf.so
+TOOL := $(B)/hairbsdf
+TEST_BIN := $(B)/hairbsdf_tests
+BENCH_BIN := $(B)/hairbsdf_bench
+
+.PHONY: all test bench demo install clean
+all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LIB)) $(TOOL)
+
+$(B)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -MMD -MP -c $< -o $@
+
+$(B)/kernel_%.o: src/kernel.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ISA_FLAGS_$*) -D$(ISA_MACRO_$*) -MMD -MP -c $< -o $@
+
+$(STATIC_LIB): $(LIB_OBJS)
+	rm -f $@
+	$(AR) rcs $@ $^
+
+$(SHARED_LIB): $(LIB_OBJS)
+	$(CC) -shared -Wl,-soname,libhairbsdf.so.$(HB_SO_MAJOR) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+HB_SO_MAJOR := 0
+
+$(TOOL): $(TOOL_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
+	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
+
+$(TEST_BIN): $(TEST_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
+	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
+
+$(BENCH_BIN): $(BENCH_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
+	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) -lpthread
+
+# The runner loops over every ISA this CPU has (or only $HB_ISA when it is set)
+# and drives the CLI through HB_TOOL.
+test: $(TEST_BIN) $(TOOL)
+	HB_TOOL="$(strip $(RUN) $(TOOL))" $(RUN) $(TEST_BIN)
+
+bench: $(BENCH_BIN)
+	$(RUN) $(BENCH_BIN) --budgets bench/budgets.txt
+
+demo: all
+	$(TOOL) isa
+	printf 'theta_i,phi_i,theta_o,phi_o\n0.3,0,-0.3,0.5\n0.3,0,-0.2,0.5\n0.3,0,0.4,1\n1.5,0,-1.5,2\n' | \
+	  $(TOOL) eval --model deon --term longitudinal --beta-m 0.1
+
+$(B)/hairbsdf.pc: hairbsdf.pc.in
+	@mkdir -p $(B)
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(HB_SO_MAJOR).1|' $< > $(B)/hairbsdf.pc
+
+install: all $(B)/hairbsdf.pc
+	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
+	install -m 644 include/hairbsdf.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(STATIC_LIB) $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(SHARED_LIB) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so.$(HB_SO_MAJOR)
+	ln -sf libhairbsdf.so.$(HB_SO_MAJOR) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so
+	install -m 644 $(B)/hairbsdf.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+	install -m 755 $(TOOL) $(DESTDIR)$(PREFIX)/bin/
+
+clean:
+	rm -rf build
+
+-include $(shell find build -name '*.d' 2>/dev/null)

@@ -1,0 +1,162 @@
+/* hairbsdf: batched, fixed-budget evaluation of hair fibre scattering functions.
+ *
+ * Frame (see SPEC.md): y is the fibre tangent (root to tip), a direction is
+ * w(theta, phi) = (sin(phi) cos(theta), sin(theta), cos(phi) cos(theta)),
+ * w_i points to the light, w_o to the viewer. Every model returns
+ * f(w_i, w_o) = S(w_i, w_o) cos(theta_i), so L_o = integral f L_i dw_i.
+ *
+ * Use: fill an hb_material, build an hb_plan once per material (this validates
+ * everything and picks the kernel), then evaluate caller-owned structure-of-arrays
+ * batches with it from any number of threads. Evaluation never allocates. */
+#ifndef HAIRBSDF_H
+#define HAIRBSDF_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define HB_VERSION_MAJOR 0
+#define HB_VERSION_MINOR 1
+
+typedef enum hb_status {
+    HB_OK = 0,
+    HB_ERR_NULL,        /* a required pointer was NULL */
+    HB_ERR_PARAM,       /* a material parameter is out of range (the message names it) */
+    HB_ERR_UNSUPPORTED, /* the model, lobe, term or option combination does not exist (yet) */
+    HB_ERR_ISA,         /* the requested instruction set is not available on this CPU */
+    HB_ERR_VERSION,     /* a struct_size field does not match this library */
+    HB_ERR_NOMEM        /* plan creation could not allocate */
+} hb_status;
+
+/* A short constant description of a status code. */
+const char *hb_status_string(hb_status status);
+
+/* Optional detail for a failed call: the message names the offending parameter. */
+typedef struct hb_error {
+    hb_status status;
+    char message[256];
+} hb_error;
+
+typedef enum hb_model { HB_MODEL_MARSCHNER, HB_MODEL_DEON, HB_MODEL_HUANG } hb_model;
+
+/* Orders p of scattering; a lobe set is a bit mask of (1u << p). */
+enum { HB_LOBE_R = 0, HB_LOBE_TT = 1, HB_LOBE_TRT = 2, HB_LOBE_TRRT = 3, HB_MAX_LOBES = 8 };
+#define HB_LOBES_DEFAULT 0u /* the model's full set */
+
+typedef enum hb_ndf { HB_NDF_GGX, HB_NDF_BECKMANN } hb_ndf;
+
+/* Material parameters (SPEC.md section 3). hb_material_default() fills the defaults. */
+typedef struct hb_material {
+    size_t struct_size;  /* sizeof(hb_material), set by hb_material_default */
+    double eta;          /* index of refraction, default 1.55 */
+    double sigma_a[3];   /* RGB absorption per unit fibre radius, default 0 */
+    double eumelanin;    /* concentrations; their absorption (dFH11 sec. 6.1) adds to sigma_a */
+    double pheomelanin;
+    double beta_m;       /* longitudinal roughness in radians (dFH11: v = beta_m^2), default 0.1 */
+    double beta_n;       /* azimuthal roughness in radians (dFH11), default 0.3 */
+    double alpha;        /* cuticle scale tilt in radians, default 0.035; see README for the per-model shifts */
+    hb_ndf ndf;          /* HHH22 microfacet distribution, default GGX */
+    double roughness;    /* HHH22 microfacet roughness, default 0.1 */
+    double eccentricity; /* elliptical fibre (HHH22, MJC03), default 0 */
+    /* Per-lobe overrides: 0 means "derived from beta_m" (dFH11: the same beta_m for every lobe). */
+    double lobe_beta_m[HB_MAX_LOBES];
+} hb_material;
+
+void hb_material_default(hb_material *material);
+
+/* sigma_a of the material: sigma_a plus the melanin absorption of dFH11 sec. 6.1. */
+void hb_material_absorption(const hb_material *material, double sigma_a_rgb[3]);
+
+typedef enum hb_quality {
+    HB_QUALITY_FAST,
+    HB_QUALITY_BALANCED,
+    HB_QUALITY_HIGH,
+    HB_QUALITY_REFERENCE /* the scalar double-precision path that converges to the paper */
+} hb_quality;
+
+typedef enum hb_isa {
+    HB_ISA_AUTO = 0, /* best available, or the HB_ISA environment variable */
+    HB_ISA_SCALAR,
+    HB_ISA_SSE41,
+    HB_ISA_AVX2,   /* AVX2 + FMA */
+    HB_ISA_AVX512, /* AVX-512F */
+    HB_ISA_NEON,
+    HB_ISA_COUNT
+} hb_isa;
+
+/* What a plan evaluates. */
+typedef enum hb_term {
+    HB_TERM_FULL,         /* f, the whole BCSDF times cos(theta_i) */
+    HB_TERM_LONGITUDINAL  /* dFH11 only: the R lobe's M_p(v_R, theta_i, theta_o - alpha_R) (eq. 7), in every channel */
+} hb_term;
+
+/* The modified Bessel function I0 inside dFH11 eq. 7. */
+typedef enum hb_i0 {
+    HB_I0_ABRAMOWITZ, /* A&S 9.8.1 / 9.8.2 in log space: accurate for v from 1e-4 to 10 */
+    HB_I0_PAPER       /* the 10-term series of dFH11 eq. 15: too small for large arguments (small v) */
+} hb_i0;
+
+typedef struct hb_options {
+    size_t struct_size; /* sizeof(hb_options), set by hb_options_default */
+    hb_model model;     /* default HB_MODEL_DEON */
+    unsigned lobes;     /* bit mask of (1u << p), HB_LOBES_DEFAULT for the model's full set */
+    hb_term term;       /* default HB_TERM_FULL */
+    hb_quality quality; /* default HB_QUALITY_BALANCED */
+    hb_isa isa;         /* default HB_ISA_AUTO */
+    hb_i0 i0;           /* default HB_I0_ABRAMOWITZ */
+} hb_options;
+
+void hb_options_default(hb_options *options);
+
+typedef struct hb_plan hb_plan;
+
+/* Validates material and options and builds an immutable plan. On failure returns
+ * the status, leaves *plan NULL and, if error is not NULL, fills it. */
+hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **plan,
+                         hb_error *error);
+void hb_plan_destroy(hb_plan *plan);
+
+/* The instruction set the plan's kernel uses (never HB_ISA_AUTO). */
+hb_isa hb_plan_isa(const hb_plan *plan);
+
+/* Caller-owned structure-of-arrays batches. */
+typedef struct hb_angles_soa {
+    const float *theta_i, *phi_i, *theta_o, *phi_o; /* radians */
+} hb_angles_soa;
+
+typedef struct hb_vectors_soa {
+    const float *wi_x, *wi_y, *wi_z, *wo_x, *wo_y, *wo_z; /* unit vectors in the fibre frame */
+} hb_vectors_soa;
+
+typedef struct hb_rgb_soa {
+    float *r, *g, *b;
+} hb_rgb_soa;
+
+/* Per-call report. A sample is invalid when an angle is NaN or +-Inf, |theta| exceeds
+ * pi/2 (as a float, 1.57079637f), or a vector is not finite or its length differs from
+ * 1 by more than HB_UNIT_TOLERANCE. Invalid samples get f = 0 in every channel. */
+#define HB_UNIT_TOLERANCE 1e-3f
+typedef struct hb_eval_report {
+    size_t invalid;
+} hb_eval_report;
+
+/* Evaluate n samples. report may be NULL. Output arrays must not alias inputs. */
+hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out,
+                         hb_eval_report *report);
+hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,
+                          hb_eval_report *report);
+
+/* Instruction sets: names as used by --isa and the HB_ISA environment variable
+ * ("scalar", "sse4.1", "avx2", "avx512", "neon"). */
+const char *hb_isa_name(hb_isa isa);
+hb_isa hb_isa_from_name(const char *name); /* HB_ISA_COUNT if unknown */
+int hb_isa_available(hb_isa isa);          /* compiled in and supported by this CPU and OS */
+hb_isa hb_isa_best(void);                  /* what HB_ISA_AUTO picks without HB_ISA */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

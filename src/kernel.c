@@ -1,0 +1,160 @@
+/* One translation unit per ISA: the Makefile compiles this file once for each
+ * instruction set with -DHB_TARGET_<NAME> and that ISA's flags, and each copy exports
+ * its table of kernels as hb_kernels_<name>. Nothing in here is ISA specific. */
+#include <string.h>
+
+#include "simd/simd.h"
+#include "math/vmath.h"
+#include "models/deon/longitudinal.h"
+#include "kernels.h"
+
+#if defined(HB_TARGET_SCALAR)
+#define HB_TABLE hb_kernels_scalar
+#define HB_TABLE_ISA HB_ISA_SCALAR
+#elif defined(HB_TARGET_SSE41)
+#define HB_TABLE hb_kernels_sse41
+#define HB_TABLE_ISA HB_ISA_SSE41
+#elif defined(HB_TARGET_AVX2)
+#define HB_TABLE hb_kernels_avx2
+#define HB_TABLE_ISA HB_ISA_AVX2
+#elif defined(HB_TARGET_AVX512)
+#define HB_TABLE hb_kernels_avx512
+#define HB_TABLE_ISA HB_ISA_AVX512
+#elif defined(HB_TARGET_NEON)
+#define HB_TABLE hb_kernels_neon
+#define HB_TABLE_ISA HB_ISA_NEON
+#endif
+
+/* Loads lane block [i, i + lanes) of each stream; a short tail is padded with pad. */
+static inline void load_block(const float *const *src, int streams, size_t i, size_t lanes, float pad, vf *dst)
+{
+    for (int s = 0; s < streams; s++) {
+        if (lanes == HB_W) {
+            dst[s] = vf_loadu(src[s] + i);
+        } else {
+            float buf[HB_W];
+            for (size_t k = 0; k < HB_W; k++)
+                buf[k] = k < lanes ? src[s][i + k] : pad;
+            dst[s] = vf_loadu(buf);
+        }
+    }
+}
+
+static inline void store_block(float *dst, size_t i, size_t lanes, vf value)
+{
+    if (lanes == HB_W) {
+        vf_storeu(dst + i, value);
+    } else {
+        float buf[HB_W];
+        vf_storeu(buf, value);
+        memcpy(dst + i, buf, lanes * sizeof(float));
+    }
+}
+
+static inline size_t count_invalid(vm valid, size_t lanes)
+{
+    unsigned live = lanes >= 32 ? ~0u : (1u << lanes) - 1u;
+    return (size_t)__builtin_popcount(~vm_bits(valid) & live);
+}
+
+/* theta finite and |theta| <= pi/2 (as a float), phi finite. */
+static inline vm angle_pair_valid(vf theta, vf phi)
+{
+    return vm_and(vf_le(vf_abs(theta), vf_set1(HB_PIO2_F)), vf_isfinite(phi));
+}
+
+static inline vm unit_vector_valid(const vf w[3])
+{
+    vf norm2 = vf_fma(w[0], w[0], vf_fma(w[1], w[1], vf_mul(w[2], w[2])));
+    return vf_le(vf_abs(vf_sub(norm2, vf_set1(1.0f))), vf_set1(HB_UNIT_TOLERANCE));
+}
+
+static inline void longitudinal_angles_body(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,
+                                            float *out, size_t *invalid, hb_i0 i0)
+{
+    const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
+    size_t bad = 0;
+    for (size_t i = 0; i < n; i += HB_W) {
+        size_t lanes = n - i < HB_W ? n - i : HB_W;
+        vf a[4];
+        load_block(src, 4, i, lanes, 0.0f, a);
+        vm valid = vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
+        vf m = longitudinal_deon_angles(lobe, a[0], a[2], i0);
+        store_block(out, i, lanes, vf_select(valid, m, vf_set1(0.0f)));
+        bad += count_invalid(valid, lanes);
+    }
+    *invalid = bad;
+}
+
+static inline void longitudinal_vectors_body(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,
+                                             float *out, size_t *invalid, hb_i0 i0)
+{
+    const float *src[6] = { in.wi_x, in.wi_y, in.wi_z, in.wo_x, in.wo_y, in.wo_z };
+    size_t bad = 0;
+    for (size_t i = 0; i < n; i += HB_W) {
+        size_t lanes = n - i < HB_W ? n - i : HB_W;
+        vf a[6];
+        load_block(src, 6, i, lanes, 0.0f, a);
+        vm valid = vm_and(unit_vector_valid(a), unit_vector_valid(a + 3));
+        vf m = longitudinal_deon_vectors(lobe, a, a + 3, i0);
+        store_block(out, i, lanes, vf_select(valid, m, vf_set1(0.0f)));
+        bad += count_invalid(valid, lanes);
+    }
+    *invalid = bad;
+}
+
+/* One specialised kernel per I0 variant: the variant is a constant inside each. */
+#define HB_LONGITUDINAL_VARIANT(suffix, variant)                                                        \
+    static void longitudinal_angles_##suffix(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,   \
+                                             float *out, size_t *invalid)                              \
+    {                                                                                                   \
+        longitudinal_angles_body(lobe, n, in, out, invalid, variant);                                   \
+    }                                                                                                   \
+    static void longitudinal_vectors_##suffix(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in, \
+                                              float *out, size_t *invalid)                             \
+    {                                                                                                   \
+        longitudinal_vectors_body(lobe, n, in, out, invalid, variant);                                  \
+    }
+HB_LONGITUDINAL_VARIANT(abramowitz, HB_I0_ABRAMOWITZ)
+HB_LONGITUDINAL_VARIANT(paper, HB_I0_PAPER)
+#undef HB_LONGITUDINAL_VARIANT
+
+static inline vf math_apply(hb_math_fn fn, vf a, vf b)
+{
+    switch (fn) {
+    case HB_FN_EXP: return vf_exp(a);
+    case HB_FN_LOG: return vf_log(a);
+    case HB_FN_LOG1P: return vf_log1p(a);
+    case HB_FN_SIN: return vf_sin(a);
+    case HB_FN_COS: return vf_cos(a);
+    case HB_FN_ASIN: return vf_asin(a);
+    case HB_FN_ACOS: return vf_acos(a);
+    case HB_FN_ATAN2: return vf_atan2(a, b);
+    case HB_FN_SQRT: return vf_sqrt(a);
+    case HB_FN_I0: return vf_i0(a);
+    case HB_FN_I0E: return vf_i0e(a);
+    case HB_FN_LOG_I0: return vf_log_i0(a);
+    case HB_FN_COUNT: break;
+    }
+    return a;
+}
+
+/* Applies one vector math function to arrays (b is the second operand of atan2 and may be NULL otherwise). */
+static void math_map(hb_math_fn fn, size_t n, const float *a, const float *b, float *out)
+{
+    const float *src[2] = { a, b ? b : a };
+    for (size_t i = 0; i < n; i += HB_W) {
+        size_t lanes = n - i < HB_W ? n - i : HB_W;
+        vf v[2];
+        load_block(src, 2, i, lanes, 1.0f, v);
+        store_block(out, i, lanes, math_apply(fn, v[0], v[1]));
+    }
+}
+
+const hb_kernels HB_TABLE = {
+    .isa = HB_TABLE_ISA,
+    .width = HB_W,
+    .longitudinal_angles = { longitudinal_angles_abramowitz, longitudinal_angles_paper },
+    .longitudinal_vectors = { longitudinal_vectors_abramowitz, longitudinal_vectors_paper },
+    .math_map = math_map,
+};

@@ -1,0 +1,275 @@
+/* Vector math written once over the SIMD vocabulary (src/simd/simd.h).
+ * Polynomial coefficients are the Cephes single-precision ones (exp, log, sin,
+ * cos, asin, atan) and Abramowitz & Stegun 9.8.1 / 9.8.2 (I0). Accuracy is
+ * measured by tests/test_vmath.c on every ISA; README.md states the figures.
+ * Inputs outside a function's stated domain give unspecified (but not trapping)
+ * results: kernels validate their inputs before calling these. */
+#ifndef HB_VMATH_H
+#define HB_VMATH_H
+
+#include "../simd/simd.h"
+
+/* pi/2 as float plus the float closest to the rest, for reductions and reflections. */
+#define HB_PIO2_F 1.57079637f
+#define HB_PIO2_LO -4.37113883e-8f
+#define HB_PI_F 3.14159274f
+#define HB_PI_LO -8.74227766e-8f
+
+static inline vf vf_poly2(vf x, float c0, float c1, float c2)
+{
+    return vf_fma(vf_fma(vf_set1(c2), x, vf_set1(c1)), x, vf_set1(c0));
+}
+
+/* y * 2^k for integral k in [-252, 254]: two power-of-two factors, each a normal
+ * float, so a result in the denormal range is rounded once. */
+static inline vf vf_ldexp(vf y, vf k)
+{
+    vf k1 = vf_floor(vf_mul(k, vf_set1(0.5f)));
+    vf k2 = vf_sub(k, k1);
+    vf s1 = vi_as_vf(vi_shl(vi_add(vi_from_vf(k1), vi_set1(127)), 23));
+    vf s2 = vi_as_vf(vi_shl(vi_add(vi_from_vf(k2), vi_set1(127)), 23));
+    return vf_mul(vf_mul(y, s1), s2);
+}
+
+/* e^r for |r| <= ln(2)/2 (Cephes expf polynomial). */
+static inline vf vf_exp_reduced(vf r)
+{
+    vf p = vf_set1(1.9875691500e-4f);
+    p = vf_fma(p, r, vf_set1(1.3981999507e-3f));
+    p = vf_fma(p, r, vf_set1(8.3334519073e-3f));
+    p = vf_fma(p, r, vf_set1(4.1665795894e-2f));
+    p = vf_fma(p, r, vf_set1(1.6666665459e-1f));
+    p = vf_fma(p, r, vf_set1(5.0000001201e-1f));
+    return vf_add(vf_fma(p, vf_mul(r, r), r), vf_set1(1.0f));
+}
+
+/* e^x: x = k ln2 + r with a two-part ln2 (Cody & Waite), then 2^k * e^r.
+ * Underflows to 0 below -103.97 and overflows to +Inf above 88.72. */
+static inline vf vf_exp(vf x)
+{
+    x = vf_clamp(x, -104.0f, 89.0f);
+    vf k = vf_round(vf_mul(x, vf_set1(1.44269504f)));
+    vf r = vf_fnma(k, vf_set1(0.693359375f), x);
+    r = vf_fnma(k, vf_set1(-2.12194440e-4f), r);
+    return vf_ldexp(vf_exp_reduced(r), k);
+}
+
+/* e^x for an argument carried in double precision: the reduction x - k ln2 is
+ * done in double, so a large |x| loses nothing to the float rounding of x. */
+static inline vf vf_exp_dw(vdw x)
+{
+    x = vdw_min(vdw_max(x, vdw_set1(-110.0)), vdw_set1(100.0));
+    vdw k = vdw_round(vdw_mul(x, vdw_set1(1.4426950408889634)));
+    vdw r = vdw_fma(k, vdw_set1(-0.69314718055994531), x);
+    return vf_ldexp(vf_exp_reduced(vdw_to_vf(r)), vdw_to_vf(k));
+}
+
+/* Natural log: x = m 2^e with m in [sqrt(1/2), sqrt(2)), Cephes logf polynomial
+ * in m - 1. Denormals are scaled first; log(0) = -Inf, log(x < 0) = NaN. */
+static inline vf vf_log(vf x)
+{
+    vm tiny = vf_lt(x, vf_set1(1.17549435e-38f));
+    vf xs = vf_select(tiny, vf_mul(x, vf_set1(8388608.0f)), x);
+    vi bits = vf_as_vi(xs);
+    vf e = vf_from_vi(vi_sub(vi_shr(bits, 23), vi_set1(127)));
+    e = vf_select(tiny, vf_sub(e, vf_set1(23.0f)), e);
+    vf m = vi_as_vf(vi_or(vi_and(bits, vi_set1(0x007fffff)), vi_set1(0x3f800000)));
+    vm big = vf_gt(m, vf_set1(1.41421356f));
+    m = vf_select(big, vf_mul(m, vf_set1(0.5f)), m);
+    e = vf_select(big, vf_add(e, vf_set1(1.0f)), e);
+    vf f = vf_sub(m, vf_set1(1.0f));
+    vf z = vf_mul(f, f);
+    vf p = vf_set1(7.0376836292e-2f);
+    p = vf_fma(p, f, vf_set1(-1.1514610310e-1f));
+    p = vf_fma(p, f, vf_set1(1.1676998740e-1f));
+    p = vf_fma(p, f, vf_set1(-1.2420140846e-1f));
+    p = vf_fma(p, f, vf_set1(1.4249322787e-1f));
+    p = vf_fma(p, f, vf_set1(-1.6668057665e-1f));
+    p = vf_fma(p, f, vf_set1(2.0000714765e-1f));
+    p = vf_fma(p, f, vf_set1(-2.4999993993e-1f));
+    p = vf_fma(p, f, vf_set1(3.3333331174e-1f));
+    vf y = vf_mul(vf_mul(p, f), z);
+    y = vf_fma(e, vf_set1(-2.12194440e-4f), y);
+    y = vf_fnma(vf_set1(0.5f), z, y);
+    vf r = vf_fma(e, vf_set1(0.693359375f), vf_add(f, y));
+    r = vf_select(vf_eq(x, vf_set1(0.0f)), vf_set1(-__builtin_inff()), r);
+    r = vf_select(vf_eq(x, vf_set1(__builtin_inff())), x, r);
+    return vf_select(vf_lt(x, vf_set1(0.0f)), vf_set1(__builtin_nanf("")), r);
+}
+
+/* log(1 + u) for u >= -1, exact near u = 0: w = 1 + u is rounded, and the
+ * rounding error ((w - 1) - u) is taken back out to first order. */
+static inline vf vf_log1p(vf u)
+{
+    vf w = vf_add(vf_set1(1.0f), u);
+    vf wm1 = vf_sub(w, vf_set1(1.0f));
+    vf r = vf_sub(vf_log(w), vf_div(vf_sub(wm1, u), w));
+    return vf_select(vf_eq(wm1, vf_set1(0.0f)), u, r);
+}
+
+/* sin and cos together: x = q pi/2 + r, |r| <= pi/4, with pi/2 split in three
+ * floats whose small multiples are exact; then the Cephes sin and cos
+ * polynomials on r and a quadrant swap and sign flip. Accurate for |x| < 8192. */
+static inline void vf_sincos(vf x, vf *s, vf *c)
+{
+    vf q = vf_round(vf_mul(x, vf_set1(0.636619772f)));
+    vf r = vf_fnma(q, vf_set1(1.5703125f), x);
+    r = vf_fnma(q, vf_set1(4.837512969970703125e-4f), r);
+    r = vf_fnma(q, vf_set1(7.54978995489188216e-8f), r);
+    vf z = vf_mul(r, r);
+    vf sp = vf_poly2(z, -1.6666654611e-1f, 8.3321608736e-3f, -1.9515295891e-4f);
+    vf sin_r = vf_fma(vf_mul(sp, z), r, r);
+    vf cp = vf_poly2(z, 4.166664568298827e-2f, -1.388731625493765e-3f, 2.443315711809948e-5f);
+    vf cos_r = vf_fma(vf_mul(cp, z), z, vf_fnma(vf_set1(0.5f), z, vf_set1(1.0f)));
+    vi qi = vi_from_vf(q);
+    vm swap = vi_eq(vi_and(qi, vi_set1(1)), vi_set1(1));
+    vi sin_flip = vi_shl(vi_and(qi, vi_set1(2)), 30);
+    vi cos_flip = vi_shl(vi_and(vi_add(qi, vi_set1(1)), vi_set1(2)), 30);
+    *s = vi_as_vf(vi_xor(vf_as_vi(vf_select(swap, cos_r, sin_r)), sin_flip));
+    *c = vi_as_vf(vi_xor(vf_as_vi(vf_select(swap, sin_r, cos_r)), cos_flip));
+}
+
+static inline vf vf_sin(vf x) { vf s, c; vf_sincos(x, &s, &c); return s; }
+static inline vf vf_cos(vf x) { vf s, c; vf_sincos(x, &s, &c); return c; }
+
+/* asin of a = |x| in [0, 1] without the final reflection: for a > 1/2 it returns
+ * asin(sqrt((1 - a)/2)) and sets *big (Cephes asinf polynomial). */
+static inline vf vf_asin_core(vf a, vm *big)
+{
+    *big = vf_gt(a, vf_set1(0.5f));
+    vf z = vf_select(*big, vf_mul(vf_set1(0.5f), vf_sub(vf_set1(1.0f), a)), vf_mul(a, a));
+    vf s = vf_select(*big, vf_sqrt(z), a);
+    vf p = vf_set1(4.2163199048e-2f);
+    p = vf_fma(p, z, vf_set1(2.4181311049e-2f));
+    p = vf_fma(p, z, vf_set1(4.5470025998e-2f));
+    p = vf_fma(p, z, vf_set1(7.4953002686e-2f));
+    p = vf_fma(p, z, vf_set1(1.6666752422e-1f));
+    return vf_fma(vf_mul(p, z), s, s);
+}
+
+/* asin(x) for |x| <= 1; for |x| > 1/2, asin(a) = pi/2 - 2 asin(sqrt((1 - a)/2)). */
+static inline vf vf_asin(vf x)
+{
+    vm big;
+    vf p = vf_asin_core(vf_abs(x), &big);
+    vf reflected = vf_add(vf_fnma(vf_set1(2.0f), p, vf_set1(HB_PIO2_F)), vf_set1(HB_PIO2_LO));
+    return vf_copysign(vf_select(big, reflected, p), x);
+}
+
+/* acos(x) for |x| <= 1: pi/2 - asin(x) for |x| <= 1/2, 2 asin(sqrt((1 - x)/2))
+ * for x > 1/2 and pi - 2 asin(sqrt((1 + x)/2)) for x < -1/2. */
+static inline vf vf_acos(vf x)
+{
+    vm big;
+    vf p = vf_asin_core(vf_abs(x), &big);
+    vf mid = vf_sub(vf_set1(HB_PIO2_F), vf_sub(vf_copysign(p, x), vf_set1(HB_PIO2_LO)));
+    vf twice = vf_add(p, p);
+    vf far_side = vf_sub(vf_set1(HB_PI_F), vf_sub(twice, vf_set1(HB_PI_LO)));
+    vf outer = vf_select(vf_lt(x, vf_set1(0.0f)), far_side, twice);
+    return vf_select(big, outer, mid);
+}
+
+/* atan2(y, x) in [-pi, pi]: atan of t = min(|x|,|y|)/max(|x|,|y|) in [0, 1]
+ * (reduced by pi/4 above tan(pi/8), Cephes atanf polynomial), then reflected
+ * into the right octant. atan2(+-0, +-0) follows the C library's signs. */
+static inline vf vf_atan2(vf y, vf x)
+{
+    vf ay = vf_abs(y), ax = vf_abs(x);
+    vf num = vf_min(ay, ax), den = vf_max(ay, ax);
+    vf t = vf_select(vf_eq(den, vf_set1(0.0f)), vf_set1(0.0f), vf_div(num, den));
+    vm mid = vf_gt(t, vf_set1(0.414213562f));
+    t = vf_select(mid, vf_div(vf_sub(t, vf_set1(1.0f)), vf_add(t, vf_set1(1.0f))), t);
+    vf z = vf_mul(t, t);
+    vf p = vf_set1(8.05374449538e-2f);
+    p = vf_fma(p, z, vf_set1(-1.38776856032e-1f));
+    p = vf_fma(p, z, vf_set1(1.99777106478e-1f));
+    p = vf_fma(p, z, vf_set1(-3.33329491539e-1f));
+    vf a = vf_fma(vf_mul(p, z), t, t);
+    a = vf_add(vf_select(mid, vf_set1(0.785398163f), vf_set1(0.0f)), a);
+    vf from_y_axis = vf_add(vf_sub(vf_set1(HB_PIO2_F), a), vf_set1(HB_PIO2_LO));
+    a = vf_select(vf_gt(ay, ax), from_y_axis, a);
+    vm x_negative = vi_eq(vi_and(vf_as_vi(x), vi_set1(HB_SIGN_BIT)), vi_set1(HB_SIGN_BIT));
+    vf from_negative_x = vf_add(vf_sub(vf_set1(HB_PI_F), a), vf_set1(HB_PI_LO));
+    a = vf_select(x_negative, from_negative_x, a);
+    return vf_copysign(a, y);
+}
+
+/* A&S 9.8.1 without its leading 1: I0(x) - 1 for |x| <= 3.75, in t = (x/3.75)^2. */
+static inline vf vf_i0_small_minus1(vf x)
+{
+    vf t = vf_mul(x, vf_set1(1.0f / 3.75f));
+    t = vf_mul(t, t);
+    vf q = vf_set1(0.0045813f);
+    q = vf_fma(q, t, vf_set1(0.0360768f));
+    q = vf_fma(q, t, vf_set1(0.2659732f));
+    q = vf_fma(q, t, vf_set1(1.2067492f));
+    q = vf_fma(q, t, vf_set1(3.0899424f));
+    q = vf_fma(q, t, vf_set1(3.5156229f));
+    return vf_mul(t, q);
+}
+
+/* A&S 9.8.2: sqrt(x) e^-x I0(x) for x >= 3.75, a polynomial in 3.75/x. */
+static inline vf vf_i0_large_poly(vf x)
+{
+    vf u = vf_div(vf_set1(3.75f), x);
+    vf p = vf_set1(0.00392377f);
+    p = vf_fma(p, u, vf_set1(-0.01647633f));
+    p = vf_fma(p, u, vf_set1(0.02635537f));
+    p = vf_fma(p, u, vf_set1(-0.02057706f));
+    p = vf_fma(p, u, vf_set1(0.00916281f));
+    p = vf_fma(p, u, vf_set1(-0.00157565f));
+    p = vf_fma(p, u, vf_set1(0.00225319f));
+    p = vf_fma(p, u, vf_set1(0.01328592f));
+    return vf_fma(p, u, vf_set1(0.39894228f));
+}
+
+/* The modified Bessel function I0 (A&S 9.8.1 and 9.8.2); +Inf beyond |x| = 91.9. */
+static inline vf vf_i0(vf x)
+{
+    vf ax = vf_abs(x);
+    vf small = vf_add(vf_set1(1.0f), vf_i0_small_minus1(vf_min(ax, vf_set1(3.75f))));
+    vf xl = vf_max(ax, vf_set1(3.75f));
+    vf half = vf_exp(vf_mul(vf_set1(0.5f), xl)); /* e^x as a square keeps x up to 2 * 88 */
+    vf large = vf_mul(vf_mul(half, vf_div(vf_i0_large_poly(xl), vf_sqrt(xl))), half);
+    return vf_select(vf_le(ax, vf_set1(3.75f)), small, large);
+}
+
+/* e^-|x| I0(x), finite for every finite x. */
+static inline vf vf_i0e(vf x)
+{
+    vf ax = vf_abs(x);
+    vf xs = vf_min(ax, vf_set1(3.75f));
+    vf small = vf_mul(vf_exp(vf_neg(xs)), vf_add(vf_set1(1.0f), vf_i0_small_minus1(xs)));
+    vf xl = vf_max(ax, vf_set1(3.75f));
+    vf large = vf_div(vf_i0_large_poly(xl), vf_sqrt(xl));
+    return vf_select(vf_le(ax, vf_set1(3.75f)), small, large);
+}
+
+/* log I0(x): log1p of A&S 9.8.1 below 3.75 (so it stays relative-accurate as
+ * x -> 0), x - log(x)/2 + log P(3.75/x) above. */
+static inline vf vf_log_i0(vf x)
+{
+    vf ax = vf_abs(x);
+    vf small = vf_log1p(vf_i0_small_minus1(vf_min(ax, vf_set1(3.75f))));
+    vf xl = vf_max(ax, vf_set1(3.75f));
+    vf large = vf_add(vf_fnma(vf_set1(0.5f), vf_log(xl), xl), vf_log(vf_i0_large_poly(xl)));
+    return vf_select(vf_le(ax, vf_set1(3.75f)), small, large);
+}
+
+/* sin(t) in double precision for |t| <= 2.2: the Taylor series to t^19, whose
+ * remainder is below 3e-13 there (no reduction needed for the kernels' angles). */
+static inline vdw vdw_sin_taylor(vdw t)
+{
+    static const double inv_odd_factorial[10] = {
+        1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0, -1.0 / 39916800.0,
+        1.0 / 6227020800.0, -1.0 / 1307674368000.0, 1.0 / 355687428096000.0,
+        -1.0 / 121645100408832000.0,
+    };
+    vdw z = vdw_mul(t, t);
+    vdw p = vdw_set1(inv_odd_factorial[9]);
+    for (int k = 8; k >= 0; k--)
+        p = vdw_fma(p, z, vdw_set1(inv_odd_factorial[k]));
+    return vdw_mul(p, t);
+}
+
+#endif

@@ -1,0 +1,204 @@
+/* Material and option defaults, validation, and plan creation: everything that
+ * depends only on the material is computed here, once, in double precision. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "plan.h"
+
+/* Valid ranges. v = beta_m^2 in [1e-4, 10] is where M_p's accuracy is tested. */
+#define BETA_M_MIN 0.01
+#define BETA_M_MAX 3.1622776601683795
+#define BETA_N_MIN 0.02
+#define BETA_N_MAX 3.0
+#define ALPHA_MAX 0.2
+#define ETA_MAX 10.0
+#define ROUGHNESS_MIN 1e-3
+#define ROUGHNESS_MAX 1.0
+#define ECCENTRICITY_MAX 0.99
+
+void hb_material_default(hb_material *m)
+{
+    if (!m)
+        return;
+    memset(m, 0, sizeof *m);
+    m->struct_size = sizeof *m;
+    m->eta = 1.55;
+    m->beta_m = 0.1;
+    m->beta_n = 0.3;
+    m->alpha = 0.035;
+    m->ndf = HB_NDF_GGX;
+    m->roughness = 0.1;
+}
+
+void hb_material_absorption(const hb_material *m, double out[3])
+{
+    /* dFH11 sec. 6.1: RGB absorption of eumelanin and pheomelanin per unit concentration. */
+    static const double eumelanin_rgb[3] = { 0.419, 0.697, 1.37 };
+    static const double pheomelanin_rgb[3] = { 0.187, 0.4, 1.05 };
+    for (int c = 0; c < 3; c++)
+        out[c] = m->sigma_a[c] + m->eumelanin * eumelanin_rgb[c] + m->pheomelanin * pheomelanin_rgb[c];
+}
+
+void hb_options_default(hb_options *o)
+{
+    if (!o)
+        return;
+    memset(o, 0, sizeof *o);
+    o->struct_size = sizeof *o;
+    o->model = HB_MODEL_DEON;
+    o->lobes = HB_LOBES_DEFAULT;
+    o->term = HB_TERM_FULL;
+    o->quality = HB_QUALITY_BALANCED;
+    o->isa = HB_ISA_AUTO;
+    o->i0 = HB_I0_ABRAMOWITZ;
+}
+
+static hb_status fail(hb_error *error, hb_status status, const char *fmt, ...)
+{
+    if (error) {
+        va_list ap;
+        va_start(ap, fmt);
+        error->status = status;
+        vsnprintf(error->message, sizeof error->message, fmt, ap);
+        va_end(ap);
+    }
+    return status;
+}
+
+static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi; } /* false for NaN */
+
+static hb_status validate_material(const hb_material *m, hb_error *error)
+{
+    if (m->struct_size != sizeof *m)
+        return fail(error, HB_ERR_VERSION, "hb_material.struct_size is %zu, this library expects %zu",
+                    m->struct_size, sizeof *m);
+    if (!(m->eta > 1.0 && m->eta <= ETA_MAX))
+        return fail(error, HB_ERR_PARAM, "eta = %g must be in (1, %g]", m->eta, ETA_MAX);
+    static const char *const channel[3] = { "r", "g", "b" };
+    for (int c = 0; c < 3; c++)
+        if (!(m->sigma_a[c] >= 0.0 && isfinite(m->sigma_a[c])))
+            return fail(error, HB_ERR_PARAM, "sigma_a.%s = %g must be finite and >= 0", channel[c], m->sigma_a[c]);
+    if (!(m->eumelanin >= 0.0 && isfinite(m->eumelanin)))
+        return fail(error, HB_ERR_PARAM, "eumelanin = %g must be finite and >= 0", m->eumelanin);
+    if (!(m->pheomelanin >= 0.0 && isfinite(m->pheomelanin)))
+        return fail(error, HB_ERR_PARAM, "pheomelanin = %g must be finite and >= 0", m->pheomelanin);
+    if (!in_range(m->beta_m, BETA_M_MIN, BETA_M_MAX))
+        return fail(error, HB_ERR_PARAM, "beta_m = %g must be in [%g, %g] (v = beta_m^2 in [1e-4, 10])",
+                    m->beta_m, BETA_M_MIN, BETA_M_MAX);
+    for (int p = 0; p < HB_MAX_LOBES; p++)
+        if (m->lobe_beta_m[p] != 0.0 && !in_range(m->lobe_beta_m[p], BETA_M_MIN, BETA_M_MAX))
+            return fail(error, HB_ERR_PARAM, "lobe_beta_m[%d] = %g must be 0 (derived) or in [%g, %g]", p,
+                        m->lobe_beta_m[p], BETA_M_MIN, BETA_M_MAX);
+    if (!in_range(m->beta_n, BETA_N_MIN, BETA_N_MAX))
+        return fail(error, HB_ERR_PARAM, "beta_n = %g must be in [%g, %g]", m->beta_n, BETA_N_MIN, BETA_N_MAX);
+    if (!in_range(m->alpha, -ALPHA_MAX, ALPHA_MAX))
+        return fail(error, HB_ERR_PARAM, "alpha = %g must be in [%g, %g] radians", m->alpha, -ALPHA_MAX, ALPHA_MAX);
+    if (m->ndf != HB_NDF_GGX && m->ndf != HB_NDF_BECKMANN)
+        return fail(error, HB_ERR_PARAM, "ndf = %d is neither HB_NDF_GGX nor HB_NDF_BECKMANN", (int)m->ndf);
+    if (!in_range(m->roughness, ROUGHNESS_MIN, ROUGHNESS_MAX))
+        return fail(error, HB_ERR_PARAM, "roughness = %g must be in [%g, %g]", m->roughness, ROUGHNESS_MIN,
+                    ROUGHNESS_MAX);
+    if (!in_range(m->eccentricity, 0.0, ECCENTRICITY_MAX))
+        return fail(error, HB_ERR_PARAM, "eccentricity = %g must be in [0, %g]", m->eccentricity,
+                    ECCENTRICITY_MAX);
+    return HB_OK;
+}
+
+/* What exists so far: dFH11's longitudinal function M_p of the R lobe. */
+static hb_status validate_options(const hb_options *o, hb_error *error)
+{
+    if (o->struct_size != sizeof *o)
+        return fail(error, HB_ERR_VERSION, "hb_options.struct_size is %zu, this library expects %zu",
+                    o->struct_size, sizeof *o);
+    if (o->model != HB_MODEL_DEON && o->model != HB_MODEL_MARSCHNER && o->model != HB_MODEL_HUANG)
+        return fail(error, HB_ERR_PARAM, "model = %d is not a model", (int)o->model);
+    if (o->model != HB_MODEL_DEON)
+        return fail(error, HB_ERR_UNSUPPORTED, "the %s model is not implemented yet",
+                    o->model == HB_MODEL_MARSCHNER ? "marschner" : "huang");
+    if (o->term != HB_TERM_LONGITUDINAL)
+        return fail(error, HB_ERR_UNSUPPORTED,
+                    "the full deon model (N_p) is not implemented yet; the longitudinal term M_p is");
+    if (o->lobes != HB_LOBES_DEFAULT && o->lobes != 1u << HB_LOBE_R)
+        return fail(error, HB_ERR_UNSUPPORTED, "the longitudinal term is evaluated for the R lobe only");
+    if ((unsigned)o->quality > HB_QUALITY_REFERENCE)
+        return fail(error, HB_ERR_PARAM, "quality = %d is not a quality level", (int)o->quality);
+    if (o->i0 != HB_I0_ABRAMOWITZ && o->i0 != HB_I0_PAPER)
+        return fail(error, HB_ERR_PARAM, "i0 = %d is not an I0 variant", (int)o->i0);
+    if ((unsigned)o->isa >= HB_ISA_COUNT)
+        return fail(error, HB_ERR_PARAM, "isa = %d is not an instruction set", (int)o->isa);
+    return HB_OK;
+}
+
+/* HB_ISA_AUTO resolves to $HB_ISA if set, else the best available. */
+static hb_status resolve_isa(hb_isa requested, hb_isa *isa, hb_error *error)
+{
+    const char *env = getenv("HB_ISA");
+    if (requested == HB_ISA_AUTO && env && *env) {
+        requested = hb_isa_from_name(env);
+        if (requested == HB_ISA_COUNT || requested == HB_ISA_AUTO)
+            return fail(error, HB_ERR_ISA, "HB_ISA=%s is not one of scalar, sse4.1, avx2, avx512, neon", env);
+    }
+    if (requested == HB_ISA_AUTO)
+        requested = hb_isa_best();
+    if (!hb_isa_available(requested))
+        return fail(error, HB_ERR_ISA, "instruction set %s is not available on this CPU or build",
+                    hb_isa_name(requested));
+    *isa = requested;
+    return HB_OK;
+}
+
+/* dFH11 eq. 7 constants; the shift maps the cuticle tilt alpha to the R lobe as
+ * alpha_R = -2 alpha (README: the R highlight moves toward the root for alpha > 0). */
+static void derive_longitudinal(hb_plan *plan)
+{
+    const hb_material *m = &plan->material;
+    for (int p = 0; p < HB_MAX_LOBES; p++) {
+        double beta = m->lobe_beta_m[p] > 0.0 ? m->lobe_beta_m[p] : m->beta_m;
+        double v = beta * beta;
+        hb_longitudinal *l = &plan->longitudinal[p];
+        plan->v[p] = v;
+        l->inv_v = 1.0 / v;
+        l->log_norm = -log(v) - log(-expm1(-2.0 / v));
+        l->shift = p == HB_LOBE_R ? -2.0 * m->alpha : 0.0;
+        l->cos_shift = cos(l->shift);
+        l->sin_shift = sin(l->shift);
+    }
+}
+
+hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **out, hb_error *error)
+{
+    if (error) {
+        error->status = HB_OK;
+        error->message[0] = '\0';
+    }
+    if (!out)
+        return fail(error, HB_ERR_NULL, "plan output pointer is NULL");
+    *out = NULL;
+    if (!material || !options)
+        return fail(error, HB_ERR_NULL, "%s is NULL", material ? "options" : "material");
+    hb_status st = validate_material(material, error);
+    if (st == HB_OK)
+        st = validate_options(options, error);
+    hb_isa isa = HB_ISA_SCALAR;
+    if (st == HB_OK && options->quality != HB_QUALITY_REFERENCE)
+        st = resolve_isa(options->isa, &isa, error);
+    if (st != HB_OK)
+        return st;
+    hb_plan *plan = calloc(1, sizeof *plan);
+    if (!plan)
+        return fail(error, HB_ERR_NOMEM, "could not allocate a plan");
+    plan->material = *material;
+    plan->options = *options;
+    plan->isa = isa;
+    plan->kernels = options->quality == HB_QUALITY_REFERENCE ? NULL : hb_kernels_for(isa);
+    derive_longitudinal(plan);
+    *out = plan;
+    return HB_OK;
+}
+
+void hb_plan_destroy(hb_plan *plan) { free(plan); }
+
+hb_isa hb_plan_isa(const hb_plan *plan) { return plan ? plan->isa : HB_ISA_SCALAR; }

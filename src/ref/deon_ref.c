@@ -1,0 +1,95 @@
+/* dFH11 references in double precision. */
+#include <math.h>
+
+#include "reference.h"
+#include "../plan.h"
+
+double hb_ref_bessel_i0e(double x)
+{
+    x = fabs(x);
+    if (x <= 30.0) {
+        /* I0(x) = sum_k (x^2/4)^k / (k!)^2: positive terms, no cancellation. */
+        double u = 0.25 * x * x, term = 1.0, sum = 1.0;
+        for (int k = 1; term > 1e-18 * sum; k++) {
+            term *= u / ((double)k * k);
+            sum += term;
+        }
+        return sum * exp(-x);
+    }
+    /* I0(x) ~ e^x / sqrt(2 pi x) * sum_k ((2k-1)!!)^2 / (k! (8x)^k); past x = 30 the
+     * terms fall below 1e-17 long before they start to grow again. */
+    double term = 1.0, sum = 1.0;
+    for (int k = 1; k < 60 && term > 1e-18 * sum; k++) {
+        term *= (2.0 * k - 1.0) * (2.0 * k - 1.0) / (8.0 * k * x);
+        sum += term;
+    }
+    return sum / sqrt(2.0 * M_PI * x);
+}
+
+/* log of dFH11 eq. 15, sum_{i<=10} (x^2/4)^i / (i!)^2. */
+static double log_i0_series_paper_ref(double x)
+{
+    double u = 0.25 * x * x, term = 1.0, sum = 1.0;
+    for (int i = 1; i <= 10; i++) {
+        term *= u / ((double)i * i);
+        sum += term;
+    }
+    return log(sum);
+}
+
+double hb_ref_deon_longitudinal(double v, double theta_i, double theta_o, hb_i0 i0)
+{
+    /* eq. 7 with csch(1/v)/(2v) = e^(-1/v) / (v (1 - e^(-2/v))) and
+     * -(1 + sin_i sin_o)/v = -(1 - cos(theta_i + theta_o))/v - x. */
+    double x = cos(theta_i) * cos(theta_o) / v, ax = fabs(x);
+    double half = sin(0.5 * (theta_i + theta_o));
+    double log_norm = -log(v) - log(-expm1(-2.0 / v));
+    double exponent = log_norm - 2.0 * half * half / v - x;
+    if (i0 == HB_I0_PAPER)
+        return exp(exponent + log_i0_series_paper_ref(ax));
+    return exp(exponent + ax) * hb_ref_bessel_i0e(ax);
+}
+
+static int theta_valid(float theta) { return fabsf(theta) <= 1.57079637f; } /* false for NaN */
+
+size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *out)
+{
+    size_t invalid = 0;
+    double v = plan->v[HB_LOBE_R], shift = plan->longitudinal[HB_LOBE_R].shift;
+    for (size_t k = 0; k < n; k++) {
+        if (!theta_valid(in.theta_i[k]) || !theta_valid(in.theta_o[k]) || !isfinite(in.phi_i[k]) ||
+            !isfinite(in.phi_o[k])) {
+            out[k] = 0.0f;
+            invalid++;
+            continue;
+        }
+        out[k] = (float)hb_ref_deon_longitudinal(v, in.theta_i[k], (double)in.theta_o[k] - shift, plan->options.i0);
+    }
+    return invalid;
+}
+
+/* Inclination of a unit-length-within-tolerance vector; NaN when it is not one. */
+static double inclination(float x, float y, float z)
+{
+    double norm2 = (double)x * x + (double)y * y + (double)z * z;
+    if (!(fabs(norm2 - 1.0) <= HB_UNIT_TOLERANCE))
+        return NAN;
+    return atan2(y, hypot(x, z));
+}
+
+size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, float *out)
+{
+    size_t invalid = 0;
+    double v = plan->v[HB_LOBE_R], shift = plan->longitudinal[HB_LOBE_R].shift;
+    for (size_t k = 0; k < n; k++) {
+        double ti = inclination(in.wi_x[k], in.wi_y[k], in.wi_z[k]);
+        double to = inclination(in.wo_x[k], in.wo_y[k], in.wo_z[k]);
+        if (isnan(ti) || isnan(to)) {
+            out[k] = 0.0f;
+            invalid++;
+            continue;
+        }
+        out[k] = (float)hb_ref_deon_longitudinal(v, ti, to - shift, plan->options.i0);
+    }
+    return invalid;
+}

@@ -1,0 +1,41 @@
+/* Picks the SIMD vocabulary for the ISA this translation unit is compiled for
+ * (HB_TARGET_SCALAR, _SSE41, _AVX2, _AVX512 or _NEON, set by the Makefile) and
+ * adds the few operations every ISA derives the same way. */
+#ifndef HB_SIMD_H
+#define HB_SIMD_H
+
+#if defined(HB_TARGET_SCALAR)
+#include "simd_scalar.h"
+#elif defined(HB_TARGET_SSE41)
+#include "simd_sse41.h"
+#elif defined(HB_TARGET_AVX2)
+#include "simd_avx2.h"
+#elif defined(HB_TARGET_AVX512)
+#include "simd_avx512.h"
+#elif defined(HB_TARGET_NEON)
+#include "simd_neon.h"
+#else
+#error "define one of HB_TARGET_SCALAR, _SSE41, _AVX2, _AVX512, _NEON"
+#endif
+
+#define HB_SIGN_BIT ((int32_t)0x80000000)
+
+static inline vf vf_abs(vf a) { return vi_as_vf(vi_and(vf_as_vi(a), vi_set1(0x7fffffff))); }
+static inline vf vf_neg(vf a) { return vi_as_vf(vi_xor(vf_as_vi(a), vi_set1(HB_SIGN_BIT))); }
+/* |a| with the sign of s */
+static inline vf vf_copysign(vf a, vf s)
+{
+    return vi_as_vf(vi_or(vf_as_vi(vf_abs(a)), vi_and(vf_as_vi(s), vi_set1(HB_SIGN_BIT))));
+}
+static inline vf vf_floor(vf a)
+{
+    vf r = vf_round(a);
+    return vf_select(vf_gt(r, a), vf_sub(r, vf_set1(1.0f)), r);
+}
+/* Exact reciprocal (a division): the kernels need it correctly rounded. */
+static inline vf vf_rcp(vf a) { return vf_div(vf_set1(1.0f), a); }
+static inline vf vf_clamp(vf a, float lo, float hi) { return vf_min(vf_max(a, vf_set1(lo)), vf_set1(hi)); }
+/* False for NaN and +-Inf. */
+static inline vm vf_isfinite(vf a) { return vf_le(vf_abs(a), vf_set1(3.40282347e38f)); }
+
+#endif

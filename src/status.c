@@ -1,0 +1,15 @@
+#include "hairbsdf.h"
+
+const char *hb_status_string(hb_status status)
+{
+    switch (status) {
+    case HB_OK: return "ok";
+    case HB_ERR_NULL: return "a required pointer is NULL";
+    case HB_ERR_PARAM: return "a parameter is out of range";
+    case HB_ERR_UNSUPPORTED: return "unsupported model, lobe or option combination";
+    case HB_ERR_ISA: return "instruction set not available on this CPU";
+    case HB_ERR_VERSION: return "struct_size does not match this library";
+    case HB_ERR_NOMEM: return "out of memory";
+    }
+    return "unknown status";
+}

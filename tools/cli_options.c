@@ -1,0 +1,159 @@
+/* Model and material options shared by the subcommands, named as in SPEC.md section 3. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+const char cli_model_options_help[] =
+    "Model options:\n"
+    "  --model deon|marschner|huang   scattering model (default deon)\n"
+    "  --term full|longitudinal       full f, or only dFH11's M_p of the R lobe (default full)\n"
+    "  --lobes R,TT,TRT,TRRT|all      orders p to include (default: the model's full set)\n"
+    "  --quality fast|balanced|high|reference   reference runs the double-precision path\n"
+    "  --isa auto|scalar|sse4.1|avx2|avx512|neon  instruction set (default auto, or $HB_ISA)\n"
+    "  --i0 abramowitz|paper          I0 in dFH11 eq. 7: A&S 9.8.1/9.8.2, or the eq. 15 series\n"
+    "Material options:\n"
+    "  --eta X  --sigma-a R,G,B  --eumelanin X  --pheomelanin X\n"
+    "  --beta-m X  --beta-n X  --alpha X  --ndf ggx|beckmann  --roughness X  --eccentricity X\n";
+
+void cli_model_args_default(cli_model_args *args)
+{
+    hb_material_default(&args->material);
+    hb_options_default(&args->options);
+}
+
+/* A whole field as a finite number. */
+static int parse_number(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(s, &end);
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(x))
+        return 0;
+    *out = x;
+    return 1;
+}
+
+static int parse_triple(const char *s, double out[3])
+{
+    char buf[256];
+    if (strlen(s) >= sizeof buf)
+        return 0;
+    strcpy(buf, s);
+    char *save = NULL, *tok = strtok_r(buf, ",", &save);
+    for (int c = 0; c < 3; c++, tok = strtok_r(NULL, ",", &save))
+        if (!tok || !parse_number(tok, &out[c]))
+            return 0;
+    return tok == NULL;
+}
+
+static int parse_lobes(const char *s, unsigned *mask)
+{
+    static const char *const names[] = { "R", "TT", "TRT", "TRRT" };
+    if (strcmp(s, "all") == 0) {
+        *mask = HB_LOBES_DEFAULT;
+        return 1;
+    }
+    char buf[128];
+    if (strlen(s) >= sizeof buf)
+        return 0;
+    strcpy(buf, s);
+    unsigned m = 0;
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        int found = 0;
+        for (unsigned p = 0; p < sizeof names / sizeof names[0]; p++)
+            if (strcmp(tok, names[p]) == 0) {
+                m |= 1u << p;
+                found = 1;
+            }
+        if (!found)
+            return 0;
+    }
+    *mask = m;
+    return m != 0;
+}
+
+/* Index of s in a NULL-terminated list, or -1. */
+static int pick(const char *s, const char *const *choices)
+{
+    for (int k = 0; choices[k]; k++)
+        if (strcmp(s, choices[k]) == 0)
+            return k;
+    return -1;
+}
+
+int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, char *err, size_t err_size)
+{
+    static const char *const numeric[] = { "--eta", "--eumelanin", "--pheomelanin", "--beta-m", "--beta-n",
+                                           "--alpha", "--roughness", "--eccentricity", NULL };
+    static const char *const with_value[] = { "--model", "--term", "--lobes", "--quality", "--isa", "--i0",
+                                              "--ndf", "--sigma-a", NULL };
+    static const char *const models[] = { "marschner", "deon", "huang", NULL };
+    static const char *const terms[] = { "full", "longitudinal", NULL };
+    static const char *const qualities[] = { "fast", "balanced", "high", "reference", NULL };
+    static const char *const i0s[] = { "abramowitz", "paper", NULL };
+    static const char *const ndfs[] = { "ggx", "beckmann", NULL };
+
+    char name[64];
+    const char *arg = argv[*i], *value = NULL, *eq = strchr(arg, '=');
+    size_t len = eq ? (size_t)(eq - arg) : strlen(arg);
+    if (len >= sizeof name)
+        return 0;
+    memcpy(name, arg, len);
+    name[len] = '\0';
+    int num = pick(name, numeric), other = pick(name, with_value);
+    if (num < 0 && other < 0)
+        return 0;
+    if (eq) {
+        value = eq + 1;
+    } else if (*i + 1 < argc) {
+        value = argv[++*i];
+    } else {
+        snprintf(err, err_size, "%s needs a value", name);
+        return -1;
+    }
+
+    hb_material *m = &args->material;
+    hb_options *o = &args->options;
+    double x;
+    if (num >= 0) {
+        if (!parse_number(value, &x)) {
+            snprintf(err, err_size, "%s: '%s' is not a finite number", name, value);
+            return -1;
+        }
+        double *const fields[] = { &m->eta, &m->eumelanin, &m->pheomelanin, &m->beta_m, &m->beta_n,
+                                   &m->alpha, &m->roughness, &m->eccentricity };
+        *fields[num] = x;
+        return 1;
+    }
+    int k = 0;
+    const char *expected = NULL;
+    if (strcmp(name, "--model") == 0) {
+        if ((k = pick(value, models)) >= 0) o->model = (hb_model)k; else expected = "marschner, deon or huang";
+    } else if (strcmp(name, "--term") == 0) {
+        if ((k = pick(value, terms)) >= 0) o->term = (hb_term)k; else expected = "full or longitudinal";
+    } else if (strcmp(name, "--quality") == 0) {
+        if ((k = pick(value, qualities)) >= 0) o->quality = (hb_quality)k;
+        else expected = "fast, balanced, high or reference";
+    } else if (strcmp(name, "--i0") == 0) {
+        if ((k = pick(value, i0s)) >= 0) o->i0 = (hb_i0)k; else expected = "abramowitz or paper";
+    } else if (strcmp(name, "--ndf") == 0) {
+        if ((k = pick(value, ndfs)) >= 0) m->ndf = (hb_ndf)k; else expected = "ggx or beckmann";
+    } else if (strcmp(name, "--isa") == 0) {
+        hb_isa isa = hb_isa_from_name(value);
+        if (isa != HB_ISA_COUNT) o->isa = isa; else expected = "auto, scalar, sse4.1, avx2, avx512 or neon";
+    } else if (strcmp(name, "--lobes") == 0) {
+        if (!parse_lobes(value, &o->lobes)) expected = "a comma list of R, TT, TRT, TRRT, or all";
+    } else if (strcmp(name, "--sigma-a") == 0) {
+        if (!parse_triple(value, m->sigma_a)) expected = "three finite numbers R,G,B";
+    }
+    if (expected) {
+        snprintf(err, err_size, "%s: '%s' is not %s", name, value, expected);
+        return -1;
+    }
+    return 1;
+}

@@ -1,0 +1,49 @@
+/* hairbsdf: the command-line tool (SPEC.md section 5). */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+static void usage(FILE *to)
+{
+    fprintf(to,
+            "usage: hairbsdf <command> [options]\n"
+            "Commands:\n"
+            "  eval      evaluate f for CSV rows theta_i,phi_i,theta_o,phi_o on stdin\n"
+            "  isa       list the instruction sets, which this CPU has, and which auto picks\n"
+            "  version   print the library version\n"
+            "Run 'hairbsdf <command> --help' for a command's options.\n\n%s",
+            cli_model_options_help);
+}
+
+static int cmd_isa(void)
+{
+    hb_isa best = hb_isa_best();
+    for (int i = HB_ISA_SCALAR; i < HB_ISA_COUNT; i++)
+        printf("%-8s %s%s\n", hb_isa_name((hb_isa)i), hb_isa_available((hb_isa)i) ? "available" : "-",
+               (hb_isa)i == best ? " (auto)" : "");
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "eval") == 0)
+        return cmd_eval(argc - 1, argv + 1);
+    if (strcmp(cmd, "isa") == 0)
+        return cmd_isa();
+    if (strcmp(cmd, "version") == 0) {
+        printf("hairbsdf %d.%d\n", HB_VERSION_MAJOR, HB_VERSION_MINOR);
+        return 0;
+    }
+    fprintf(stderr, "hairbsdf: unknown command '%s' (see hairbsdf --help)\n", cmd);
+    return 2;
+}
