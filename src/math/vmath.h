@@ -107,15 +107,18 @@ static inline vf vf_log1p(vf u)
     return vf_select(vf_eq(wm1, vf_set1(0.0f)), u, r);
 }
 
-/* sin and cos together: x = q pi/2 + r, |r| <= pi/4, with pi/2 split in three
- * floats whose small multiples are exact; then the Cephes sin and cos
- * polynomials on r and a quadrant swap and sign flip. Accurate for |x| < 8192. */
+/* sin and cos together: x = q pi/2 + r, |r| <= pi/4, with pi/2 split into three
+ * 12-bit floats (so q times each is exact, FMA or not, for |q| < 4096) and a
+ * float remainder, so r keeps its relative accuracy next to the zeros of sin and
+ * cos. Then the Cephes sin and cos polynomials on r, a quadrant swap and sign
+ * flip. Accurate for |x| < 6000. */
 static inline void vf_sincos(vf x, vf *s, vf *c)
 {
     vf q = vf_round(vf_mul(x, vf_set1(0.636619772f)));
-    vf r = vf_fnma(q, vf_set1(1.5703125f), x);
-    r = vf_fnma(q, vf_set1(4.837512969970703125e-4f), r);
-    r = vf_fnma(q, vf_set1(7.54978995489188216e-8f), r);
+    vf r = vf_fnma(q, vf_set1(1.57080078125f), x);
+    r = vf_fnma(q, vf_set1(-4.453584551811218e-06f), r);
+    r = vf_fnma(q, vf_set1(-8.706138032721356e-10f), r);
+    r = vf_fnma(q, vf_set1(6.223372171896613e-14f), r);
     vf z = vf_mul(r, r);
     vf sp = vf_poly2(z, -1.6666654611e-1f, 8.3321608736e-3f, -1.9515295891e-4f);
     vf sin_r = vf_fma(vf_mul(sp, z), r, r);

@@ -4,26 +4,43 @@
 #include "reference.h"
 #include "../plan.h"
 
-double hb_ref_bessel_i0e(double x)
+/* I0(x) - 1 = sum_{k>=1} (x^2/4)^k / (k!)^2: positive terms, no cancellation. */
+static double i0_series_minus1(double x)
 {
-    x = fabs(x);
-    if (x <= 30.0) {
-        /* I0(x) = sum_k (x^2/4)^k / (k!)^2: positive terms, no cancellation. */
-        double u = 0.25 * x * x, term = 1.0, sum = 1.0;
-        for (int k = 1; term > 1e-18 * sum; k++) {
-            term *= u / ((double)k * k);
-            sum += term;
-        }
-        return sum * exp(-x);
+    double u = 0.25 * x * x, term = 1.0, sum = 0.0;
+    for (int k = 1; k == 1 || term > 1e-18 * sum; k++) {
+        term *= u / ((double)k * k);
+        sum += term;
     }
-    /* I0(x) ~ e^x / sqrt(2 pi x) * sum_k ((2k-1)!!)^2 / (k! (8x)^k); past x = 30 the
-     * terms fall below 1e-17 long before they start to grow again. */
+    return sum;
+}
+
+/* sqrt(2 pi x) e^-x I0(x) ~ sum_k ((2k-1)!!)^2 / (k! (8x)^k); past x = 30 the terms
+ * fall below 1e-17 long before they start to grow again. */
+static double i0_asymptotic_sum(double x)
+{
     double term = 1.0, sum = 1.0;
     for (int k = 1; k < 60 && term > 1e-18 * sum; k++) {
         term *= (2.0 * k - 1.0) * (2.0 * k - 1.0) / (8.0 * k * x);
         sum += term;
     }
-    return sum / sqrt(2.0 * M_PI * x);
+    return sum;
+}
+
+double hb_ref_bessel_i0e(double x)
+{
+    x = fabs(x);
+    if (x <= 30.0)
+        return (1.0 + i0_series_minus1(x)) * exp(-x);
+    return i0_asymptotic_sum(x) / sqrt(2.0 * M_PI * x);
+}
+
+double hb_ref_log_bessel_i0(double x)
+{
+    x = fabs(x);
+    if (x <= 30.0)
+        return log1p(i0_series_minus1(x));
+    return x + log(i0_asymptotic_sum(x)) - 0.5 * log(2.0 * M_PI * x);
 }
 
 /* log of dFH11 eq. 15, sum_{i<=10} (x^2/4)^i / (i!)^2. */

@@ -8,6 +8,8 @@
 
 /* e^-|x| I0(x) to double precision (power series below |x| = 30, asymptotic expansion above). */
 double hb_ref_bessel_i0e(double x);
+/* log I0(x), relative-accurate also as x -> 0 (where it is x^2/4). */
+double hb_ref_log_bessel_i0(double x);
 
 /* dFH11 eq. 7, M_p(v, theta_i, theta_o); with HB_I0_PAPER, I0 is the series of eq. 15. */
 double hb_ref_deon_longitudinal(double v, double theta_i, double theta_o, hb_i0 i0);

@@ -1,0 +1,126 @@
+/* Runs every test: ISA-independent ones once, the others once per ISA this CPU has
+ * (or only $HB_ISA). Options: --filter SUBSTRING, --seed N, --list. */
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "test.h"
+
+#define MAX_REPORTED_FAILURES 6
+
+void hb_test_fail(hb_test_ctx *t, const char *file, int line, const char *fmt, ...)
+{
+    if (t->failures++ < MAX_REPORTED_FAILURES) {
+        va_list ap;
+        va_start(ap, fmt);
+        printf("    FAIL %s:%d: ", file, line);
+        vprintf(fmt, ap);
+        printf("\n");
+        va_end(ap);
+    }
+}
+
+void hb_test_note(hb_test_ctx *t, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    printf("    %s: ", t->name);
+    vprintf(fmt, ap);
+    printf("\n");
+    va_end(ap);
+}
+
+double hb_test_uniform(hb_test_ctx *t)
+{
+    uint64_t z = (t->rng += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    return (double)(z >> 11) * 0x1p-53;
+}
+
+double hb_test_ulp_error(float got, double want)
+{
+    if (isnan(want) || isnan(got))
+        return isnan(want) && isnan(got) ? 0.0 : INFINITY;
+    if (isinf(want) || isinf(got))
+        return (double)got == want ? 0.0 : INFINITY;
+    int e;
+    frexp(want, &e);                         /* |want| in [2^(e-1), 2^e) */
+    double ulp = ldexp(1.0, (e - 1 < -126 ? -126 : e - 1) - 23);
+    return fabs((double)got - want) / ulp;
+}
+
+void hb_test_longitudinal_setup(const hb_test_ctx *t, hb_material *m, hb_options *o)
+{
+    hb_material_default(m);
+    hb_options_default(o);
+    o->term = HB_TERM_LONGITUDINAL;
+    o->isa = t->isa == HB_ISA_AUTO ? HB_ISA_SCALAR : t->isa;
+}
+
+static const hb_test *const suites[] = { hb_tests_api, hb_tests_vmath, hb_tests_longitudinal, hb_tests_cli };
+
+static uint64_t name_hash(const char *s)
+{
+    uint64_t h = 1469598103934665603ull;
+    while (*s)
+        h = (h ^ (unsigned char)*s++) * 1099511628211ull;
+    return h;
+}
+
+int main(int argc, char **argv)
+{
+    const char *filter = NULL;
+    uint64_t seed = 20261124;
+    int list = 0;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--filter") == 0 && i + 1 < argc)
+            filter = argv[++i];
+        else if (strcmp(argv[i], "--seed") == 0 && i + 1 < argc)
+            seed = strtoull(argv[++i], NULL, 0);
+        else if (strcmp(argv[i], "--list") == 0)
+            list = 1;
+        else {
+            fprintf(stderr, "usage: %s [--filter SUBSTRING] [--seed N] [--list]\n", argv[0]);
+            return 2;
+        }
+    }
+    hb_isa isas[HB_ISA_COUNT];
+    int nisa = 0;
+    const char *env = getenv("HB_ISA");
+    for (int i = HB_ISA_SCALAR; i < HB_ISA_COUNT; i++)
+        if (hb_isa_available((hb_isa)i) && (!env || !*env || hb_isa_from_name(env) == (hb_isa)i))
+            isas[nisa++] = (hb_isa)i;
+    printf("seed %llu (rerun with --seed %llu); ISAs:", (unsigned long long)seed, (unsigned long long)seed);
+    for (int i = 0; i < nisa; i++)
+        printf(" %s", hb_isa_name(isas[i]));
+    printf("\n");
+
+    unsigned passed = 0, failed = 0;
+    for (size_t s = 0; s < sizeof suites / sizeof suites[0]; s++) {
+        for (const hb_test *test = suites[s]; test->name; test++) {
+            if (filter && !strstr(test->name, filter))
+                continue;
+            int runs = test->per_isa ? nisa : 1;
+            for (int r = 0; r < runs; r++) {
+                hb_test_ctx t = { test->name, test->per_isa ? isas[r] : HB_ISA_AUTO, NULL,
+                                  seed ^ name_hash(test->name), 0 };
+                t.kernels = test->per_isa ? hb_kernels_for(t.isa) : NULL;
+                if (list) {
+                    printf("%s [%s]\n", test->name, test->per_isa ? hb_isa_name(t.isa) : "-");
+                    continue;
+                }
+                test->run(&t);
+                printf("%s %s [%s]\n", t.failures ? "FAIL" : "ok  ", test->name,
+                       test->per_isa ? hb_isa_name(t.isa) : "-");
+                if (t.failures)
+                    failed++;
+                else
+                    passed++;
+            }
+        }
+    }
+    printf("%u passed, %u failed\n", passed, failed);
+    return failed ? 1 : 0;
+}

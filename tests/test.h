@@ -1,0 +1,54 @@
+/* A plain C test runner: named tests, some run once per available ISA, seedable
+ * random cases. The last line of output is "N passed, N failed". */
+#ifndef HB_TEST_H
+#define HB_TEST_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "hairbsdf.h"
+#include "kernels.h"
+
+typedef struct hb_test_ctx {
+    const char *name;
+    hb_isa isa;                /* HB_ISA_AUTO for tests that do not depend on the ISA */
+    const hb_kernels *kernels; /* the ISA's table, NULL for ISA-independent tests */
+    uint64_t rng;              /* seeded per test from the run's seed */
+    unsigned failures;
+} hb_test_ctx;
+
+typedef struct hb_test {
+    const char *name;
+    void (*run)(hb_test_ctx *t);
+    int per_isa;
+} hb_test;
+
+void hb_test_fail(hb_test_ctx *t, const char *file, int line, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+void hb_test_note(hb_test_ctx *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+#define CHECK(t, cond, ...)                                         \
+    do {                                                            \
+        if (!(cond))                                                \
+            hb_test_fail((t), __FILE__, __LINE__, __VA_ARGS__);     \
+    } while (0)
+
+/* Uniform double in [0, 1) and in [lo, hi) (splitmix64). */
+double hb_test_uniform(hb_test_ctx *t);
+static inline double hb_test_range(hb_test_ctx *t, double lo, double hi) { return lo + (hi - lo) * hb_test_uniform(t); }
+
+/* Error of a float result in units of the float spacing at the double reference. */
+double hb_test_ulp_error(float got, double want);
+
+/* Default material and options for a deon longitudinal plan on the test's ISA. */
+void hb_test_longitudinal_setup(const hb_test_ctx *t, hb_material *m, hb_options *o);
+
+/* Test tables of each file, terminated by a zero entry. */
+extern const hb_test hb_tests_vmath[];
+extern const hb_test hb_tests_longitudinal[];
+extern const hb_test hb_tests_api[];
+extern const hb_test hb_tests_cli[];
+
+#endif
