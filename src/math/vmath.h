@@ -14,6 +14,7 @@
 #define HB_PIO2_LO -4.37113883e-8f
 #define HB_PI_F 3.14159274f
 #define HB_PI_LO -8.74227766e-8f
+#define HB_PIO2_D 1.5707963267948966
 
 static inline vf vf_poly2(vf x, float c0, float c1, float c2)
 {

@@ -3,9 +3,14 @@
  * eq. 7:  M_p = csch(1/v) / (2v) * exp(-sin(theta_i) sin(theta_o) / v) * I0(cos(theta_i) cos(theta_o) / v).
  * With csch(1/v)/(2v) = e^(-1/v) / (v (1 - e^(-2/v))) and
  * -(1 + sin sin)/v = -(1 - cos(theta_i + theta_o))/v - x, x = cos cos / v, it becomes
- *     M_p = exp(log_norm - (1 - cos(theta_i + theta_o))/v - x + |x|) * e^(-|x|) I0(|x|),
+ *     M_p = exp(log_norm - (1 - cos(theta_i + theta_o))/v - x) * I0(x),
+ *         = exp(log_norm - (1 - cos(theta_i + theta_o))/v) * e^-x I0(x)   for x >= 0,
  * which never overflows, and whose large exponent (up to 2/v) is formed in double
- * precision, so M_p keeps float accuracy for v down to 1e-4. */
+ * precision, so M_p keeps float accuracy for v down to 1e-4.
+ * A tilt shift can push theta_o - alpha_p past a pole, where cos < 0 and the
+ * exponent would be a cancellation of two large terms. eq. 7 is unchanged by the
+ * reflection theta -> +-pi - theta (sin kept, cos negated, I0 even), so the shifted
+ * angle is reflected back into [-pi/2, pi/2] first and x >= 0 always. */
 #ifndef HB_DEON_LONGITUDINAL_H
 #define HB_DEON_LONGITUDINAL_H
 
@@ -32,41 +37,53 @@ static inline vf log_i0_series_paper(vf ax)
     return vf_select(vf_le(u, vf_set1(1.0f)), vf_log(s), log_large);
 }
 
-/* dFH11 eq. 7 from 1 - cos(theta_i + theta_o - shift) (double) and x = cos cos' / v. */
+/* dFH11 eq. 7 from 1 - cos(theta_i + theta_o') (double) and x = cos(theta_i) cos(theta_o') / v >= 0. */
 static inline vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_sum, vf x, hb_i0 i0)
 {
-    vf ax = vf_abs(x);
-    vf exponent = vf_add(vf_min(x, vf_set1(0.0f)), vf_min(x, vf_set1(0.0f))); /* -x + |x| */
-    vf factor;
+    vf ax = vf_abs(x); /* x >= 0 up to the rounding of a cosine at pi/2 */
+    vf exponent, factor;
     if (i0 == HB_I0_PAPER) {
-        exponent = vf_add(vf_sub(exponent, ax), log_i0_series_paper(ax)); /* e^-|x| S(|x|) */
+        exponent = vf_sub(log_i0_series_paper(ax), ax); /* e^-x S(x), eq. 15 */
         factor = vf_set1(1.0f);
     } else {
         vm small = vf_le(ax, vf_set1(3.75f));
         vf xs = vf_min(ax, vf_set1(3.75f)), xl = vf_max(ax, vf_set1(3.75f));
-        exponent = vf_sub(exponent, vf_select(small, ax, vf_set1(0.0f)));
-        vf i0_small = vf_add(vf_set1(1.0f), vf_i0_small_minus1(xs));        /* A&S 9.8.1 */
-        vf i0e_large = vf_div(vf_i0_large_poly(xl), vf_sqrt(xl));          /* A&S 9.8.2 */
+        exponent = vf_select(small, vf_neg(ax), vf_set1(0.0f));
+        vf i0_small = vf_add(vf_set1(1.0f), vf_i0_small_minus1(xs)); /* A&S 9.8.1 */
+        vf i0e_large = vf_div(vf_i0_large_poly(xl), vf_sqrt(xl));     /* A&S 9.8.2 */
         factor = vf_select(small, i0_small, i0e_large);
     }
     vdw e = vdw_fma(one_minus_cos_sum, vdw_set1(-lobe->inv_v), vdw_set1(lobe->log_norm));
     return vf_mul(vf_exp_dw(vdw_add(e, vdw_from_vf(exponent))), factor);
 }
 
-/* M_p(v, theta_i, theta_o - shift) from angles. theta_o - shift is carried as a
- * float pair (hi + lo) so cos(theta_o - shift) keeps relative accuracy near pi/2. */
+/* theta - shift in double, reflected across a pole into [-pi/2, pi/2] (pi - t above
+ * pi/2, -pi - t below -pi/2), and its cosine in float. The angle is carried as a float
+ * pair hi + lo so the cosine keeps relative accuracy next to the poles. */
+static inline vdw inclination_reflected(vf theta, double shift, vf *cos_theta)
+{
+    vdw t = vdw_sub(vdw_from_vf(theta), vdw_set1(shift));
+    vdw over = vdw_max(vdw_sub(t, vdw_set1(HB_PIO2_D)), vdw_set1(0.0));
+    vdw under = vdw_min(vdw_add(t, vdw_set1(HB_PIO2_D)), vdw_set1(0.0));
+    t = vdw_fma(vdw_add(over, under), vdw_set1(-2.0), t);
+    vf hi = vdw_to_vf(t);
+    vf lo = vdw_to_vf(vdw_sub(t, vdw_from_vf(hi)));
+    vf sin_hi, cos_hi;
+    vf_sincos(hi, &sin_hi, &cos_hi);
+    *cos_theta = vf_fnma(sin_hi, lo, cos_hi); /* cos(hi + lo) */
+    return t;
+}
+
+/* M_p(v, theta_i, theta_o - shift) from angles; theta_i and theta_o take the same path,
+ * so without a shift M_p(a, b) == M_p(b, a) bit for bit. */
 static inline vf longitudinal_deon_angles(const hb_longitudinal *lobe, vf theta_i, vf theta_o, hb_i0 i0)
 {
-    vdw ti = vdw_from_vf(theta_i);
-    vdw to = vdw_sub(vdw_from_vf(theta_o), vdw_set1(lobe->shift));
+    vf cos_i, cos_o;
+    vdw ti = inclination_reflected(theta_i, 0.0, &cos_i);
+    vdw to = inclination_reflected(theta_o, lobe->shift, &cos_o);
     vdw s = vdw_sin_taylor(vdw_mul(vdw_add(ti, to), vdw_set1(0.5)));
     vdw one_minus_cos_sum = vdw_mul(vdw_add(s, s), s); /* 1 - cos(a) = 2 sin^2(a/2) */
-    vf to_hi = vdw_to_vf(to);
-    vf to_lo = vdw_to_vf(vdw_sub(to, vdw_from_vf(to_hi)));
-    vf sin_hi, cos_hi;
-    vf_sincos(to_hi, &sin_hi, &cos_hi);
-    vf cos_o = vf_fnma(sin_hi, to_lo, cos_hi);
-    vf x = vf_mul(vf_mul(vf_cos(theta_i), cos_o), vf_set1((float)lobe->inv_v));
+    vf x = vf_mul(vf_mul(cos_i, cos_o), vf_set1((float)lobe->inv_v));
     return longitudinal_deon(lobe, one_minus_cos_sum, x, i0);
 }
 
@@ -80,14 +97,16 @@ static inline void inclination_dw(vf x, vf y, vf z, vdw *sin_theta, vdw *cos_the
     *cos_theta = vdw_mul(vdw_sqrt(planar2), inv_norm);
 }
 
-/* M_p(v, theta_i, theta_o - shift) from unit vectors, all in double up to x. */
+/* M_p(v, theta_i, theta_o - shift) from unit vectors, all in double up to x. The
+ * reflection across a pole is |cos(theta_o - shift)| with sin(theta_o - shift) kept. */
 static inline vf longitudinal_deon_vectors(const hb_longitudinal *lobe, const vf wi[3], const vf wo[3], hb_i0 i0)
 {
     vdw si, ci, so, co;
     inclination_dw(wi[0], wi[1], wi[2], &si, &ci);
     inclination_dw(wo[0], wo[1], wo[2], &so, &co);
     vdw cs = vdw_set1(lobe->cos_shift), ss = vdw_set1(lobe->sin_shift);
-    vdw co_shifted = vdw_fma(co, cs, vdw_mul(so, ss)); /* cos(theta_o - shift) */
+    vdw co_shifted = vdw_fma(co, cs, vdw_mul(so, ss)); /* cos(theta_o - shift), reflected to >= 0 */
+    co_shifted = vdw_max(co_shifted, vdw_sub(vdw_set1(0.0), co_shifted));
     vdw so_shifted = vdw_sub(vdw_mul(so, cs), vdw_mul(co, ss));
     vdw cos_sum = vdw_sub(vdw_mul(ci, co_shifted), vdw_mul(si, so_shifted));
     vdw one_minus_cos_sum = vdw_max(vdw_sub(vdw_set1(1.0), cos_sum), vdw_set1(0.0));
