@@ -3,6 +3,9 @@
 # `make test CROSS=aarch64` cross-compiles with gcc-aarch64-linux-gnu and runs the
 # suite under qemu-aarch64. `make CC=clang` builds with clang.
 
+MAKEFLAGS += --no-builtin-rules
+.SUFFIXES:
+
 CROSS ?=
 ifeq ($(CROSS),aarch64)
   CC := aarch64-linux-gnu-gcc

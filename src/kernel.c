@@ -26,7 +26,7 @@
 #endif
 
 /* Loads lane block [i, i + lanes) of each stream; a short tail is padded with pad. */
-static inline void load_block(const float *const *src, int streams, size_t i, size_t lanes, float pad, vf *dst)
+HB_INLINE void load_block(const float *const *src, int streams, size_t i, size_t lanes, float pad, vf *dst)
 {
     for (int s = 0; s < streams; s++) {
         if (lanes == HB_W) {
@@ -40,7 +40,7 @@ static inline void load_block(const float *const *src, int streams, size_t i, si
     }
 }
 
-static inline void store_block(float *dst, size_t i, size_t lanes, vf value)
+HB_INLINE void store_block(float *dst, size_t i, size_t lanes, vf value)
 {
     if (lanes == HB_W) {
         vf_storeu(dst + i, value);
@@ -51,25 +51,25 @@ static inline void store_block(float *dst, size_t i, size_t lanes, vf value)
     }
 }
 
-static inline size_t count_invalid(vm valid, size_t lanes)
+HB_INLINE size_t count_invalid(vm valid, size_t lanes)
 {
     unsigned live = lanes >= 32 ? ~0u : (1u << lanes) - 1u;
     return (size_t)__builtin_popcount(~vm_bits(valid) & live);
 }
 
 /* theta finite and |theta| <= pi/2 (as a float), phi finite. */
-static inline vm angle_pair_valid(vf theta, vf phi)
+HB_INLINE vm angle_pair_valid(vf theta, vf phi)
 {
     return vm_and(vf_le(vf_abs(theta), vf_set1(HB_PIO2_F)), vf_isfinite(phi));
 }
 
-static inline vm unit_vector_valid(const vf w[3])
+HB_INLINE vm unit_vector_valid(const vf w[3])
 {
     vf norm2 = vf_fma(w[0], w[0], vf_fma(w[1], w[1], vf_mul(w[2], w[2])));
     return vf_le(vf_abs(vf_sub(norm2, vf_set1(1.0f))), vf_set1(HB_UNIT_TOLERANCE));
 }
 
-static inline void longitudinal_angles_body(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,
+HB_INLINE void longitudinal_angles_body(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,
                                             float *out, size_t *invalid, hb_i0 i0)
 {
     const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
@@ -86,7 +86,7 @@ static inline void longitudinal_angles_body(const hb_longitudinal *lobe, size_t 
     *invalid = bad;
 }
 
-static inline void longitudinal_vectors_body(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,
+HB_INLINE void longitudinal_vectors_body(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,
                                              float *out, size_t *invalid, hb_i0 i0)
 {
     const float *src[6] = { in.wi_x, in.wi_y, in.wi_z, in.wo_x, in.wo_y, in.wo_z };
@@ -119,7 +119,7 @@ HB_LONGITUDINAL_VARIANT(abramowitz, HB_I0_ABRAMOWITZ)
 HB_LONGITUDINAL_VARIANT(paper, HB_I0_PAPER)
 #undef HB_LONGITUDINAL_VARIANT
 
-static inline vf math_apply(hb_math_fn fn, vf a, vf b)
+HB_INLINE vf math_apply(hb_math_fn fn, vf a, vf b)
 {
     switch (fn) {
     case HB_FN_EXP: return vf_exp(a);

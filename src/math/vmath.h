@@ -16,14 +16,14 @@
 #define HB_PI_LO -8.74227766e-8f
 #define HB_PIO2_D 1.5707963267948966
 
-static inline vf vf_poly2(vf x, float c0, float c1, float c2)
+HB_INLINE vf vf_poly2(vf x, float c0, float c1, float c2)
 {
     return vf_fma(vf_fma(vf_set1(c2), x, vf_set1(c1)), x, vf_set1(c0));
 }
 
 /* y * 2^k for integral k in [-252, 254]: two power-of-two factors, each a normal
  * float, so a result in the denormal range is rounded once. */
-static inline vf vf_ldexp(vf y, vf k)
+HB_INLINE vf vf_ldexp(vf y, vf k)
 {
     vf k1 = vf_floor(vf_mul(k, vf_set1(0.5f)));
     vf k2 = vf_sub(k, k1);
@@ -33,7 +33,7 @@ static inline vf vf_ldexp(vf y, vf k)
 }
 
 /* e^r for |r| <= ln(2)/2 (Cephes expf polynomial). */
-static inline vf vf_exp_reduced(vf r)
+HB_INLINE vf vf_exp_reduced(vf r)
 {
     vf p = vf_set1(1.9875691500e-4f);
     p = vf_fma(p, r, vf_set1(1.3981999507e-3f));
@@ -46,7 +46,7 @@ static inline vf vf_exp_reduced(vf r)
 
 /* e^x: x = k ln2 + r with a two-part ln2 (Cody & Waite), then 2^k * e^r.
  * Underflows to 0 below -103.97 and overflows to +Inf above 88.72. */
-static inline vf vf_exp(vf x)
+HB_INLINE vf vf_exp(vf x)
 {
     x = vf_clamp(x, -104.0f, 89.0f);
     vf k = vf_round(vf_mul(x, vf_set1(1.44269504f)));
@@ -57,7 +57,7 @@ static inline vf vf_exp(vf x)
 
 /* e^x for an argument carried in double precision: the reduction x - k ln2 is
  * done in double, so a large |x| loses nothing to the float rounding of x. */
-static inline vf vf_exp_dw(vdw x)
+HB_INLINE vf vf_exp_dw(vdw x)
 {
     x = vdw_min(vdw_max(x, vdw_set1(-110.0)), vdw_set1(100.0));
     vdw k = vdw_round(vdw_mul(x, vdw_set1(1.4426950408889634)));
@@ -67,7 +67,7 @@ static inline vf vf_exp_dw(vdw x)
 
 /* Natural log: x = m 2^e with m in [sqrt(1/2), sqrt(2)), Cephes logf polynomial
  * in m - 1. Denormals are scaled first; log(0) = -Inf, log(x < 0) = NaN. */
-static inline vf vf_log(vf x)
+HB_INLINE vf vf_log(vf x)
 {
     vm tiny = vf_lt(x, vf_set1(1.17549435e-38f));
     vf xs = vf_select(tiny, vf_mul(x, vf_set1(8388608.0f)), x);
@@ -100,7 +100,7 @@ static inline vf vf_log(vf x)
 
 /* log(1 + u) for u >= -1, exact near u = 0: w = 1 + u is rounded, and the
  * rounding error ((w - 1) - u) is taken back out to first order. */
-static inline vf vf_log1p(vf u)
+HB_INLINE vf vf_log1p(vf u)
 {
     vf w = vf_add(vf_set1(1.0f), u);
     vf wm1 = vf_sub(w, vf_set1(1.0f));
@@ -113,7 +113,7 @@ static inline vf vf_log1p(vf u)
  * float remainder, so r keeps its relative accuracy next to the zeros of sin and
  * cos. Then the Cephes sin and cos polynomials on r, a quadrant swap and sign
  * flip. Accurate for |x| < 6000. */
-static inline void vf_sincos(vf x, vf *s, vf *c)
+HB_INLINE void vf_sincos(vf x, vf *s, vf *c)
 {
     vf q = vf_round(vf_mul(x, vf_set1(0.636619772f)));
     vf r = vf_fnma(q, vf_set1(1.57080078125f), x);
@@ -133,12 +133,12 @@ static inline void vf_sincos(vf x, vf *s, vf *c)
     *c = vi_as_vf(vi_xor(vf_as_vi(vf_select(swap, sin_r, cos_r)), cos_flip));
 }
 
-static inline vf vf_sin(vf x) { vf s, c; vf_sincos(x, &s, &c); return s; }
-static inline vf vf_cos(vf x) { vf s, c; vf_sincos(x, &s, &c); return c; }
+HB_INLINE vf vf_sin(vf x) { vf s, c; vf_sincos(x, &s, &c); return s; }
+HB_INLINE vf vf_cos(vf x) { vf s, c; vf_sincos(x, &s, &c); return c; }
 
 /* asin of a = |x| in [0, 1] without the final reflection: for a > 1/2 it returns
  * asin(sqrt((1 - a)/2)) and sets *big (Cephes asinf polynomial). */
-static inline vf vf_asin_core(vf a, vm *big)
+HB_INLINE vf vf_asin_core(vf a, vm *big)
 {
     *big = vf_gt(a, vf_set1(0.5f));
     vf z = vf_select(*big, vf_mul(vf_set1(0.5f), vf_sub(vf_set1(1.0f), a)), vf_mul(a, a));
@@ -152,7 +152,7 @@ static inline vf vf_asin_core(vf a, vm *big)
 }
 
 /* asin(x) for |x| <= 1; for |x| > 1/2, asin(a) = pi/2 - 2 asin(sqrt((1 - a)/2)). */
-static inline vf vf_asin(vf x)
+HB_INLINE vf vf_asin(vf x)
 {
     vm big;
     vf p = vf_asin_core(vf_abs(x), &big);
@@ -162,7 +162,7 @@ static inline vf vf_asin(vf x)
 
 /* acos(x) for |x| <= 1: pi/2 - asin(x) for |x| <= 1/2, 2 asin(sqrt((1 - x)/2))
  * for x > 1/2 and pi - 2 asin(sqrt((1 + x)/2)) for x < -1/2. */
-static inline vf vf_acos(vf x)
+HB_INLINE vf vf_acos(vf x)
 {
     vm big;
     vf p = vf_asin_core(vf_abs(x), &big);
@@ -176,7 +176,7 @@ static inline vf vf_acos(vf x)
 /* atan2(y, x) in [-pi, pi]: atan of t = min(|x|,|y|)/max(|x|,|y|) in [0, 1]
  * (reduced by pi/4 above tan(pi/8), Cephes atanf polynomial), then reflected
  * into the right octant. atan2(+-0, +-0) follows the C library's signs. */
-static inline vf vf_atan2(vf y, vf x)
+HB_INLINE vf vf_atan2(vf y, vf x)
 {
     vf ay = vf_abs(y), ax = vf_abs(x);
     vf num = vf_min(ay, ax), den = vf_max(ay, ax);
@@ -199,7 +199,7 @@ static inline vf vf_atan2(vf y, vf x)
 }
 
 /* A&S 9.8.1 without its leading 1: I0(x) - 1 for |x| <= 3.75, in t = (x/3.75)^2. */
-static inline vf vf_i0_small_minus1(vf x)
+HB_INLINE vf vf_i0_small_minus1(vf x)
 {
     vf t = vf_mul(x, vf_set1(1.0f / 3.75f));
     t = vf_mul(t, t);
@@ -213,7 +213,7 @@ static inline vf vf_i0_small_minus1(vf x)
 }
 
 /* A&S 9.8.2: sqrt(x) e^-x I0(x) for x >= 3.75, a polynomial in 3.75/x. */
-static inline vf vf_i0_large_poly(vf x)
+HB_INLINE vf vf_i0_large_poly(vf x)
 {
     vf u = vf_div(vf_set1(3.75f), x);
     vf p = vf_set1(0.00392377f);
@@ -228,7 +228,7 @@ static inline vf vf_i0_large_poly(vf x)
 }
 
 /* The modified Bessel function I0 (A&S 9.8.1 and 9.8.2); +Inf beyond |x| = 91.9. */
-static inline vf vf_i0(vf x)
+HB_INLINE vf vf_i0(vf x)
 {
     vf ax = vf_abs(x);
     vf small = vf_add(vf_set1(1.0f), vf_i0_small_minus1(vf_min(ax, vf_set1(3.75f))));
@@ -239,7 +239,7 @@ static inline vf vf_i0(vf x)
 }
 
 /* e^-|x| I0(x), finite for every finite x. */
-static inline vf vf_i0e(vf x)
+HB_INLINE vf vf_i0e(vf x)
 {
     vf ax = vf_abs(x);
     vf xs = vf_min(ax, vf_set1(3.75f));
@@ -251,7 +251,7 @@ static inline vf vf_i0e(vf x)
 
 /* log I0(x): log1p of A&S 9.8.1 below 3.75 (so it stays relative-accurate as
  * x -> 0), x - log(x)/2 + log P(3.75/x) above. */
-static inline vf vf_log_i0(vf x)
+HB_INLINE vf vf_log_i0(vf x)
 {
     vf ax = vf_abs(x);
     vf small = vf_log1p(vf_i0_small_minus1(vf_min(ax, vf_set1(3.75f))));
@@ -260,20 +260,20 @@ static inline vf vf_log_i0(vf x)
     return vf_select(vf_le(ax, vf_set1(3.75f)), small, large);
 }
 
-/* sin(t) in double precision for |t| <= 2.2: the Taylor series to t^19, whose
- * remainder is below 3e-13 there (no reduction needed for the kernels' angles). */
-static inline vdw vdw_sin_taylor(vdw t)
+/* sin(t) in double precision for |t| <= pi/2: the Taylor series to t^17, whose
+ * remainder is below 5e-14 there. */
+HB_INLINE vdw vdw_sin_taylor(vdw t)
 {
-    static const double inv_odd_factorial[10] = {
-        1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0, -1.0 / 39916800.0,
-        1.0 / 6227020800.0, -1.0 / 1307674368000.0, 1.0 / 355687428096000.0,
-        -1.0 / 121645100408832000.0,
-    };
     vdw z = vdw_mul(t, t);
-    vdw p = vdw_set1(inv_odd_factorial[9]);
-    for (int k = 8; k >= 0; k--)
-        p = vdw_fma(p, z, vdw_set1(inv_odd_factorial[k]));
-    return vdw_mul(p, t);
+    vdw p = vdw_set1(1.0 / 355687428096000.0);               /* 1/17! */
+    p = vdw_fma(p, z, vdw_set1(-1.0 / 1307674368000.0));     /* -1/15! */
+    p = vdw_fma(p, z, vdw_set1(1.0 / 6227020800.0));         /* 1/13! */
+    p = vdw_fma(p, z, vdw_set1(-1.0 / 39916800.0));          /* -1/11! */
+    p = vdw_fma(p, z, vdw_set1(1.0 / 362880.0));             /* 1/9! */
+    p = vdw_fma(p, z, vdw_set1(-1.0 / 5040.0));              /* -1/7! */
+    p = vdw_fma(p, z, vdw_set1(1.0 / 120.0));                /* 1/5! */
+    p = vdw_fma(p, z, vdw_set1(-1.0 / 6.0));                 /* -1/3! */
+    return vdw_fma(vdw_mul(p, z), t, t);
 }
 
 #endif

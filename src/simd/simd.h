@@ -4,6 +4,10 @@
 #ifndef HB_SIMD_H
 #define HB_SIMD_H
 
+/* Everything in the vocabulary and the math built on it is forced inline: a kernel
+ * is one straight-line body per vector of samples, never a call per operation. */
+#define HB_INLINE static inline __attribute__((always_inline))
+
 #if defined(HB_TARGET_SCALAR)
 #include "simd_scalar.h"
 #elif defined(HB_TARGET_SSE41)
@@ -20,22 +24,22 @@
 
 #define HB_SIGN_BIT ((int32_t)0x80000000)
 
-static inline vf vf_abs(vf a) { return vi_as_vf(vi_and(vf_as_vi(a), vi_set1(0x7fffffff))); }
-static inline vf vf_neg(vf a) { return vi_as_vf(vi_xor(vf_as_vi(a), vi_set1(HB_SIGN_BIT))); }
+HB_INLINE vf vf_abs(vf a) { return vi_as_vf(vi_and(vf_as_vi(a), vi_set1(0x7fffffff))); }
+HB_INLINE vf vf_neg(vf a) { return vi_as_vf(vi_xor(vf_as_vi(a), vi_set1(HB_SIGN_BIT))); }
 /* |a| with the sign of s */
-static inline vf vf_copysign(vf a, vf s)
+HB_INLINE vf vf_copysign(vf a, vf s)
 {
     return vi_as_vf(vi_or(vf_as_vi(vf_abs(a)), vi_and(vf_as_vi(s), vi_set1(HB_SIGN_BIT))));
 }
-static inline vf vf_floor(vf a)
+HB_INLINE vf vf_floor(vf a)
 {
     vf r = vf_round(a);
     return vf_select(vf_gt(r, a), vf_sub(r, vf_set1(1.0f)), r);
 }
 /* Exact reciprocal (a division): the kernels need it correctly rounded. */
-static inline vf vf_rcp(vf a) { return vf_div(vf_set1(1.0f), a); }
-static inline vf vf_clamp(vf a, float lo, float hi) { return vf_min(vf_max(a, vf_set1(lo)), vf_set1(hi)); }
+HB_INLINE vf vf_rcp(vf a) { return vf_div(vf_set1(1.0f), a); }
+HB_INLINE vf vf_clamp(vf a, float lo, float hi) { return vf_min(vf_max(a, vf_set1(lo)), vf_set1(hi)); }
 /* False for NaN and +-Inf. */
-static inline vm vf_isfinite(vf a) { return vf_le(vf_abs(a), vf_set1(3.40282347e38f)); }
+HB_INLINE vm vf_isfinite(vf a) { return vf_le(vf_abs(a), vf_set1(3.40282347e38f)); }
 
 #endif

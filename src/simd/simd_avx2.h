@@ -14,48 +14,48 @@ typedef __m256 vm;
 
 #define HB_ROUND_NEAREST (_MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC)
 
-static inline vf vf_set1(float a) { return _mm256_set1_ps(a); }
-static inline vf vf_loadu(const float *p) { return _mm256_loadu_ps(p); }
-static inline void vf_storeu(float *p, vf a) { _mm256_storeu_ps(p, a); }
-static inline vf vf_add(vf a, vf b) { return _mm256_add_ps(a, b); }
-static inline vf vf_sub(vf a, vf b) { return _mm256_sub_ps(a, b); }
-static inline vf vf_mul(vf a, vf b) { return _mm256_mul_ps(a, b); }
-static inline vf vf_div(vf a, vf b) { return _mm256_div_ps(a, b); }
-static inline vf vf_fma(vf a, vf b, vf c) { return _mm256_fmadd_ps(a, b, c); }
-static inline vf vf_fnma(vf a, vf b, vf c) { return _mm256_fnmadd_ps(a, b, c); }
-static inline vf vf_min(vf a, vf b) { return _mm256_min_ps(a, b); }
-static inline vf vf_max(vf a, vf b) { return _mm256_max_ps(a, b); }
-static inline vf vf_sqrt(vf a) { return _mm256_sqrt_ps(a); }
-static inline vf vf_select(vm m, vf a, vf b) { return _mm256_blendv_ps(b, a, m); }
-static inline vf vf_round(vf a) { return _mm256_round_ps(a, HB_ROUND_NEAREST); }
+HB_INLINE vf vf_set1(float a) { return _mm256_set1_ps(a); }
+HB_INLINE vf vf_loadu(const float *p) { return _mm256_loadu_ps(p); }
+HB_INLINE void vf_storeu(float *p, vf a) { _mm256_storeu_ps(p, a); }
+HB_INLINE vf vf_add(vf a, vf b) { return _mm256_add_ps(a, b); }
+HB_INLINE vf vf_sub(vf a, vf b) { return _mm256_sub_ps(a, b); }
+HB_INLINE vf vf_mul(vf a, vf b) { return _mm256_mul_ps(a, b); }
+HB_INLINE vf vf_div(vf a, vf b) { return _mm256_div_ps(a, b); }
+HB_INLINE vf vf_fma(vf a, vf b, vf c) { return _mm256_fmadd_ps(a, b, c); }
+HB_INLINE vf vf_fnma(vf a, vf b, vf c) { return _mm256_fnmadd_ps(a, b, c); }
+HB_INLINE vf vf_min(vf a, vf b) { return _mm256_min_ps(a, b); }
+HB_INLINE vf vf_max(vf a, vf b) { return _mm256_max_ps(a, b); }
+HB_INLINE vf vf_sqrt(vf a) { return _mm256_sqrt_ps(a); }
+HB_INLINE vf vf_select(vm m, vf a, vf b) { return _mm256_blendv_ps(b, a, m); }
+HB_INLINE vf vf_round(vf a) { return _mm256_round_ps(a, HB_ROUND_NEAREST); }
 
-static inline vm vf_lt(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
-static inline vm vf_le(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
-static inline vm vf_gt(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
-static inline vm vf_ge(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
-static inline vm vf_eq(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_EQ_OQ); }
-static inline vm vf_ne(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_NEQ_UQ); }
+HB_INLINE vm vf_lt(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
+HB_INLINE vm vf_le(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
+HB_INLINE vm vf_gt(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
+HB_INLINE vm vf_ge(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
+HB_INLINE vm vf_eq(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_EQ_OQ); }
+HB_INLINE vm vf_ne(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_NEQ_UQ); }
 
-static inline vm vm_and(vm a, vm b) { return _mm256_and_ps(a, b); }
-static inline vm vm_or(vm a, vm b) { return _mm256_or_ps(a, b); }
-static inline vm vm_andnot(vm a, vm b) { return _mm256_andnot_ps(b, a); }
-static inline vm vm_not(vm a) { return _mm256_xor_ps(a, _mm256_castsi256_ps(_mm256_set1_epi32(-1))); }
-static inline unsigned vm_bits(vm a) { return (unsigned)_mm256_movemask_ps(a); }
+HB_INLINE vm vm_and(vm a, vm b) { return _mm256_and_ps(a, b); }
+HB_INLINE vm vm_or(vm a, vm b) { return _mm256_or_ps(a, b); }
+HB_INLINE vm vm_andnot(vm a, vm b) { return _mm256_andnot_ps(b, a); }
+HB_INLINE vm vm_not(vm a) { return _mm256_xor_ps(a, _mm256_castsi256_ps(_mm256_set1_epi32(-1))); }
+HB_INLINE unsigned vm_bits(vm a) { return (unsigned)_mm256_movemask_ps(a); }
 
-static inline vi vf_as_vi(vf a) { return _mm256_castps_si256(a); }
-static inline vf vi_as_vf(vi a) { return _mm256_castsi256_ps(a); }
-static inline vi vi_set1(int32_t a) { return _mm256_set1_epi32(a); }
-static inline vi vi_add(vi a, vi b) { return _mm256_add_epi32(a, b); }
-static inline vi vi_sub(vi a, vi b) { return _mm256_sub_epi32(a, b); }
-static inline vi vi_and(vi a, vi b) { return _mm256_and_si256(a, b); }
-static inline vi vi_or(vi a, vi b) { return _mm256_or_si256(a, b); }
-static inline vi vi_xor(vi a, vi b) { return _mm256_xor_si256(a, b); }
-static inline vi vi_shl(vi a, int n) { return _mm256_slli_epi32(a, n); }
-static inline vi vi_shr(vi a, int n) { return _mm256_srli_epi32(a, n); }
-static inline vm vi_eq(vi a, vi b) { return _mm256_castsi256_ps(_mm256_cmpeq_epi32(a, b)); }
-static inline vi vi_from_vf(vf a) { return _mm256_cvttps_epi32(a); }
-static inline vf vf_from_vi(vi a) { return _mm256_cvtepi32_ps(a); }
-static inline vf vf_gather(const float *base, vi idx) { return _mm256_i32gather_ps(base, idx, 4); }
+HB_INLINE vi vf_as_vi(vf a) { return _mm256_castps_si256(a); }
+HB_INLINE vf vi_as_vf(vi a) { return _mm256_castsi256_ps(a); }
+HB_INLINE vi vi_set1(int32_t a) { return _mm256_set1_epi32(a); }
+HB_INLINE vi vi_add(vi a, vi b) { return _mm256_add_epi32(a, b); }
+HB_INLINE vi vi_sub(vi a, vi b) { return _mm256_sub_epi32(a, b); }
+HB_INLINE vi vi_and(vi a, vi b) { return _mm256_and_si256(a, b); }
+HB_INLINE vi vi_or(vi a, vi b) { return _mm256_or_si256(a, b); }
+HB_INLINE vi vi_xor(vi a, vi b) { return _mm256_xor_si256(a, b); }
+HB_INLINE vi vi_shl(vi a, int n) { return _mm256_slli_epi32(a, n); }
+HB_INLINE vi vi_shr(vi a, int n) { return _mm256_srli_epi32(a, n); }
+HB_INLINE vm vi_eq(vi a, vi b) { return _mm256_castsi256_ps(_mm256_cmpeq_epi32(a, b)); }
+HB_INLINE vi vi_from_vf(vf a) { return _mm256_cvttps_epi32(a); }
+HB_INLINE vf vf_from_vi(vi a) { return _mm256_cvtepi32_ps(a); }
+HB_INLINE vf vf_gather(const float *base, vi idx) { return _mm256_i32gather_ps(base, idx, 4); }
 
 #define HB_PD_T __m256d
 #define HB_PD_ADD _mm256_add_pd
@@ -70,12 +70,12 @@ static inline vf vf_gather(const float *base, vi idx) { return _mm256_i32gather_
 #define HB_PD_SET1 _mm256_set1_pd
 #include "simd_vdw_pair.h"
 
-static inline vdw vdw_from_vf(vf a)
+HB_INLINE vdw vdw_from_vf(vf a)
 {
     vdw r = { _mm256_cvtps_pd(_mm256_castps256_ps128(a)), _mm256_cvtps_pd(_mm256_extractf128_ps(a, 1)) };
     return r;
 }
-static inline vf vdw_to_vf(vdw a)
+HB_INLINE vf vdw_to_vf(vdw a)
 {
     return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm256_cvtpd_ps(a.lo)), _mm256_cvtpd_ps(a.hi), 1);
 }

@@ -14,48 +14,48 @@ typedef __mmask16 vm;
 
 #define HB_ROUND_NEAREST (_MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC)
 
-static inline vf vf_set1(float a) { return _mm512_set1_ps(a); }
-static inline vf vf_loadu(const float *p) { return _mm512_loadu_ps(p); }
-static inline void vf_storeu(float *p, vf a) { _mm512_storeu_ps(p, a); }
-static inline vf vf_add(vf a, vf b) { return _mm512_add_ps(a, b); }
-static inline vf vf_sub(vf a, vf b) { return _mm512_sub_ps(a, b); }
-static inline vf vf_mul(vf a, vf b) { return _mm512_mul_ps(a, b); }
-static inline vf vf_div(vf a, vf b) { return _mm512_div_ps(a, b); }
-static inline vf vf_fma(vf a, vf b, vf c) { return _mm512_fmadd_ps(a, b, c); }
-static inline vf vf_fnma(vf a, vf b, vf c) { return _mm512_fnmadd_ps(a, b, c); }
-static inline vf vf_min(vf a, vf b) { return _mm512_min_ps(a, b); }
-static inline vf vf_max(vf a, vf b) { return _mm512_max_ps(a, b); }
-static inline vf vf_sqrt(vf a) { return _mm512_sqrt_ps(a); }
-static inline vf vf_select(vm m, vf a, vf b) { return _mm512_mask_blend_ps(m, b, a); }
-static inline vf vf_round(vf a) { return _mm512_roundscale_ps(a, HB_ROUND_NEAREST); }
+HB_INLINE vf vf_set1(float a) { return _mm512_set1_ps(a); }
+HB_INLINE vf vf_loadu(const float *p) { return _mm512_loadu_ps(p); }
+HB_INLINE void vf_storeu(float *p, vf a) { _mm512_storeu_ps(p, a); }
+HB_INLINE vf vf_add(vf a, vf b) { return _mm512_add_ps(a, b); }
+HB_INLINE vf vf_sub(vf a, vf b) { return _mm512_sub_ps(a, b); }
+HB_INLINE vf vf_mul(vf a, vf b) { return _mm512_mul_ps(a, b); }
+HB_INLINE vf vf_div(vf a, vf b) { return _mm512_div_ps(a, b); }
+HB_INLINE vf vf_fma(vf a, vf b, vf c) { return _mm512_fmadd_ps(a, b, c); }
+HB_INLINE vf vf_fnma(vf a, vf b, vf c) { return _mm512_fnmadd_ps(a, b, c); }
+HB_INLINE vf vf_min(vf a, vf b) { return _mm512_min_ps(a, b); }
+HB_INLINE vf vf_max(vf a, vf b) { return _mm512_max_ps(a, b); }
+HB_INLINE vf vf_sqrt(vf a) { return _mm512_sqrt_ps(a); }
+HB_INLINE vf vf_select(vm m, vf a, vf b) { return _mm512_mask_blend_ps(m, b, a); }
+HB_INLINE vf vf_round(vf a) { return _mm512_roundscale_ps(a, HB_ROUND_NEAREST); }
 
-static inline vm vf_lt(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_LT_OQ); }
-static inline vm vf_le(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ); }
-static inline vm vf_gt(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ); }
-static inline vm vf_ge(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ); }
-static inline vm vf_eq(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_EQ_OQ); }
-static inline vm vf_ne(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_NEQ_UQ); }
+HB_INLINE vm vf_lt(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_LT_OQ); }
+HB_INLINE vm vf_le(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ); }
+HB_INLINE vm vf_gt(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ); }
+HB_INLINE vm vf_ge(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ); }
+HB_INLINE vm vf_eq(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_EQ_OQ); }
+HB_INLINE vm vf_ne(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_NEQ_UQ); }
 
-static inline vm vm_and(vm a, vm b) { return (vm)(a & b); }
-static inline vm vm_or(vm a, vm b) { return (vm)(a | b); }
-static inline vm vm_andnot(vm a, vm b) { return (vm)(a & ~b); }
-static inline vm vm_not(vm a) { return (vm)~a; }
-static inline unsigned vm_bits(vm a) { return (unsigned)a; }
+HB_INLINE vm vm_and(vm a, vm b) { return (vm)(a & b); }
+HB_INLINE vm vm_or(vm a, vm b) { return (vm)(a | b); }
+HB_INLINE vm vm_andnot(vm a, vm b) { return (vm)(a & ~b); }
+HB_INLINE vm vm_not(vm a) { return (vm)~a; }
+HB_INLINE unsigned vm_bits(vm a) { return (unsigned)a; }
 
-static inline vi vf_as_vi(vf a) { return _mm512_castps_si512(a); }
-static inline vf vi_as_vf(vi a) { return _mm512_castsi512_ps(a); }
-static inline vi vi_set1(int32_t a) { return _mm512_set1_epi32(a); }
-static inline vi vi_add(vi a, vi b) { return _mm512_add_epi32(a, b); }
-static inline vi vi_sub(vi a, vi b) { return _mm512_sub_epi32(a, b); }
-static inline vi vi_and(vi a, vi b) { return _mm512_and_si512(a, b); }
-static inline vi vi_or(vi a, vi b) { return _mm512_or_si512(a, b); }
-static inline vi vi_xor(vi a, vi b) { return _mm512_xor_si512(a, b); }
-static inline vi vi_shl(vi a, int n) { return _mm512_slli_epi32(a, (unsigned)n); }
-static inline vi vi_shr(vi a, int n) { return _mm512_srli_epi32(a, (unsigned)n); }
-static inline vm vi_eq(vi a, vi b) { return _mm512_cmpeq_epi32_mask(a, b); }
-static inline vi vi_from_vf(vf a) { return _mm512_cvttps_epi32(a); }
-static inline vf vf_from_vi(vi a) { return _mm512_cvtepi32_ps(a); }
-static inline vf vf_gather(const float *base, vi idx) { return _mm512_i32gather_ps(idx, base, 4); }
+HB_INLINE vi vf_as_vi(vf a) { return _mm512_castps_si512(a); }
+HB_INLINE vf vi_as_vf(vi a) { return _mm512_castsi512_ps(a); }
+HB_INLINE vi vi_set1(int32_t a) { return _mm512_set1_epi32(a); }
+HB_INLINE vi vi_add(vi a, vi b) { return _mm512_add_epi32(a, b); }
+HB_INLINE vi vi_sub(vi a, vi b) { return _mm512_sub_epi32(a, b); }
+HB_INLINE vi vi_and(vi a, vi b) { return _mm512_and_si512(a, b); }
+HB_INLINE vi vi_or(vi a, vi b) { return _mm512_or_si512(a, b); }
+HB_INLINE vi vi_xor(vi a, vi b) { return _mm512_xor_si512(a, b); }
+HB_INLINE vi vi_shl(vi a, int n) { return _mm512_slli_epi32(a, (unsigned)n); }
+HB_INLINE vi vi_shr(vi a, int n) { return _mm512_srli_epi32(a, (unsigned)n); }
+HB_INLINE vm vi_eq(vi a, vi b) { return _mm512_cmpeq_epi32_mask(a, b); }
+HB_INLINE vi vi_from_vf(vf a) { return _mm512_cvttps_epi32(a); }
+HB_INLINE vf vf_from_vi(vi a) { return _mm512_cvtepi32_ps(a); }
+HB_INLINE vf vf_gather(const float *base, vi idx) { return _mm512_i32gather_ps(idx, base, 4); }
 
 #define HB_PD_T __m512d
 #define HB_PD_ADD _mm512_add_pd
@@ -70,13 +70,13 @@ static inline vf vf_gather(const float *base, vi idx) { return _mm512_i32gather_
 #define HB_PD_SET1 _mm512_set1_pd
 #include "simd_vdw_pair.h"
 
-static inline vdw vdw_from_vf(vf a)
+HB_INLINE vdw vdw_from_vf(vf a)
 {
     __m256 hi = _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(a), 1));
     vdw r = { _mm512_cvtps_pd(_mm512_castps512_ps256(a)), _mm512_cvtps_pd(hi) };
     return r;
 }
-static inline vf vdw_to_vf(vdw a)
+HB_INLINE vf vdw_to_vf(vdw a)
 {
     __m512d lo = _mm512_castps_pd(_mm512_castps256_ps512(_mm512_cvtpd_ps(a.lo)));
     return _mm512_castpd_ps(_mm512_insertf64x4(lo, _mm256_castps_pd(_mm512_cvtpd_ps(a.hi)), 1));

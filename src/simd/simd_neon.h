@@ -12,55 +12,55 @@ typedef float32x4_t vf;
 typedef int32x4_t vi;
 typedef uint32x4_t vm;
 
-static inline vf vf_set1(float a) { return vdupq_n_f32(a); }
-static inline vf vf_loadu(const float *p) { return vld1q_f32(p); }
-static inline void vf_storeu(float *p, vf a) { vst1q_f32(p, a); }
-static inline vf vf_add(vf a, vf b) { return vaddq_f32(a, b); }
-static inline vf vf_sub(vf a, vf b) { return vsubq_f32(a, b); }
-static inline vf vf_mul(vf a, vf b) { return vmulq_f32(a, b); }
-static inline vf vf_div(vf a, vf b) { return vdivq_f32(a, b); }
-static inline vf vf_fma(vf a, vf b, vf c) { return vfmaq_f32(c, a, b); }
-static inline vf vf_fnma(vf a, vf b, vf c) { return vfmsq_f32(c, a, b); }
-static inline vf vf_min(vf a, vf b) { return vminq_f32(a, b); }
-static inline vf vf_max(vf a, vf b) { return vmaxq_f32(a, b); }
-static inline vf vf_sqrt(vf a) { return vsqrtq_f32(a); }
-static inline vf vf_select(vm m, vf a, vf b) { return vbslq_f32(m, a, b); }
-static inline vf vf_round(vf a) { return vrndnq_f32(a); }
+HB_INLINE vf vf_set1(float a) { return vdupq_n_f32(a); }
+HB_INLINE vf vf_loadu(const float *p) { return vld1q_f32(p); }
+HB_INLINE void vf_storeu(float *p, vf a) { vst1q_f32(p, a); }
+HB_INLINE vf vf_add(vf a, vf b) { return vaddq_f32(a, b); }
+HB_INLINE vf vf_sub(vf a, vf b) { return vsubq_f32(a, b); }
+HB_INLINE vf vf_mul(vf a, vf b) { return vmulq_f32(a, b); }
+HB_INLINE vf vf_div(vf a, vf b) { return vdivq_f32(a, b); }
+HB_INLINE vf vf_fma(vf a, vf b, vf c) { return vfmaq_f32(c, a, b); }
+HB_INLINE vf vf_fnma(vf a, vf b, vf c) { return vfmsq_f32(c, a, b); }
+HB_INLINE vf vf_min(vf a, vf b) { return vminq_f32(a, b); }
+HB_INLINE vf vf_max(vf a, vf b) { return vmaxq_f32(a, b); }
+HB_INLINE vf vf_sqrt(vf a) { return vsqrtq_f32(a); }
+HB_INLINE vf vf_select(vm m, vf a, vf b) { return vbslq_f32(m, a, b); }
+HB_INLINE vf vf_round(vf a) { return vrndnq_f32(a); }
 
-static inline vm vf_lt(vf a, vf b) { return vcltq_f32(a, b); }
-static inline vm vf_le(vf a, vf b) { return vcleq_f32(a, b); }
-static inline vm vf_gt(vf a, vf b) { return vcgtq_f32(a, b); }
-static inline vm vf_ge(vf a, vf b) { return vcgeq_f32(a, b); }
-static inline vm vf_eq(vf a, vf b) { return vceqq_f32(a, b); }
-static inline vm vf_ne(vf a, vf b) { return vmvnq_u32(vceqq_f32(a, b)); }
+HB_INLINE vm vf_lt(vf a, vf b) { return vcltq_f32(a, b); }
+HB_INLINE vm vf_le(vf a, vf b) { return vcleq_f32(a, b); }
+HB_INLINE vm vf_gt(vf a, vf b) { return vcgtq_f32(a, b); }
+HB_INLINE vm vf_ge(vf a, vf b) { return vcgeq_f32(a, b); }
+HB_INLINE vm vf_eq(vf a, vf b) { return vceqq_f32(a, b); }
+HB_INLINE vm vf_ne(vf a, vf b) { return vmvnq_u32(vceqq_f32(a, b)); }
 
-static inline vm vm_and(vm a, vm b) { return vandq_u32(a, b); }
-static inline vm vm_or(vm a, vm b) { return vorrq_u32(a, b); }
-static inline vm vm_andnot(vm a, vm b) { return vbicq_u32(a, b); }
-static inline vm vm_not(vm a) { return vmvnq_u32(a); }
-static inline unsigned vm_bits(vm a)
+HB_INLINE vm vm_and(vm a, vm b) { return vandq_u32(a, b); }
+HB_INLINE vm vm_or(vm a, vm b) { return vorrq_u32(a, b); }
+HB_INLINE vm vm_andnot(vm a, vm b) { return vbicq_u32(a, b); }
+HB_INLINE vm vm_not(vm a) { return vmvnq_u32(a); }
+HB_INLINE unsigned vm_bits(vm a)
 {
     const uint32_t lane_bit[4] = { 1, 2, 4, 8 };
     return vaddvq_u32(vandq_u32(a, vld1q_u32(lane_bit)));
 }
 
-static inline vi vf_as_vi(vf a) { return vreinterpretq_s32_f32(a); }
-static inline vf vi_as_vf(vi a) { return vreinterpretq_f32_s32(a); }
-static inline vi vi_set1(int32_t a) { return vdupq_n_s32(a); }
-static inline vi vi_add(vi a, vi b) { return vaddq_s32(a, b); }
-static inline vi vi_sub(vi a, vi b) { return vsubq_s32(a, b); }
-static inline vi vi_and(vi a, vi b) { return vandq_s32(a, b); }
-static inline vi vi_or(vi a, vi b) { return vorrq_s32(a, b); }
-static inline vi vi_xor(vi a, vi b) { return veorq_s32(a, b); }
-static inline vi vi_shl(vi a, int n) { return vshlq_s32(a, vdupq_n_s32(n)); }
-static inline vi vi_shr(vi a, int n)
+HB_INLINE vi vf_as_vi(vf a) { return vreinterpretq_s32_f32(a); }
+HB_INLINE vf vi_as_vf(vi a) { return vreinterpretq_f32_s32(a); }
+HB_INLINE vi vi_set1(int32_t a) { return vdupq_n_s32(a); }
+HB_INLINE vi vi_add(vi a, vi b) { return vaddq_s32(a, b); }
+HB_INLINE vi vi_sub(vi a, vi b) { return vsubq_s32(a, b); }
+HB_INLINE vi vi_and(vi a, vi b) { return vandq_s32(a, b); }
+HB_INLINE vi vi_or(vi a, vi b) { return vorrq_s32(a, b); }
+HB_INLINE vi vi_xor(vi a, vi b) { return veorq_s32(a, b); }
+HB_INLINE vi vi_shl(vi a, int n) { return vshlq_s32(a, vdupq_n_s32(n)); }
+HB_INLINE vi vi_shr(vi a, int n)
 {
     return vreinterpretq_s32_u32(vshlq_u32(vreinterpretq_u32_s32(a), vdupq_n_s32(-n)));
 }
-static inline vm vi_eq(vi a, vi b) { return vceqq_s32(a, b); }
-static inline vi vi_from_vf(vf a) { return vcvtq_s32_f32(a); }
-static inline vf vf_from_vi(vi a) { return vcvtq_f32_s32(a); }
-static inline vf vf_gather(const float *base, vi idx)
+HB_INLINE vm vi_eq(vi a, vi b) { return vceqq_s32(a, b); }
+HB_INLINE vi vi_from_vf(vf a) { return vcvtq_s32_f32(a); }
+HB_INLINE vf vf_from_vi(vi a) { return vcvtq_f32_s32(a); }
+HB_INLINE vf vf_gather(const float *base, vi idx)
 {
     int32_t i[4];
     vst1q_s32(i, idx);
@@ -81,11 +81,11 @@ static inline vf vf_gather(const float *base, vi idx)
 #define HB_PD_SET1 vdupq_n_f64
 #include "simd_vdw_pair.h"
 
-static inline vdw vdw_from_vf(vf a)
+HB_INLINE vdw vdw_from_vf(vf a)
 {
     vdw r = { vcvt_f64_f32(vget_low_f32(a)), vcvt_high_f64_f32(a) };
     return r;
 }
-static inline vf vdw_to_vf(vdw a) { return vcvt_high_f32_f64(vcvt_f32_f64(a.lo), a.hi); }
+HB_INLINE vf vdw_to_vf(vdw a) { return vcvt_high_f32_f64(vcvt_f32_f64(a.lo), a.hi); }
 
 #endif

@@ -7,7 +7,7 @@
 typedef struct { HB_PD_T lo, hi; } vdw;
 
 #define HB_VDW_BINARY(name, op) \
-    static inline vdw name(vdw a, vdw b) { vdw r = { op(a.lo, b.lo), op(a.hi, b.hi) }; return r; }
+    HB_INLINE vdw name(vdw a, vdw b) { vdw r = { op(a.lo, b.lo), op(a.hi, b.hi) }; return r; }
 HB_VDW_BINARY(vdw_add, HB_PD_ADD)
 HB_VDW_BINARY(vdw_sub, HB_PD_SUB)
 HB_VDW_BINARY(vdw_mul, HB_PD_MUL)
@@ -16,13 +16,13 @@ HB_VDW_BINARY(vdw_min, HB_PD_MIN)
 HB_VDW_BINARY(vdw_max, HB_PD_MAX)
 #undef HB_VDW_BINARY
 
-static inline vdw vdw_fma(vdw a, vdw b, vdw c)
+HB_INLINE vdw vdw_fma(vdw a, vdw b, vdw c)
 {
     vdw r = { HB_PD_FMA(a.lo, b.lo, c.lo), HB_PD_FMA(a.hi, b.hi, c.hi) };
     return r;
 }
-static inline vdw vdw_sqrt(vdw a) { vdw r = { HB_PD_SQRT(a.lo), HB_PD_SQRT(a.hi) }; return r; }
-static inline vdw vdw_round(vdw a) { vdw r = { HB_PD_ROUND(a.lo), HB_PD_ROUND(a.hi) }; return r; }
-static inline vdw vdw_set1(double a) { vdw r = { HB_PD_SET1(a), HB_PD_SET1(a) }; return r; }
+HB_INLINE vdw vdw_sqrt(vdw a) { vdw r = { HB_PD_SQRT(a.lo), HB_PD_SQRT(a.hi) }; return r; }
+HB_INLINE vdw vdw_round(vdw a) { vdw r = { HB_PD_ROUND(a.lo), HB_PD_ROUND(a.hi) }; return r; }
+HB_INLINE vdw vdw_set1(double a) { vdw r = { HB_PD_SET1(a), HB_PD_SET1(a) }; return r; }
 
 #endif

@@ -19,7 +19,7 @@
 
 /* log of dFH11 eq. 15, the 10-term series S(x) = sum_{i<=10} (x^2/4)^i / (i!)^2. For
  * u = x^2/4 > 1 it is evaluated as u^10 R(1/u) so that no power overflows. */
-static inline vf log_i0_series_paper(vf ax)
+HB_INLINE vf log_i0_series_paper(vf ax)
 {
     static const float inv_factorial_sq[11] = {
         1.0f, 1.0f, 1.0f / 4.0f, 1.0f / 36.0f, 1.0f / 576.0f, 1.0f / 14400.0f, 1.0f / 518400.0f,
@@ -37,8 +37,10 @@ static inline vf log_i0_series_paper(vf ax)
     return vf_select(vf_le(u, vf_set1(1.0f)), vf_log(s), log_large);
 }
 
+#define HB_MP_EXPONENT_FLOOR -80.0
+
 /* dFH11 eq. 7 from 1 - cos(theta_i + theta_o') (double) and x = cos(theta_i) cos(theta_o') / v >= 0. */
-static inline vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_sum, vf x, hb_i0 i0)
+HB_INLINE vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_sum, vf x, hb_i0 i0)
 {
     vf ax = vf_abs(x); /* x >= 0 up to the rounding of a cosine at pi/2 */
     vf exponent, factor;
@@ -53,42 +55,44 @@ static inline vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_co
         vf i0e_large = vf_div(vf_i0_large_poly(xl), vf_sqrt(xl));     /* A&S 9.8.2 */
         factor = vf_select(small, i0_small, i0e_large);
     }
-    vdw e = vdw_fma(one_minus_cos_sum, vdw_set1(-lobe->inv_v), vdw_set1(lobe->log_norm));
-    return vf_mul(vf_exp_dw(vdw_add(e, vdw_from_vf(exponent))), factor);
+    vdw e = vdw_add(vdw_fma(one_minus_cos_sum, vdw_set1(-lobe->inv_v), vdw_set1(lobe->log_norm)),
+                    vdw_from_vf(exponent));
+    /* Below e^-80 the result (factor >= 0.004) is under 1e-34: return 0 rather than
+     * form a denormal, whose multiply costs a microcode assist on x86. */
+    vdw e_clamped = vdw_max(e, vdw_set1(HB_MP_EXPONENT_FLOOR));
+    vm negligible = vf_lt(vdw_to_vf(e), vf_set1((float)HB_MP_EXPONENT_FLOOR));
+    return vf_select(negligible, vf_set1(0.0f), vf_mul(vf_exp_dw(e_clamped), factor));
 }
 
-/* theta - shift in double, reflected across a pole into [-pi/2, pi/2] (pi - t above
- * pi/2, -pi - t below -pi/2), and its cosine in float. The angle is carried as a float
- * pair hi + lo so the cosine keeps relative accuracy next to the poles. */
-static inline vdw inclination_reflected(vf theta, double shift, vf *cos_theta)
+/* theta - shift in double, reflected across a pole into [-pi/2, pi/2]: pi - t above
+ * pi/2, -pi - t below -pi/2. */
+HB_INLINE vdw inclination_reflected(vf theta, double shift)
 {
     vdw t = vdw_sub(vdw_from_vf(theta), vdw_set1(shift));
     vdw over = vdw_max(vdw_sub(t, vdw_set1(HB_PIO2_D)), vdw_set1(0.0));
     vdw under = vdw_min(vdw_add(t, vdw_set1(HB_PIO2_D)), vdw_set1(0.0));
-    t = vdw_fma(vdw_add(over, under), vdw_set1(-2.0), t);
-    vf hi = vdw_to_vf(t);
-    vf lo = vdw_to_vf(vdw_sub(t, vdw_from_vf(hi)));
-    vf sin_hi, cos_hi;
-    vf_sincos(hi, &sin_hi, &cos_hi);
-    *cos_theta = vf_fnma(sin_hi, lo, cos_hi); /* cos(hi + lo) */
-    return t;
+    return vdw_fma(vdw_add(over, under), vdw_set1(-2.0), t);
 }
 
-/* M_p(v, theta_i, theta_o - shift) from angles; theta_i and theta_o take the same path,
- * so without a shift M_p(a, b) == M_p(b, a) bit for bit. */
-static inline vf longitudinal_deon_angles(const hb_longitudinal *lobe, vf theta_i, vf theta_o, hb_i0 i0)
+/* M_p(v, theta_i, theta_o - shift) from angles, all in double up to x, with
+ * a = (theta_i + theta_o')/2 and b = (theta_i - theta_o')/2:
+ *     1 - cos(theta_i + theta_o') = 2 sin^2 a,  cos(theta_i) cos(theta_o') = 1 - sin^2 a - sin^2 b.
+ * theta_i and theta_o take the same path, so without a shift M_p(a, b) == M_p(b, a) bit for bit. */
+HB_INLINE vf longitudinal_deon_angles(const hb_longitudinal *lobe, vf theta_i, vf theta_o, hb_i0 i0)
 {
-    vf cos_i, cos_o;
-    vdw ti = inclination_reflected(theta_i, 0.0, &cos_i);
-    vdw to = inclination_reflected(theta_o, lobe->shift, &cos_o);
-    vdw s = vdw_sin_taylor(vdw_mul(vdw_add(ti, to), vdw_set1(0.5)));
-    vdw one_minus_cos_sum = vdw_mul(vdw_add(s, s), s); /* 1 - cos(a) = 2 sin^2(a/2) */
-    vf x = vf_mul(vf_mul(cos_i, cos_o), vf_set1((float)lobe->inv_v));
+    vdw ti = inclination_reflected(theta_i, 0.0);
+    vdw to = inclination_reflected(theta_o, lobe->shift);
+    vdw sin_a = vdw_sin_taylor(vdw_mul(vdw_add(ti, to), vdw_set1(0.5)));
+    vdw sin_b = vdw_sin_taylor(vdw_mul(vdw_sub(ti, to), vdw_set1(0.5)));
+    vdw sin2_a = vdw_mul(sin_a, sin_a), sin2_b = vdw_mul(sin_b, sin_b);
+    vdw one_minus_cos_sum = vdw_add(sin2_a, sin2_a);
+    vdw cos_product = vdw_sub(vdw_sub(vdw_set1(1.0), sin2_a), sin2_b);
+    vf x = vdw_to_vf(vdw_mul(cos_product, vdw_set1(lobe->inv_v)));
     return longitudinal_deon(lobe, one_minus_cos_sum, x, i0);
 }
 
 /* sin and cos of the inclination of w = (x, y, z), in double: y / |w| and |(x, z)| / |w|. */
-static inline void inclination_dw(vf x, vf y, vf z, vdw *sin_theta, vdw *cos_theta)
+HB_INLINE void inclination_dw(vf x, vf y, vf z, vdw *sin_theta, vdw *cos_theta)
 {
     vdw xd = vdw_from_vf(x), yd = vdw_from_vf(y), zd = vdw_from_vf(z);
     vdw planar2 = vdw_fma(xd, xd, vdw_mul(zd, zd));
@@ -99,7 +103,7 @@ static inline void inclination_dw(vf x, vf y, vf z, vdw *sin_theta, vdw *cos_the
 
 /* M_p(v, theta_i, theta_o - shift) from unit vectors, all in double up to x. The
  * reflection across a pole is |cos(theta_o - shift)| with sin(theta_o - shift) kept. */
-static inline vf longitudinal_deon_vectors(const hb_longitudinal *lobe, const vf wi[3], const vf wo[3], hb_i0 i0)
+HB_INLINE vf longitudinal_deon_vectors(const hb_longitudinal *lobe, const vf wi[3], const vf wo[3], hb_i0 i0)
 {
     vdw si, ci, so, co;
     inclination_dw(wi[0], wi[1], wi[2], &si, &ci);

@@ -1,0 +1,185 @@
+/* hairbsdf_bench: ns/sample of each kernel on each ISA, the accuracy it buys against
+ * the double reference, and a check against the latency budgets in bench/budgets.txt.
+ * Batches are SoA, warm in cache, timed many times on one pinned core; the minimum
+ * is what the budget applies to, the median is printed beside it. */
+#include <math.h>
+#include <sched.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "hairbsdf.h"
+
+enum { BATCH = 4096, REPEATS = 200 };
+
+typedef struct row {
+    const char *model, *term, *variant;
+    hb_isa isa;
+    double min_ns, median_ns, max_rel_err;
+} row;
+
+static double now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e9 + ts.tv_nsec;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static float theta_i[BATCH], phi_i[BATCH], theta_o[BATCH], phi_o[BATCH];
+static float out[3][BATCH], ref[3][BATCH];
+
+/* Directions spread over the sphere, half of them near the specular cone where M_p is large. */
+static void make_inputs(double v)
+{
+    srand(12345);
+    for (int k = 0; k < BATCH; k++) {
+        double u = rand() / (double)RAND_MAX, w = rand() / (double)RAND_MAX;
+        theta_i[k] = (float)(asin(2 * u - 1));
+        theta_o[k] = k % 2 ? (float)asin(2 * w - 1) : (float)fmax(-1.5707, fmin(1.5707, -theta_i[k] + sqrt(v) * (4 * w - 2)));
+        phi_i[k] = (float)(2 * M_PI * u - M_PI);
+        phi_o[k] = (float)(2 * M_PI * w - M_PI);
+    }
+}
+
+static int time_plan(const hb_material *m, const hb_options *o, row *r)
+{
+    hb_plan *plan = NULL;
+    hb_error err;
+    if (hb_plan_create(m, o, &plan, &err) != HB_OK) {
+        fprintf(stderr, "bench: %s\n", err.message);
+        return 0;
+    }
+    hb_angles_soa in = { theta_i, phi_i, theta_o, phi_o };
+    hb_rgb_soa rgb = { out[0], out[1], out[2] };
+    int repeats = o->quality == HB_QUALITY_REFERENCE ? 10 : REPEATS;
+    double t[REPEATS];
+    hb_eval_angles(plan, BATCH, in, rgb, NULL); /* warm up */
+    for (int k = 0; k < repeats; k++) {
+        double t0 = now_ns();
+        hb_eval_angles(plan, BATCH, in, rgb, NULL);
+        t[k] = (now_ns() - t0) / BATCH;
+    }
+    qsort(t, (size_t)repeats, sizeof t[0], compare_double);
+    r->min_ns = t[0];
+    r->median_ns = t[repeats / 2];
+    r->isa = hb_plan_isa(plan);
+    double peak = 0.0, worst = 0.0;
+    for (int k = 0; k < BATCH; k++)
+        peak = fmax(peak, ref[0][k]);
+    for (int k = 0; k < BATCH; k++)
+        worst = fmax(worst, fabs((double)out[0][k] - ref[0][k]) / fmax(ref[0][k], 1e-3 * peak));
+    r->max_rel_err = worst;
+    hb_plan_destroy(plan);
+    return 1;
+}
+
+/* Budget lines: model term variant isa ns. Returns the number of rows over budget. */
+static int check_budgets(const char *path, const row *rows, int nrows)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "bench: cannot read budget file %s\n", path);
+        return 1;
+    }
+    char line[256];
+    int over = 0, checked = 0;
+    while (fgets(line, sizeof line, f)) {
+        char model[32], term[32], variant[32], isa[32];
+        double budget;
+        if (line[0] == '#' || sscanf(line, "%31s %31s %31s %31s %lf", model, term, variant, isa, &budget) != 5)
+            continue;
+        for (int k = 0; k < nrows; k++) {
+            const row *r = &rows[k];
+            if (strcmp(r->model, model) || strcmp(r->term, term) || strcmp(r->variant, variant) ||
+                strcmp(hb_isa_name(r->isa), isa))
+                continue;
+            checked++;
+            if (r->min_ns > budget) {
+                printf("OVER BUDGET: %s %s %s on %s: %.2f ns/sample > %.2f\n", model, term, variant, isa, r->min_ns,
+                       budget);
+                over++;
+            } else {
+                printf("budget ok: %s %s %s on %s: %.2f ns/sample <= %.2f\n", model, term, variant, isa, r->min_ns,
+                       budget);
+            }
+        }
+    }
+    fclose(f);
+    if (!checked)
+        printf("no budget row matched this machine's ISAs\n");
+    return over;
+}
+
+int main(int argc, char **argv)
+{
+    const char *budgets = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--budgets") == 0 && i + 1 < argc)
+            budgets = argv[++i];
+        else {
+            fprintf(stderr, "usage: %s [--budgets FILE]\n", argv[0]);
+            return 2;
+        }
+    }
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(0, &one);
+    if (sched_setaffinity(0, sizeof one, &one) != 0)
+        fprintf(stderr, "bench: could not pin to core 0; timings may be noisier\n");
+
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    o.term = HB_TERM_LONGITUDINAL;
+    make_inputs(m.beta_m * m.beta_m);
+
+    o.quality = HB_QUALITY_REFERENCE;
+    hb_plan *ref_plan;
+    hb_plan_create(&m, &o, &ref_plan, NULL);
+    hb_eval_angles(ref_plan, BATCH, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
+                   (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+    hb_plan_destroy(ref_plan);
+
+    row rows[32];
+    int nrows = 0;
+    static const char *const i0_names[] = { "abramowitz", "paper" };
+    for (int isa = HB_ISA_SCALAR; isa < HB_ISA_COUNT; isa++) {
+        if (!hb_isa_available((hb_isa)isa))
+            continue;
+        for (int i0 = HB_I0_ABRAMOWITZ; i0 <= HB_I0_PAPER; i0++) {
+            o.quality = HB_QUALITY_BALANCED;
+            o.isa = (hb_isa)isa;
+            o.i0 = (hb_i0)i0;
+            row r = { "deon", "longitudinal", i0_names[i0], HB_ISA_SCALAR, 0, 0, 0 };
+            if (time_plan(&m, &o, &r))
+                rows[nrows++] = r;
+        }
+    }
+    o.quality = HB_QUALITY_REFERENCE;
+    o.i0 = HB_I0_ABRAMOWITZ;
+    row r = { "deon", "longitudinal", "reference", HB_ISA_SCALAR, 0, 0, 0 };
+    if (time_plan(&m, &o, &r))
+        rows[nrows++] = r;
+
+    printf("dFH11 M_p alone (beta_m = %.3g), batch %d, one core\n", m.beta_m, BATCH);
+    printf("| variant | ISA | ns/sample (min) | ns/sample (median) | Msamples/s | max rel. error | speed-up vs scalar |\n");
+    printf("|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < nrows; k++) {
+        double scalar = 0.0;
+        for (int j = 0; j < nrows; j++)
+            if (rows[j].isa == HB_ISA_SCALAR && !strcmp(rows[j].variant, rows[k].variant))
+                scalar = rows[j].min_ns;
+        printf("| %s | %s | %.2f | %.2f | %.0f | %.1e | %.1fx |\n", rows[k].variant,
+               strcmp(rows[k].variant, "reference") ? hb_isa_name(rows[k].isa) : "double", rows[k].min_ns,
+               rows[k].median_ns, 1e3 / rows[k].min_ns, rows[k].max_rel_err, scalar / rows[k].min_ns);
+    }
+    return budgets && check_budgets(budgets, rows, nrows) ? 1 : 0;
+}
