@@ -1,2 +1,154 @@
+/* The hairbsdf tool, driven through $HB_TOOL (set by make test; under qemu it
+ * includes the emulator): eval's output equals the library's, headers and blank
+ * lines are skipped, malformed rows, bad options and bad values are clear errors. */
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
 #include "test.h"
-const hb_test hb_tests_cli[] = { { NULL, NULL, 0 } };
+
+typedef struct run_result {
+    int status;
+    char out[8192], err[2048];
+} run_result;
+
+static void slurp(const char *path, char *buf, size_t cap)
+{
+    FILE *f = fopen(path, "r");
+    size_t n = f ? fread(buf, 1, cap - 1, f) : 0;
+    buf[n] = '\0';
+    if (f)
+        fclose(f);
+}
+
+/* Runs "$HB_TOOL args" with input on stdin. Returns 0 when HB_TOOL is not set. */
+static int run_tool(hb_test_ctx *t, const char *args, const char *input, run_result *r)
+{
+    const char *tool = getenv("HB_TOOL");
+    if (!tool || !*tool) {
+        CHECK(t, 0, "HB_TOOL is not set (make test sets it)");
+        return 0;
+    }
+    char dir[] = "/tmp/hb_cli_XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(t, 0, "mkdtemp failed");
+        return 0;
+    }
+    char in_path[64], out_path[64], err_path[64], cmd[1024];
+    snprintf(in_path, sizeof in_path, "%s/in", dir);
+    snprintf(out_path, sizeof out_path, "%s/out", dir);
+    snprintf(err_path, sizeof err_path, "%s/err", dir);
+    FILE *f = fopen(in_path, "w");
+    fputs(input, f);
+    fclose(f);
+    snprintf(cmd, sizeof cmd, "%s %s < %s > %s 2> %s", tool, args, in_path, out_path, err_path);
+    int st = system(cmd);
+    r->status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    slurp(out_path, r->out, sizeof r->out);
+    slurp(err_path, r->err, sizeof r->err);
+    unlink(in_path);
+    unlink(out_path);
+    unlink(err_path);
+    rmdir(dir);
+    return 1;
+}
+
+static void test_eval_matches_library(hb_test_ctx *t)
+{
+    const float rows[][4] = { { 0.3f, 0.0f, -0.3f, 0.5f }, { 0.3f, 0.0f, -0.2f, 0.5f }, { -1.2f, 1.0f, 1.1f, -2.0f },
+                              { 1.5707963f, 0.0f, -1.5707963f, 3.14159f }, { 0.0f, 0.0f, 0.0f, 0.0f } };
+    enum { N = sizeof rows / sizeof rows[0] };
+    char input[1024] = "theta_i,phi_i,theta_o,phi_o\n\n";
+    for (int k = 0; k < N; k++) {
+        char line[128];
+        snprintf(line, sizeof line, "%.9g, %.9g,%.9g ,%.9g\r\n%s", rows[k][0], rows[k][1], rows[k][2], rows[k][3],
+                 k == 2 ? "\n" : "");
+        strcat(input, line);
+    }
+    hb_material m;
+    hb_options o;
+    hb_test_longitudinal_setup(t, &m, &o);
+    m.beta_m = 0.05;
+    m.alpha = 0.02;
+    o.isa = HB_ISA_SCALAR;
+    for (int quality = 0; quality < 2; quality++) {
+        o.quality = quality ? HB_QUALITY_REFERENCE : HB_QUALITY_BALANCED;
+        run_result r;
+        char args[256];
+        snprintf(args, sizeof args, "eval --model deon --term longitudinal --beta-m 0.05 --alpha=0.02 --isa scalar%s",
+                 quality ? " --quality reference" : "");
+        if (!run_tool(t, args, input, &r))
+            return;
+        CHECK(t, r.status == 0, "exit %d, stderr: %s", r.status, r.err);
+        hb_plan *plan;
+        hb_plan_create(&m, &o, &plan, NULL);
+        float ti[N], pi[N], to[N], po[N], f[3][N];
+        for (int k = 0; k < N; k++)
+            ti[k] = rows[k][0], pi[k] = rows[k][1], to[k] = rows[k][2], po[k] = rows[k][3];
+        hb_eval_angles(plan, N, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+        hb_plan_destroy(plan);
+        char *line = r.out;
+        for (int k = 0; k < N; k++) {
+            float got[3];
+            int ok = line && sscanf(line, "%g,%g,%g", &got[0], &got[1], &got[2]) == 3;
+            CHECK(t, ok && got[0] == f[0][k] && got[1] == f[1][k] && got[2] == f[2][k],
+                  "row %d: tool '%.40s' vs library %.9g", k, line ? line : "(missing)", f[0][k]);
+            line = line ? strchr(line, '\n') : NULL;
+            line = line ? line + 1 : NULL;
+        }
+        CHECK(t, line && *line == '\0', "extra output: '%s'", line ? line : "");
+    }
+}
+
+static void test_eval_errors(hb_test_ctx *t)
+{
+    run_result r;
+    if (!run_tool(t, "eval --term longitudinal", "0.1,0,0.2,0\n0.2,0,0.1,0\n\n0.1,0,0.2\n0.3,0,0.3,0\n", &r))
+        return;
+    CHECK(t, r.status != 0, "malformed row accepted");
+    CHECK(t, strstr(r.err, "line 4") != NULL, "malformed row's line number not reported: %s", r.err);
+    int lines = 0;
+    for (const char *p = r.out; *p; p++)
+        lines += *p == '\n';
+    CHECK(t, lines == 2, "rows before the malformed one must be written: got %d lines", lines);
+
+    run_tool(t, "eval --term longitudinal", "0.1,0,0.2,0\nabc,0,0,0\n", &r);
+    CHECK(t, r.status != 0 && strstr(r.err, "line 2"), "a non-first text line is malformed, not a header");
+
+    run_tool(t, "eval --term longitudinal", "nan,0,0.2,0\n0.1,inf,0.2,0\n0.1,0,0.2,0\n", &r);
+    CHECK(t, r.status == 0 && strncmp(r.out, "0,0,0\n0,0,0\n", 12) == 0, "NaN/Inf rows give 0,0,0: %s", r.out);
+    CHECK(t, strstr(r.err, "2 invalid samples") != NULL, "invalid rows counted on stderr: %s", r.err);
+
+    run_tool(t, "eval --bogus 3", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--bogus"), "unknown option: %d %s", r.status, r.err);
+    run_tool(t, "eval --term longitudinal --beta-m 7", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "beta_m"), "out of range beta_m: %d %s", r.status, r.err);
+    run_tool(t, "eval --term longitudinal --eta abc", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--eta"), "non-numeric value: %d %s", r.status, r.err);
+    run_tool(t, "eval --term longitudinal --beta-m", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "needs a value"), "missing value: %d %s", r.status, r.err);
+    run_tool(t, "eval --model huang", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "not implemented"), "unimplemented model: %d %s", r.status, r.err);
+    run_tool(t, "eval --term longitudinal --isa avx9", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--isa"), "unknown isa: %d %s", r.status, r.err);
+}
+
+static void test_help(hb_test_ctx *t)
+{
+    run_result r;
+    if (!run_tool(t, "--help", "", &r))
+        return;
+    CHECK(t, r.status == 0 && strstr(r.out, "eval") && strstr(r.out, "isa") && strstr(r.out, "--beta-m"),
+          "--help lists subcommands and options: %s", r.out);
+    run_tool(t, "frobnicate", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "frobnicate"), "unknown command");
+    run_tool(t, "isa", "", &r);
+    CHECK(t, r.status == 0 && strstr(r.out, "scalar") && strstr(r.out, "(auto)"), "isa listing: %s", r.out);
+}
+
+const hb_test hb_tests_cli[] = {
+    { "cli_eval_matches_library", test_eval_matches_library, 0 },
+    { "cli_eval_errors", test_eval_errors, 0 },
+    { "cli_help", test_help, 0 },
+    { NULL, NULL, 0 },
+};
