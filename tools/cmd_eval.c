@@ -56,7 +56,8 @@ static int parse_row(char *line, float row[4])
         if (end == s || *end != '\0')
             return 0;
         row[c] = (float)x;
-        field = comma + 1;
+        if (comma)
+            field = comma + 1;
     }
     return 1;
 }
