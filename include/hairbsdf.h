@@ -69,6 +69,8 @@ void hb_material_default(hb_material *material);
 /* sigma_a of the material: sigma_a plus the melanin absorption of dFH11 sec. 6.1. */
 void hb_material_absorption(const hb_material *material, double sigma_a_rgb[3]);
 
+/* Speed/accuracy levels. The longitudinal term has one kernel for every level but
+ * REFERENCE; the levels differ for the terms with quadrature (the full models). */
 typedef enum hb_quality {
     HB_QUALITY_FAST,
     HB_QUALITY_BALANCED,
