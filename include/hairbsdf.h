@@ -41,9 +41,11 @@ typedef struct hb_error {
 
 typedef enum hb_model { HB_MODEL_MARSCHNER, HB_MODEL_DEON, HB_MODEL_HUANG } hb_model;
 
-/* Orders p of scattering; a lobe set is a bit mask of (1u << p). */
-enum { HB_LOBE_R = 0, HB_LOBE_TT = 1, HB_LOBE_TRT = 2, HB_LOBE_TRRT = 3, HB_MAX_LOBES = 8 };
-#define HB_LOBES_DEFAULT 0u /* the model's full set */
+/* Orders p of scattering; a lobe set is a bit mask of (1u << p). HB_LOBE_RESIDUAL stands
+ * for every order above the plan's pmax, folded into one lobe (dFH11; see README). */
+enum { HB_LOBE_R = 0, HB_LOBE_TT = 1, HB_LOBE_TRT = 2, HB_LOBE_TRRT = 3, HB_MAX_LOBES = 8,
+       HB_LOBE_RESIDUAL = HB_MAX_LOBES };
+#define HB_LOBES_DEFAULT 0u /* the model's full set: for dFH11 every order up to pmax plus the residual */
 
 typedef enum hb_ndf { HB_NDF_GGX, HB_NDF_BECKMANN } hb_ndf;
 
@@ -60,8 +62,13 @@ typedef struct hb_material {
     hb_ndf ndf;          /* HHH22 microfacet distribution, default GGX */
     double roughness;    /* HHH22 microfacet roughness, default 0.1 */
     double eccentricity; /* elliptical fibre (HHH22, MJC03), default 0 */
-    /* Per-lobe overrides: 0 means "derived from beta_m" (dFH11: the same beta_m for every lobe). */
+    /* Per-lobe overrides, index p. Roughness 0 means "derived": dFH11 uses beta_m and beta_n
+     * for every lobe. A shift applies when bit p of lobe_alpha_override is set; otherwise
+     * dFH11 shifts M_p by alpha_R = -2 alpha, alpha_TT = alpha, alpha_TRT = 3 alpha, 0 above. */
     double lobe_beta_m[HB_MAX_LOBES];
+    double lobe_beta_n[HB_MAX_LOBES];
+    double lobe_alpha[HB_MAX_LOBES];
+    unsigned lobe_alpha_override;
 } hb_material;
 
 void hb_material_default(hb_material *material);
@@ -100,15 +107,28 @@ typedef enum hb_i0 {
     HB_I0_PAPER       /* the 10-term series of dFH11 eq. 15: too small for large arguments (small v) */
 } hb_i0;
 
+/* Absorption path length inside a unit-radius fibre (SPEC.md section 4). */
+typedef enum hb_absorption {
+    HB_ABSORPTION_CORRECTED, /* 2 cos(gamma_t) per traversal (HHH22 sec. 3.1.2) */
+    HB_ABSORPTION_PAPER      /* T = exp(-2 mu_a (1 + cos 2 gamma_t)) as printed in MJC03 / dFH11 */
+} hb_absorption;
+
 typedef struct hb_options {
     size_t struct_size; /* sizeof(hb_options), set by hb_options_default */
     hb_model model;     /* default HB_MODEL_DEON */
-    unsigned lobes;     /* bit mask of (1u << p), HB_LOBES_DEFAULT for the model's full set */
+    unsigned lobes;     /* bit mask of (1u << p) and (1u << HB_LOBE_RESIDUAL), HB_LOBES_DEFAULT for the full set */
     hb_term term;       /* default HB_TERM_FULL */
     hb_quality quality; /* default HB_QUALITY_BALANCED */
     hb_isa isa;         /* default HB_ISA_AUTO */
     hb_i0 i0;           /* default HB_I0_ABRAMOWITZ */
+    int pmax;           /* dFH11: highest explicit order, 0..7 (default 3, TRRT) */
+    hb_absorption absorption; /* default HB_ABSORPTION_CORRECTED */
+    int quadrature_order;     /* dFH11 N_p nodes on h in [0, 1]; 0 = from quality, else 1..HB_MAX_NODES */
+    double detector_tolerance; /* dFH11 D_p truncation error bound; 0 = from quality */
 } hb_options;
+
+#define HB_MAX_NODES 128
+#define HB_MAX_DETECTOR_TERMS 16
 
 void hb_options_default(hb_options *options);
 

@@ -37,12 +37,15 @@ hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb
     if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o))
         return HB_ERR_NULL;
     size_t invalid = 0;
-    if (plan->kernels)
-        plan->kernels->longitudinal_angles[plan->options.i0](&plan->longitudinal[HB_LOBE_R], n, in, out.r,
-                                                             &invalid);
-    else
-        invalid = hb_ref_eval_angles(plan, n, in, out.r);
-    spread_channels(n, out);
+    const hb_kernels *k = plan->kernels;
+    if (!k) {
+        invalid = hb_ref_eval_angles(plan, n, in, out);
+    } else if (plan->options.term == HB_TERM_LONGITUDINAL) {
+        k->longitudinal_angles[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, &invalid);
+        spread_channels(n, out);
+    } else {
+        k->deon_angles[plan->options.i0](&plan->deon, n, in, out, &invalid);
+    }
     report_invalid(report, invalid);
     return HB_OK;
 }
@@ -55,12 +58,15 @@ hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_r
     if (n && (!in.wi_x || !in.wi_y || !in.wi_z || !in.wo_x || !in.wo_y || !in.wo_z))
         return HB_ERR_NULL;
     size_t invalid = 0;
-    if (plan->kernels)
-        plan->kernels->longitudinal_vectors[plan->options.i0](&plan->longitudinal[HB_LOBE_R], n, in, out.r,
-                                                              &invalid);
-    else
-        invalid = hb_ref_eval_vectors(plan, n, in, out.r);
-    spread_channels(n, out);
+    const hb_kernels *k = plan->kernels;
+    if (!k) {
+        invalid = hb_ref_eval_vectors(plan, n, in, out);
+    } else if (plan->options.term == HB_TERM_LONGITUDINAL) {
+        k->longitudinal_vectors[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, &invalid);
+        spread_channels(n, out);
+    } else {
+        k->deon_vectors[plan->options.i0](&plan->deon, n, in, out, &invalid);
+    }
     report_invalid(report, invalid);
     return HB_OK;
 }

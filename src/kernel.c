@@ -5,7 +5,7 @@
 
 #include "simd/simd.h"
 #include "math/vmath.h"
-#include "models/deon/longitudinal.h"
+#include "models/deon/azimuthal.h"
 #include "kernels.h"
 
 #if defined(HB_TARGET_SCALAR)
@@ -69,55 +69,90 @@ HB_INLINE vm unit_vector_valid(const vf w[3])
     return vf_le(vf_abs(vf_sub(norm2, vf_set1(1.0f))), vf_set1(HB_UNIT_TOLERANCE));
 }
 
-HB_INLINE void longitudinal_angles_body(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,
-                                            float *out, size_t *invalid, hb_i0 i0)
+/* Loads lane block i of an angle batch; returns which lanes are valid samples. */
+HB_INLINE vm load_angles(hb_angles_soa in, size_t i, size_t lanes, vf a[4])
 {
     const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
-    size_t bad = 0;
-    for (size_t i = 0; i < n; i += HB_W) {
-        size_t lanes = n - i < HB_W ? n - i : HB_W;
-        vf a[4];
-        load_block(src, 4, i, lanes, 0.0f, a);
-        vm valid = vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
-        vf m = longitudinal_deon_angles(lobe, a[0], a[2], i0);
-        store_block(out, i, lanes, vf_select(valid, m, vf_set1(0.0f)));
-        bad += count_invalid(valid, lanes);
-    }
-    *invalid = bad;
+    load_block(src, 4, i, lanes, 0.0f, a);
+    return vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
 }
 
-HB_INLINE void longitudinal_vectors_body(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,
-                                             float *out, size_t *invalid, hb_i0 i0)
+HB_INLINE vm load_vectors(hb_vectors_soa in, size_t i, size_t lanes, vf a[6])
 {
     const float *src[6] = { in.wi_x, in.wi_y, in.wi_z, in.wo_x, in.wo_y, in.wo_z };
-    size_t bad = 0;
-    for (size_t i = 0; i < n; i += HB_W) {
-        size_t lanes = n - i < HB_W ? n - i : HB_W;
-        vf a[6];
-        load_block(src, 6, i, lanes, 0.0f, a);
-        vm valid = vm_and(unit_vector_valid(a), unit_vector_valid(a + 3));
-        vf m = longitudinal_deon_vectors(lobe, a, a + 3, i0);
-        store_block(out, i, lanes, vf_select(valid, m, vf_set1(0.0f)));
-        bad += count_invalid(valid, lanes);
-    }
-    *invalid = bad;
+    load_block(src, 6, i, lanes, 0.0f, a);
+    return vm_and(unit_vector_valid(a), unit_vector_valid(a + 3));
+}
+
+/* Invalid lanes get 0 in every plane. */
+HB_INLINE void store_rgb(hb_rgb_soa out, size_t i, size_t lanes, vm valid, const vf f[3])
+{
+    float *planes[3] = { out.r, out.g, out.b };
+    for (int c = 0; c < 3; c++)
+        store_block(planes[c], i, lanes, vf_select(valid, f[c], vf_set1(0.0f)));
 }
 
 /* One specialised kernel per I0 variant: the variant is a constant inside each. */
-#define HB_LONGITUDINAL_VARIANT(suffix, variant)                                                        \
+#define HB_KERNEL_VARIANTS(suffix, i0)                                                                  \
     static void longitudinal_angles_##suffix(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,   \
                                              float *out, size_t *invalid)                              \
     {                                                                                                   \
-        longitudinal_angles_body(lobe, n, in, out, invalid, variant);                                   \
+        size_t bad = 0;                                                                                 \
+        for (size_t i = 0; i < n; i += HB_W) {                                                          \
+            size_t lanes = n - i < HB_W ? n - i : HB_W;                                                 \
+            vf a[4];                                                                                    \
+            vm valid = load_angles(in, i, lanes, a);                                                    \
+            vf m = longitudinal_deon_angles(lobe, a[0], a[2], i0);                                      \
+            store_block(out, i, lanes, vf_select(valid, m, vf_set1(0.0f)));                             \
+            bad += count_invalid(valid, lanes);                                                         \
+        }                                                                                               \
+        *invalid = bad;                                                                                 \
     }                                                                                                   \
     static void longitudinal_vectors_##suffix(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in, \
                                               float *out, size_t *invalid)                             \
     {                                                                                                   \
-        longitudinal_vectors_body(lobe, n, in, out, invalid, variant);                                  \
+        size_t bad = 0;                                                                                 \
+        for (size_t i = 0; i < n; i += HB_W) {                                                          \
+            size_t lanes = n - i < HB_W ? n - i : HB_W;                                                 \
+            vf a[6];                                                                                    \
+            vm valid = load_vectors(in, i, lanes, a);                                                   \
+            vf m = longitudinal_deon_vectors(lobe, a, a + 3, i0);                                       \
+            store_block(out, i, lanes, vf_select(valid, m, vf_set1(0.0f)));                             \
+            bad += count_invalid(valid, lanes);                                                         \
+        }                                                                                               \
+        *invalid = bad;                                                                                 \
+    }                                                                                                   \
+    static void deon_angles_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,   \
+                                     size_t *invalid)                                                  \
+    {                                                                                                   \
+        size_t bad = 0;                                                                                 \
+        for (size_t i = 0; i < n; i += HB_W) {                                                          \
+            size_t lanes = n - i < HB_W ? n - i : HB_W;                                                 \
+            vf a[4], f[3];                                                                              \
+            vm valid = load_angles(in, i, lanes, a);                                                    \
+            deon_angles(deon, a[0], a[1], a[2], a[3], i0, f);                                           \
+            store_rgb(out, i, lanes, valid, f);                                                         \
+            bad += count_invalid(valid, lanes);                                                         \
+        }                                                                                               \
+        *invalid = bad;                                                                                 \
+    }                                                                                                   \
+    static void deon_vectors_##suffix(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out, \
+                                      size_t *invalid)                                                 \
+    {                                                                                                   \
+        size_t bad = 0;                                                                                 \
+        for (size_t i = 0; i < n; i += HB_W) {                                                          \
+            size_t lanes = n - i < HB_W ? n - i : HB_W;                                                 \
+            vf a[6], f[3];                                                                              \
+            vm valid = load_vectors(in, i, lanes, a);                                                   \
+            deon_vectors(deon, a, a + 3, i0, f);                                                        \
+            store_rgb(out, i, lanes, valid, f);                                                         \
+            bad += count_invalid(valid, lanes);                                                         \
+        }                                                                                               \
+        *invalid = bad;                                                                                 \
     }
-HB_LONGITUDINAL_VARIANT(abramowitz, HB_I0_ABRAMOWITZ)
-HB_LONGITUDINAL_VARIANT(paper, HB_I0_PAPER)
-#undef HB_LONGITUDINAL_VARIANT
+HB_KERNEL_VARIANTS(abramowitz, HB_I0_ABRAMOWITZ)
+HB_KERNEL_VARIANTS(paper, HB_I0_PAPER)
+#undef HB_KERNEL_VARIANTS
 
 HB_INLINE vf math_apply(hb_math_fn fn, vf a, vf b)
 {
@@ -156,5 +191,7 @@ const hb_kernels HB_TABLE = {
     .width = HB_W,
     .longitudinal_angles = { longitudinal_angles_abramowitz, longitudinal_angles_paper },
     .longitudinal_vectors = { longitudinal_vectors_abramowitz, longitudinal_vectors_paper },
+    .deon_angles = { deon_angles_abramowitz, deon_angles_paper },
+    .deon_vectors = { deon_vectors_abramowitz, deon_vectors_paper },
     .math_map = math_map,
 };

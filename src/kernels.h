@@ -14,6 +14,30 @@ typedef struct hb_longitudinal {
     double cos_shift, sin_shift;
 } hb_longitudinal;
 
+/* dFH11's Gaussian detector D_p (eq. 11), a wrapped Gaussian (a Jacobi theta function),
+ * truncated at plan creation to the cheaper of its two series for the tolerance. */
+typedef struct hb_detector {
+    int fourier;         /* 1: (1/2pi)(1 + 2 sum_{n<=terms} e^(-n^2 beta^2/2) cos(n x)); 0: Gaussians at x - 2 pi k, |k| <= terms */
+    int terms;
+    float inv_two_beta2; /* direct series: 1 / (2 beta^2) */
+    float gauss_norm;    /* direct series: 1 / (beta sqrt(2 pi)) */
+    float coeff[HB_MAX_DETECTOR_TERMS + 1]; /* Fourier series: coeff[0] = 1/(2 pi), coeff[n] = e^(-n^2 beta^2/2) / pi */
+} hb_detector;
+
+/* Everything the dFH11 kernel reads, fixed at plan creation. */
+typedef struct hb_deon {
+    unsigned lobes; /* bits p <= pmax, and HB_LOBE_RESIDUAL */
+    int pmax;
+    int nodes;
+    int absorption_paper;
+    float eta, inv_eta2;
+    float sigma_a[3];
+    /* quadrature over gamma_i in [0, pi/2] (h = sin gamma_i), weights include 1/2 and dh/dgamma */
+    float gamma_i[HB_MAX_NODES], cos_gamma_i[HB_MAX_NODES], h[HB_MAX_NODES], weight[HB_MAX_NODES];
+    hb_detector detector[HB_MAX_LOBES];
+    hb_longitudinal longitudinal[HB_MAX_LOBES + 1]; /* index HB_LOBE_RESIDUAL: the residual lobe */
+} hb_deon;
+
 /* Functions of src/math/vmath.h exported for the accuracy tests. */
 typedef enum hb_math_fn {
     HB_FN_EXP, HB_FN_LOG, HB_FN_LOG1P, HB_FN_SIN, HB_FN_COS, HB_FN_ASIN, HB_FN_ACOS,
@@ -25,11 +49,18 @@ typedef void (*hb_longitudinal_angles_fn)(const hb_longitudinal *lobe, size_t n,
 typedef void (*hb_longitudinal_vectors_fn)(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,
                                            float *out, size_t *invalid);
 
+typedef void (*hb_deon_angles_fn)(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,
+                                  size_t *invalid);
+typedef void (*hb_deon_vectors_fn)(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,
+                                   size_t *invalid);
+
 typedef struct hb_kernels {
     hb_isa isa;
     int width; /* float lanes */
     hb_longitudinal_angles_fn longitudinal_angles[2];   /* indexed by hb_i0 */
     hb_longitudinal_vectors_fn longitudinal_vectors[2]; /* indexed by hb_i0 */
+    hb_deon_angles_fn deon_angles[2];                   /* indexed by hb_i0 */
+    hb_deon_vectors_fn deon_vectors[2];
     void (*math_map)(hb_math_fn fn, size_t n, const float *a, const float *b, float *out);
 } hb_kernels;
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "plan.h"
+#include "quadrature.h"
 
 /* Valid ranges. v = beta_m^2 in [1e-4, 10] is where M_p's accuracy is tested. */
 #define BETA_M_MIN 0.01
@@ -54,6 +55,8 @@ void hb_options_default(hb_options *o)
     o->quality = HB_QUALITY_BALANCED;
     o->isa = HB_ISA_AUTO;
     o->i0 = HB_I0_ABRAMOWITZ;
+    o->pmax = 3;
+    o->absorption = HB_ABSORPTION_CORRECTED;
 }
 
 static hb_status fail(hb_error *error, hb_status status, const char *fmt, ...)
@@ -94,8 +97,16 @@ static hb_status validate_material(const hb_material *m, hb_error *error)
                         m->lobe_beta_m[p], BETA_M_MIN, BETA_M_MAX);
     if (!in_range(m->beta_n, BETA_N_MIN, BETA_N_MAX))
         return fail(error, HB_ERR_PARAM, "beta_n = %g must be in [%g, %g]", m->beta_n, BETA_N_MIN, BETA_N_MAX);
+    for (int p = 0; p < HB_MAX_LOBES; p++)
+        if (m->lobe_beta_n[p] != 0.0 && !in_range(m->lobe_beta_n[p], BETA_N_MIN, BETA_N_MAX))
+            return fail(error, HB_ERR_PARAM, "lobe_beta_n[%d] = %g must be 0 (derived) or in [%g, %g]", p,
+                        m->lobe_beta_n[p], BETA_N_MIN, BETA_N_MAX);
     if (!in_range(m->alpha, -ALPHA_MAX, ALPHA_MAX))
         return fail(error, HB_ERR_PARAM, "alpha = %g must be in [%g, %g] radians", m->alpha, -ALPHA_MAX, ALPHA_MAX);
+    for (int p = 0; p < HB_MAX_LOBES; p++)
+        if ((m->lobe_alpha_override >> p & 1u) && !in_range(m->lobe_alpha[p], -3 * ALPHA_MAX, 3 * ALPHA_MAX))
+            return fail(error, HB_ERR_PARAM, "lobe_alpha[%d] = %g must be in [%g, %g] radians", p, m->lobe_alpha[p],
+                        -3 * ALPHA_MAX, 3 * ALPHA_MAX);
     if (m->ndf != HB_NDF_GGX && m->ndf != HB_NDF_BECKMANN)
         return fail(error, HB_ERR_PARAM, "ndf = %d is neither HB_NDF_GGX nor HB_NDF_BECKMANN", (int)m->ndf);
     if (!in_range(m->roughness, ROUGHNESS_MIN, ROUGHNESS_MAX))
@@ -107,7 +118,7 @@ static hb_status validate_material(const hb_material *m, hb_error *error)
     return HB_OK;
 }
 
-/* What exists so far: dFH11's longitudinal function M_p of the R lobe. */
+/* What exists so far: the dFH11 model, and its longitudinal function M_p of the R lobe alone. */
 static hb_status validate_options(const hb_options *o, hb_error *error)
 {
     if (o->struct_size != sizeof *o)
@@ -118,15 +129,27 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
     if (o->model != HB_MODEL_DEON)
         return fail(error, HB_ERR_UNSUPPORTED, "the %s model is not implemented yet",
                     o->model == HB_MODEL_MARSCHNER ? "marschner" : "huang");
-    if (o->term != HB_TERM_LONGITUDINAL)
-        return fail(error, HB_ERR_UNSUPPORTED,
-                    "the full deon model (N_p) is not implemented yet; the longitudinal term M_p is");
-    if (o->lobes != HB_LOBES_DEFAULT && o->lobes != 1u << HB_LOBE_R)
+    if (o->term != HB_TERM_FULL && o->term != HB_TERM_LONGITUDINAL)
+        return fail(error, HB_ERR_PARAM, "term = %d is not a term", (int)o->term);
+    if (o->pmax < 0 || o->pmax >= HB_MAX_LOBES)
+        return fail(error, HB_ERR_PARAM, "pmax = %d must be in [0, %d]", o->pmax, HB_MAX_LOBES - 1);
+    unsigned allowed = (2u << o->pmax) - 1u;
+    if (o->term == HB_TERM_LONGITUDINAL && o->lobes != HB_LOBES_DEFAULT && o->lobes != 1u << HB_LOBE_R)
         return fail(error, HB_ERR_UNSUPPORTED, "the longitudinal term is evaluated for the R lobe only");
+    if (o->term == HB_TERM_FULL && (o->lobes & ~(allowed | 1u << HB_LOBE_RESIDUAL)))
+        return fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x asks for an order above pmax = %d", o->lobes, o->pmax);
     if ((unsigned)o->quality > HB_QUALITY_REFERENCE)
         return fail(error, HB_ERR_PARAM, "quality = %d is not a quality level", (int)o->quality);
     if (o->i0 != HB_I0_ABRAMOWITZ && o->i0 != HB_I0_PAPER)
         return fail(error, HB_ERR_PARAM, "i0 = %d is not an I0 variant", (int)o->i0);
+    if (o->absorption != HB_ABSORPTION_CORRECTED && o->absorption != HB_ABSORPTION_PAPER)
+        return fail(error, HB_ERR_PARAM, "absorption = %d is not an absorption variant", (int)o->absorption);
+    if (o->quadrature_order < 0 || o->quadrature_order > HB_MAX_NODES)
+        return fail(error, HB_ERR_PARAM, "quadrature_order = %d must be 0 (from quality) or in [1, %d]",
+                    o->quadrature_order, HB_MAX_NODES);
+    if (o->detector_tolerance != 0.0 && !in_range(o->detector_tolerance, 1e-12, 0.1))
+        return fail(error, HB_ERR_PARAM, "detector_tolerance = %g must be 0 (from quality) or in [1e-12, 0.1]",
+                    o->detector_tolerance);
     if ((unsigned)o->isa >= HB_ISA_COUNT)
         return fail(error, HB_ERR_PARAM, "isa = %d is not an instruction set", (int)o->isa);
     return HB_OK;
@@ -150,21 +173,100 @@ static hb_status resolve_isa(hb_isa requested, hb_isa *isa, hb_error *error)
     return HB_OK;
 }
 
-/* dFH11 eq. 7 constants; the shift maps the cuticle tilt alpha to the R lobe as
- * alpha_R = -2 alpha (README: the R highlight moves toward the root for alpha > 0). */
-static void derive_longitudinal(hb_plan *plan)
+/* Quadrature nodes and detector tolerance of each quality level. */
+static const struct {
+    int nodes;
+    double detector_tolerance;
+} quality_levels[] = {
+    [HB_QUALITY_FAST] = { 8, 1e-3 },
+    [HB_QUALITY_BALANCED] = { 16, 1e-5 },
+    [HB_QUALITY_HIGH] = { 35, 1e-7 }, /* the paper's order */
+    [HB_QUALITY_REFERENCE] = { 35, 1e-7 }, /* unused: the reference converges on its own */
+};
+
+/* dFH11 sec. 6 shifts: M_p is evaluated at theta_o - alpha_p with alpha_R = -2 alpha
+ * (the R highlight moves toward the root for alpha > 0), alpha_TT = alpha, alpha_TRT = 3 alpha
+ * (MJC03 Table 1 ratios -alpha_R/2 and -3 alpha_R/2), and no shift above TRT. */
+static double lobe_shift(const hb_material *m, int p)
+{
+    if (p < HB_MAX_LOBES && (m->lobe_alpha_override >> p & 1u))
+        return m->lobe_alpha[p];
+    static const double ratio[3] = { -2.0, 1.0, 3.0 };
+    return p < 3 ? ratio[p] * m->alpha : 0.0;
+}
+
+/* dFH11 eq. 7 constants, in double. */
+static void derive_longitudinal(hb_longitudinal *l, double v, double shift)
+{
+    l->inv_v = 1.0 / v;
+    l->log_norm = -log(v) - log(-expm1(-2.0 / v));
+    l->shift = shift;
+    l->cos_shift = cos(shift);
+    l->sin_shift = sin(shift);
+}
+
+/* The cheaper truncation of the wrapped Gaussian (eq. 11) whose error, relative to its
+ * peak, is below tol. Cost model: a direct term is two exponentials (detection at phi
+ * and -phi); the Fourier series needs one cosine per node and one multiply-add per term. */
+static void derive_detector(hb_detector *d, double beta, double tol)
+{
+    int k = 0; /* direct: |x| <= pi after wrapping, the first neglected Gaussian is (2k+1) pi away */
+    while (k < HB_MAX_DETECTOR_TERMS && 2.0 * exp(-pow((2 * k + 1) * M_PI, 2) / (2 * beta * beta)) > tol)
+        k++;
+    int n = 1; /* Fourier: the tail after n terms, relative to the peak >= 1/(2 pi) */
+    while (n < HB_MAX_DETECTOR_TERMS && 2.0 * exp(-pow(n + 1, 2) * beta * beta / 2) /
+                                            (1.0 - exp(-(2.0 * n + 3.0) * beta * beta / 2)) > tol)
+        n++;
+    int fourier_converged = 2.0 * exp(-pow(n + 1, 2) * beta * beta / 2) /
+                                (1.0 - exp(-(2.0 * n + 3.0) * beta * beta / 2)) <= tol;
+    double direct_cost = 2.0 * (2 * k + 1) * 18.0, fourier_cost = 28.0 + 4.0 * n;
+    memset(d, 0, sizeof *d);
+    d->fourier = fourier_converged && fourier_cost < direct_cost;
+    d->terms = d->fourier ? n : k;
+    d->inv_two_beta2 = (float)(1.0 / (2.0 * beta * beta));
+    d->gauss_norm = (float)(1.0 / (beta * sqrt(2.0 * M_PI)));
+    d->coeff[0] = (float)(0.5 / M_PI);
+    for (int j = 1; j <= HB_MAX_DETECTOR_TERMS; j++)
+        d->coeff[j] = (float)(exp(-0.5 * j * j * beta * beta) / M_PI);
+}
+
+static void derive_deon(hb_plan *plan)
 {
     const hb_material *m = &plan->material;
+    const hb_options *o = &plan->options;
+    hb_deon *d = &plan->deon;
+    hb_material_absorption(m, plan->sigma_a);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        /* the residual lobe takes the roughness of the highest explicit order, and no shift */
+        int q = p == HB_LOBE_RESIDUAL ? o->pmax : p;
+        double beta = m->lobe_beta_m[q] > 0.0 ? m->lobe_beta_m[q] : m->beta_m;
+        plan->v[p] = beta * beta;
+        derive_longitudinal(&d->longitudinal[p], plan->v[p], p == HB_LOBE_RESIDUAL ? 0.0 : lobe_shift(m, p));
+    }
+    double tol = o->detector_tolerance > 0.0 ? o->detector_tolerance : quality_levels[o->quality].detector_tolerance;
     for (int p = 0; p < HB_MAX_LOBES; p++) {
-        double beta = m->lobe_beta_m[p] > 0.0 ? m->lobe_beta_m[p] : m->beta_m;
-        double v = beta * beta;
-        hb_longitudinal *l = &plan->longitudinal[p];
-        plan->v[p] = v;
-        l->inv_v = 1.0 / v;
-        l->log_norm = -log(v) - log(-expm1(-2.0 / v));
-        l->shift = p == HB_LOBE_R ? -2.0 * m->alpha : 0.0;
-        l->cos_shift = cos(l->shift);
-        l->sin_shift = sin(l->shift);
+        plan->beta_n[p] = m->lobe_beta_n[p] > 0.0 ? m->lobe_beta_n[p] : m->beta_n;
+        derive_detector(&d->detector[p], plan->beta_n[p], tol);
+    }
+    unsigned all = ((2u << o->pmax) - 1u) | 1u << HB_LOBE_RESIDUAL;
+    d->lobes = o->lobes == HB_LOBES_DEFAULT ? all : o->lobes;
+    d->pmax = o->pmax;
+    d->absorption_paper = o->absorption == HB_ABSORPTION_PAPER;
+    d->eta = (float)m->eta;
+    d->inv_eta2 = (float)(1.0 / (m->eta * m->eta));
+    for (int c = 0; c < 3; c++)
+        d->sigma_a[c] = (float)plan->sigma_a[c];
+    /* eq. 10 over h in [0, 1] with h = sin(gamma_i): the h^(1/2) behaviour of gamma_i at h = 1
+     * becomes smooth, and detection at phi and -phi covers h < 0 (A even, Phi odd mod 2 pi). */
+    int n = o->quadrature_order > 0 ? o->quadrature_order : quality_levels[o->quality].nodes;
+    double gamma[HB_MAX_NODES], w[HB_MAX_NODES];
+    hb_gauss_legendre(n, 0.0, M_PI_2, gamma, w);
+    d->nodes = n;
+    for (int j = 0; j < n; j++) {
+        d->gamma_i[j] = (float)gamma[j];
+        d->cos_gamma_i[j] = (float)cos(gamma[j]);
+        d->h[j] = (float)sin(gamma[j]);
+        d->weight[j] = (float)(0.5 * w[j] * cos(gamma[j]));
     }
 }
 
@@ -194,7 +296,7 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
     plan->options = *options;
     plan->isa = isa;
     plan->kernels = options->quality == HB_QUALITY_REFERENCE ? NULL : hb_kernels_for(isa);
-    derive_longitudinal(plan);
+    derive_deon(plan);
     *out = plan;
     return HB_OK;
 }

@@ -10,8 +10,10 @@ struct hb_plan {
     hb_options options;
     const hb_kernels *kernels; /* NULL for HB_QUALITY_REFERENCE */
     hb_isa isa;
-    double v[HB_MAX_LOBES];    /* dFH11 roughness variance per lobe, v = beta_m^2 */
-    hb_longitudinal longitudinal[HB_MAX_LOBES];
+    double v[HB_MAX_LOBES + 1];      /* dFH11 roughness variance per lobe, v = beta_m^2 */
+    double beta_n[HB_MAX_LOBES];     /* dFH11 azimuthal roughness per lobe */
+    double sigma_a[3];               /* sigma_a plus melanin */
+    hb_deon deon;                    /* float constants of the SIMD kernels */
 };
 
 #endif

@@ -1,8 +1,10 @@
 /* dFH11 references in double precision. */
 #include <math.h>
+#include <string.h>
 
 #include "reference.h"
 #include "../plan.h"
+#include "../quadrature.h"
 
 /* I0(x) - 1 = sum_{k>=1} (x^2/4)^k / (k!)^2: positive terms, no cancellation. */
 static double i0_series_minus1(double x)
@@ -69,44 +71,184 @@ double hb_ref_deon_longitudinal(double v, double theta_i, double theta_o, hb_i0 
 
 static int theta_valid(float theta) { return fabsf(theta) <= 1.57079637f; } /* false for NaN */
 
-size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *out)
+/* The plan's term at one direction pair, in double; writes three channels. */
+static void eval_ref(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
+{
+    if (plan->options.term == HB_TERM_LONGITUDINAL) {
+        f[0] = f[1] = f[2] = hb_ref_deon_longitudinal(plan->v[HB_LOBE_R], theta_i,
+                                                      theta_o - plan->deon.longitudinal[HB_LOBE_R].shift,
+                                                      plan->options.i0);
+        return;
+    }
+    hb_ref_deon(plan, theta_i, phi_i, theta_o, phi_o, f);
+}
+
+static void store(hb_rgb_soa out, size_t k, const double f[3])
+{
+    out.r[k] = (float)f[0];
+    out.g[k] = (float)f[1];
+    out.b[k] = (float)f[2];
+}
+
+size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out)
 {
     size_t invalid = 0;
-    double v = plan->v[HB_LOBE_R], shift = plan->longitudinal[HB_LOBE_R].shift;
     for (size_t k = 0; k < n; k++) {
-        if (!theta_valid(in.theta_i[k]) || !theta_valid(in.theta_o[k]) || !isfinite(in.phi_i[k]) ||
-            !isfinite(in.phi_o[k])) {
-            out[k] = 0.0f;
+        double f[3] = { 0.0, 0.0, 0.0 };
+        if (theta_valid(in.theta_i[k]) && theta_valid(in.theta_o[k]) && isfinite(in.phi_i[k]) &&
+            isfinite(in.phi_o[k]))
+            eval_ref(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k], f);
+        else
             invalid++;
-            continue;
-        }
-        out[k] = (float)hb_ref_deon_longitudinal(v, in.theta_i[k], (double)in.theta_o[k] - shift, plan->options.i0);
+        store(out, k, f);
     }
     return invalid;
 }
 
-/* Inclination of a unit-length-within-tolerance vector; NaN when it is not one. */
-static double inclination(float x, float y, float z)
+/* Inclination and azimuth of a unit-length-within-tolerance vector; 0 when it is not one. */
+static int direction(float x, float y, float z, double *theta, double *phi)
 {
     double norm2 = (double)x * x + (double)y * y + (double)z * z;
     if (!(fabs(norm2 - 1.0) <= HB_UNIT_TOLERANCE))
-        return NAN;
-    return atan2(y, hypot(x, z));
+        return 0;
+    *theta = atan2(y, hypot(x, z));
+    *phi = atan2(x, z);
+    return 1;
 }
 
-size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, float *out)
+size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out)
 {
     size_t invalid = 0;
-    double v = plan->v[HB_LOBE_R], shift = plan->longitudinal[HB_LOBE_R].shift;
     for (size_t k = 0; k < n; k++) {
-        double ti = inclination(in.wi_x[k], in.wi_y[k], in.wi_z[k]);
-        double to = inclination(in.wo_x[k], in.wo_y[k], in.wo_z[k]);
-        if (isnan(ti) || isnan(to)) {
-            out[k] = 0.0f;
+        double f[3] = { 0.0, 0.0, 0.0 }, ti, pi, to, po;
+        if (direction(in.wi_x[k], in.wi_y[k], in.wi_z[k], &ti, &pi) &&
+            direction(in.wo_x[k], in.wo_y[k], in.wo_z[k], &to, &po))
+            eval_ref(plan, ti, pi, to, po, f);
+        else
             invalid++;
-            continue;
-        }
-        out[k] = (float)hb_ref_deon_longitudinal(v, ti, to - shift, plan->options.i0);
+        store(out, k, f);
     }
     return invalid;
+}
+
+double hb_ref_fresnel(double eta, double cos_i)
+{
+    cos_i = fmin(fabs(cos_i), 1.0);
+    double sin2_t = (1.0 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1.0)
+        return 1.0;
+    double cos_t = sqrt(1.0 - sin2_t);
+    double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+double hb_ref_detector_direct(double beta, double x, int terms)
+{
+    x = remainder(x, 2.0 * M_PI);
+    double sum = 0.0;
+    for (int k = -terms; k <= terms; k++) {
+        double d = x - 2.0 * M_PI * k;
+        sum += exp(-d * d / (2.0 * beta * beta));
+    }
+    return sum / (beta * sqrt(2.0 * M_PI));
+}
+
+double hb_ref_detector_fourier(double beta, double x, int terms)
+{
+    double sum = 1.0;
+    for (int n = 1; n <= terms; n++)
+        sum += 2.0 * exp(-0.5 * n * n * beta * beta) * cos(n * x);
+    return sum / (2.0 * M_PI);
+}
+
+/* eq. 11 to double precision: Gaussians out to 40 standard deviations, or the Fourier
+ * series until its terms are below 1e-300. */
+double hb_ref_detector(double beta, double x)
+{
+    if (beta < 1.0)
+        return hb_ref_detector_direct(beta, x, (int)ceil((40.0 * beta + M_PI) / (2.0 * M_PI)));
+    return hb_ref_detector_fourier(beta, x, (int)ceil(38.0 / beta));
+}
+
+/* The geometry dFH11's azimuthal part needs. */
+typedef struct deon_geometry {
+    double phi, sin2_theta_d, cos_theta_d, cos_half_io; /* cos of half the angle between w_i and w_o */
+} deon_geometry;
+
+/* eqs. 10, 12-14 for every order of the plan at one geometry, with n_panels panels of a
+ * 16-point Gauss-Legendre rule over gamma_i in [0, pi/2]. N[HB_LOBE_RESIDUAL] is the residual. */
+static void azimuthal_ref(const hb_plan *plan, const deon_geometry *g, int n_panels,
+                          double N[HB_MAX_LOBES + 1][3])
+{
+    enum { RULE = 16 };
+    double x[RULE], w[RULE];
+    const hb_deon *d = &plan->deon;
+    double eta = plan->material.eta;
+    double inv_eta_prime = g->cos_theta_d / sqrt(eta * eta - g->sin2_theta_d); /* 1/eta' (sec. 5) */
+    double cos_theta_t = sqrt(1.0 - g->sin2_theta_d / (eta * eta));
+    double fresnel_r = hb_ref_fresnel(eta, g->cos_half_io); /* eq. 12 */
+    memset(N, 0, sizeof(double) * (HB_MAX_LOBES + 1) * 3);
+    for (int panel = 0; panel < n_panels; panel++) {
+        hb_gauss_legendre(RULE, M_PI_2 * panel / n_panels, M_PI_2 * (panel + 1) / n_panels, x, w);
+        for (int j = 0; j < RULE; j++) {
+            double gamma_i = x[j], h = sin(gamma_i), weight = 0.5 * w[j] * cos(gamma_i);
+            double sin_gamma_t = h * inv_eta_prime, gamma_t = asin(sin_gamma_t);
+            double cos_gamma_t = sqrt(1.0 - sin_gamma_t * sin_gamma_t);
+            double f = hb_ref_fresnel(eta, g->cos_theta_d * cos(gamma_i)); /* eq. 14 */
+            double T[3];
+            for (int c = 0; c < 3; c++) {
+                double mu = plan->sigma_a[c] / cos_theta_t; /* mu_a' = mu_a / cos(theta_t) */
+                T[c] = d->absorption_paper ? exp(-2.0 * mu * (1.0 + cos(2.0 * gamma_t))) : exp(-2.0 * mu * cos_gamma_t);
+            }
+            for (int p = 0; p <= d->pmax; p++) {
+                double Phi = 2.0 * p * gamma_t - 2.0 * gamma_i + p * M_PI; /* eq. 8 */
+                double beta = plan->beta_n[p];
+                double detect = hb_ref_detector(beta, g->phi - Phi) + hb_ref_detector(beta, -g->phi - Phi);
+                for (int c = 0; c < 3; c++) {
+                    double A = p == 0 ? fresnel_r : (1 - f) * (1 - f) * pow(f, p - 1) * pow(T[c], p); /* eq. 13 */
+                    N[p][c] += weight * A * detect;
+                }
+            }
+            for (int c = 0; c < 3; c++) { /* every order above pmax, spread uniformly in phi */
+                double A = (1 - f) * (1 - f) * pow(f, d->pmax) * pow(T[c], d->pmax + 1) / (1.0 - f * T[c]);
+                N[HB_LOBE_RESIDUAL][c] += weight * A * 2.0 / (2.0 * M_PI);
+            }
+        }
+    }
+}
+
+void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
+{
+    double phi = remainder(phi_o - phi_i, 2.0 * M_PI);
+    double theta_d = 0.5 * (theta_o - theta_i);
+    double dot = cos(theta_i) * cos(theta_o) * cos(phi) + sin(theta_i) * sin(theta_o);
+    deon_geometry g = { phi, sin(theta_d) * sin(theta_d), cos(theta_d), sqrt(fmax(0.0, 0.5 * (1.0 + dot))) };
+    /* panels: start where a panel is narrower than the narrowest detector, double until converged */
+    double beta_min = plan->beta_n[0];
+    for (int p = 1; p <= plan->deon.pmax; p++)
+        beta_min = fmin(beta_min, plan->beta_n[p]);
+    int panels = (int)fmax(4.0, ceil(M_PI_2 / beta_min));
+    double N[HB_MAX_LOBES + 1][3], previous[HB_MAX_LOBES + 1][3];
+    azimuthal_ref(plan, &g, panels, previous);
+    for (int round = 0; round < 6; round++) {
+        panels *= 2;
+        azimuthal_ref(plan, &g, panels, N);
+        double change = 0.0;
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            for (int c = 0; c < 3; c++)
+                change = fmax(change, fabs(N[p][c] - previous[p][c]) / fmax(1.0, fabs(N[p][c])));
+        if (change < 1e-10)
+            break;
+        memcpy(previous, N, sizeof N);
+    }
+    f[0] = f[1] = f[2] = 0.0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        if (!(plan->deon.lobes >> p & 1u) || (p > plan->deon.pmax && p != HB_LOBE_RESIDUAL))
+            continue;
+        double M = hb_ref_deon_longitudinal(plan->v[p], theta_i, theta_o - plan->deon.longitudinal[p].shift,
+                                            plan->options.i0);
+        for (int c = 0; c < 3; c++)
+            f[c] += M * N[p][c];
+    }
 }

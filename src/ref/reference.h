@@ -14,8 +14,20 @@ double hb_ref_log_bessel_i0(double x);
 /* dFH11 eq. 7, M_p(v, theta_i, theta_o); with HB_I0_PAPER, I0 is the series of eq. 15. */
 double hb_ref_deon_longitudinal(double v, double theta_i, double theta_o, hb_i0 i0);
 
-/* Reference batch evaluation of a plan's term: writes f (one channel) and returns the invalid count. */
-size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *out);
-size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, float *out);
+/* Unpolarised Fresnel reflectance of a dielectric of relative index eta at incidence cos_i. */
+double hb_ref_fresnel(double eta, double cos_i);
+
+/* dFH11 eq. 11: the wrapped Gaussian of standard deviation beta, by its direct series
+ * (Gaussians at x - 2 pi k, |k| <= terms), its Fourier series (n <= terms), or converged. */
+double hb_ref_detector_direct(double beta, double x, int terms);
+double hb_ref_detector_fourier(double beta, double x, int terms);
+double hb_ref_detector(double beta, double x);
+
+/* dFH11 f = sum_p M_p N_p (eqs. 7, 10-14) for the plan's lobes, N_p converged to 1e-10. */
+void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
+
+/* Reference batch evaluation of a plan's term: writes f and returns the invalid count. */
+size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out);
+size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out);
 
 #endif

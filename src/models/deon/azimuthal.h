@@ -1,0 +1,198 @@
+/* dFH11 azimuthal scattering N_p (eqs. 8, 10-14) and the full model f = sum_p M_p N_p,
+ * over the SIMD vocabulary. Loop counts (nodes, orders, detector terms) come from the
+ * plan, never from the samples. */
+#ifndef HB_DEON_AZIMUTHAL_H
+#define HB_DEON_AZIMUTHAL_H
+
+#include "longitudinal.h"
+
+#define HB_TWO_PI_F 6.28318548f
+#define HB_TWO_PI_LO -1.74845553e-7f
+
+/* Unpolarised Fresnel reflectance entering a dielectric of index eta > 1, cos_i in [0, 1]. */
+HB_INLINE vf fresnel_dielectric(vf cos_i, float eta, float inv_eta2)
+{
+    vf sin2_t = vf_mul(vf_fnma(cos_i, cos_i, vf_set1(1.0f)), vf_set1(inv_eta2));
+    vf cos_t = vf_sqrt(vf_max(vf_sub(vf_set1(1.0f), sin2_t), vf_set1(0.0f)));
+    vf eta_cos_t = vf_mul(vf_set1(eta), cos_t), eta_cos_i = vf_mul(vf_set1(eta), cos_i);
+    vf rs = vf_div(vf_sub(cos_i, eta_cos_t), vf_add(cos_i, eta_cos_t));
+    vf rp = vf_div(vf_sub(eta_cos_i, cos_t), vf_add(eta_cos_i, cos_t));
+    return vf_mul(vf_set1(0.5f), vf_fma(rs, rs, vf_mul(rp, rp)));
+}
+
+/* x - 2 pi k in [-pi, pi], with 2 pi split in two floats. */
+HB_INLINE vf wrap_angle(vf x)
+{
+    vf k = vf_round(vf_mul(x, vf_set1(0.159154943f)));
+    return vf_fnma(k, vf_set1(HB_TWO_PI_LO), vf_fnma(k, vf_set1(HB_TWO_PI_F), x));
+}
+
+/* cos(n phi) for n = 1..terms by the Chebyshev recurrence, for the Fourier detectors. */
+HB_INLINE void cos_multiples(vf cos_phi, int terms, vf *out)
+{
+    vf previous = vf_set1(1.0f), current = cos_phi;
+    for (int n = 1; n <= terms; n++) {
+        out[n] = current;
+        vf next = vf_fnma(previous, vf_set1(1.0f), vf_mul(vf_add(cos_phi, cos_phi), current));
+        previous = current;
+        current = next;
+    }
+}
+
+/* D_p(phi - Phi) + D_p(-phi - Phi), eq. 11: detection at phi and -phi covers h < 0.
+ * Fourier form: cos(n(phi - Phi)) + cos(n(-phi - Phi)) = 2 cos(n phi) cos(n Phi). */
+HB_INLINE vf detector_pair(const hb_detector *d, vf phi, vf Phi, const vf *cos_n_phi)
+{
+    if (d->fourier) {
+        vf cos_Phi = vf_cos(Phi);
+        vf previous = vf_set1(1.0f), current = cos_Phi;
+        vf sum = vf_set1(2.0f * d->coeff[0]);
+        for (int n = 1; n <= d->terms; n++) {
+            sum = vf_fma(vf_set1(2.0f * d->coeff[n]), vf_mul(cos_n_phi[n], current), sum);
+            vf next = vf_fnma(previous, vf_set1(1.0f), vf_mul(vf_add(cos_Phi, cos_Phi), current));
+            previous = current;
+            current = next;
+        }
+        return sum;
+    }
+    vf x1 = wrap_angle(vf_sub(phi, Phi)), x2 = wrap_angle(vf_neg(vf_add(phi, Phi)));
+    vf sum = vf_set1(0.0f);
+    for (int k = -d->terms; k <= d->terms; k++) {
+        vf d1 = vf_sub(x1, vf_set1(HB_TWO_PI_F * (float)k)), d2 = vf_sub(x2, vf_set1(HB_TWO_PI_F * (float)k));
+        sum = vf_add(sum, vf_exp(vf_mul(vf_mul(d1, d1), vf_set1(-d->inv_two_beta2))));
+        sum = vf_add(sum, vf_exp(vf_mul(vf_mul(d2, d2), vf_set1(-d->inv_two_beta2))));
+    }
+    return vf_mul(sum, vf_set1(d->gauss_norm));
+}
+
+/* Per-sample geometry the azimuthal part needs. */
+typedef struct deon_geometry {
+    vf phi;          /* phi_o - phi_i in [-pi, pi] */
+    vf cos_phi;
+    vf sin2_theta_d; /* theta_d = (theta_o - theta_i)/2 */
+    vf cos_theta_d;
+    vf cos_half_io;  /* cos of half the angle between w_i and w_o */
+} deon_geometry;
+
+/* N_p of eq. 10 for every lobe of the plan, by the plan's Gauss-Legendre rule in gamma_i:
+ * N_p = sum_j weight_j A(p, h_j) [D_p(phi - Phi(p, h_j)) + D_p(-phi - Phi(p, h_j))].
+ * N[HB_LOBE_RESIDUAL] holds all orders above pmax, spread uniformly in phi. */
+HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3])
+{
+    vf inv_eta_prime = vf_div(g->cos_theta_d, vf_sqrt(vf_sub(vf_set1(d->eta * d->eta), g->sin2_theta_d))); /* sec. 5 */
+    vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(d->inv_eta2), vf_set1(1.0f)));
+    vf mu[3]; /* mu_a' = mu_a / cos(theta_t) (sec. 6) */
+    for (int c = 0; c < 3; c++)
+        mu[c] = vf_div(vf_set1(d->sigma_a[c]), cos_theta_t);
+    int fourier_terms = 0;
+    for (int p = 0; p <= d->pmax; p++)
+        if (d->detector[p].fourier && d->detector[p].terms > fourier_terms)
+            fourier_terms = d->detector[p].terms;
+    vf cos_n_phi[HB_MAX_DETECTOR_TERMS + 1];
+    cos_multiples(g->cos_phi, fourier_terms, cos_n_phi);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        N[p][0] = N[p][1] = N[p][2] = vf_set1(0.0f);
+
+    for (int j = 0; j < d->nodes; j++) {
+        vf weight = vf_set1(d->weight[j]);
+        vf sin_gamma_t = vf_mul(vf_set1(d->h[j]), inv_eta_prime);
+        vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
+        vf gamma_t = vf_asin(sin_gamma_t);
+        vf f = fresnel_dielectric(vf_mul(g->cos_theta_d, vf_set1(d->cos_gamma_i[j])), d->eta, d->inv_eta2); /* eq. 14 */
+        /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (SPEC.md 4) */
+        vf path = d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
+                                      : vf_add(cos_gamma_t, cos_gamma_t);
+        vf T[3], T_power[3];
+        for (int c = 0; c < 3; c++)
+            T_power[c] = T[c] = vf_exp(vf_neg(vf_mul(mu[c], path)));
+        if (d->lobes & 1u) { /* R: A(0, h) is the h-independent eq. 12, applied after the loop */
+            vf Phi = vf_set1(-2.0f * d->gamma_i[j]); /* eq. 8, p = 0 */
+            N[0][0] = vf_fma(weight, detector_pair(&d->detector[0], g->phi, Phi, cos_n_phi), N[0][0]);
+        }
+        vf A = vf_mul(vf_sub(vf_set1(1.0f), f), vf_sub(vf_set1(1.0f), f)); /* (1 - f)^2 f^(p-1), eq. 13 */
+        for (int p = 1; p <= d->pmax; p++) {
+            if (d->lobes >> p & 1u) {
+                vf Phi = vf_fma(vf_set1(2.0f * (float)p), gamma_t,
+                                vf_set1((float)p * 3.14159265f - 2.0f * d->gamma_i[j])); /* eq. 8 */
+                vf wd = vf_mul(vf_mul(weight, A), detector_pair(&d->detector[p], g->phi, Phi, cos_n_phi));
+                for (int c = 0; c < 3; c++)
+                    N[p][c] = vf_fma(wd, T_power[c], N[p][c]);
+            }
+            A = vf_mul(A, f);
+            for (int c = 0; c < 3; c++)
+                T_power[c] = vf_mul(T_power[c], T[c]);
+        }
+        if (d->lobes >> HB_LOBE_RESIDUAL & 1u) { /* sum_{p > pmax} A(p, h) = A(pmax+1, h) / (1 - f T) */
+            vf wr = vf_mul(vf_mul(weight, A), vf_set1((float)(1.0 / 3.14159265358979)));
+            for (int c = 0; c < 3; c++) {
+                vf geometric = vf_max(vf_fnma(f, T[c], vf_set1(1.0f)), vf_set1(1e-30f));
+                N[HB_LOBE_RESIDUAL][c] = vf_fma(vf_div(wr, geometric), T_power[c], N[HB_LOBE_RESIDUAL][c]);
+            }
+        }
+    }
+    vf fresnel_r = fresnel_dielectric(g->cos_half_io, d->eta, d->inv_eta2); /* eq. 12 */
+    N[0][0] = N[0][1] = N[0][2] = vf_mul(N[0][0], fresnel_r);
+}
+
+/* f = sum_p M_p N_p over the plan's lobes; M_p from a caller-supplied evaluator so the
+ * angle and vector entry points share everything else. */
+#define HB_DEON_SUM(d, N, out, longitudinal_of_lobe)                                 \
+    do {                                                                             \
+        (out)[0] = (out)[1] = (out)[2] = vf_set1(0.0f);                              \
+        for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                             \
+            if (!((d)->lobes >> p_ & 1u) || (p_ > (d)->pmax && p_ != HB_LOBE_RESIDUAL)) \
+                continue;                                                            \
+            vf m_ = longitudinal_of_lobe(&(d)->longitudinal[p_]);                    \
+            for (int c_ = 0; c_ < 3; c_++)                                           \
+                (out)[c_] = vf_fma(m_, (N)[p_][c_], (out)[c_]);                      \
+        }                                                                            \
+    } while (0)
+
+/* f from angles. */
+HB_INLINE void deon_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, vf phi_o, hb_i0 i0, vf out[3])
+{
+    deon_geometry g;
+    vf si, ci, so, co, sin_phi, sin_td, cos_td;
+    g.phi = wrap_angle(vf_sub(phi_o, phi_i));
+    vf_sincos(theta_i, &si, &ci);
+    vf_sincos(theta_o, &so, &co);
+    vf_sincos(g.phi, &sin_phi, &g.cos_phi);
+    vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &cos_td);
+    g.sin2_theta_d = vf_mul(sin_td, sin_td);
+    g.cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
+    vf dot = vf_fma(vf_mul(ci, co), g.cos_phi, vf_mul(si, so));
+    g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
+    vf N[HB_MAX_LOBES + 1][3];
+    azimuthal_deon(d, &g, N);
+#define HB_M_ANGLES(lobe) longitudinal_deon_angles((lobe), theta_i, theta_o, i0)
+    HB_DEON_SUM(d, N, out, HB_M_ANGLES);
+#undef HB_M_ANGLES
+}
+
+/* f from unit vectors: the geometry comes from dot products, no trigonometry but one atan2. */
+HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb_i0 i0, vf out[3])
+{
+    deon_geometry g;
+    vf inv_i = vf_div(vf_set1(1.0f), vf_sqrt(vf_fma(wi[0], wi[0], vf_fma(wi[1], wi[1], vf_mul(wi[2], wi[2])))));
+    vf inv_o = vf_div(vf_set1(1.0f), vf_sqrt(vf_fma(wo[0], wo[0], vf_fma(wo[1], wo[1], vf_mul(wo[2], wo[2])))));
+    vf si = vf_mul(wi[1], inv_i), so = vf_mul(wo[1], inv_o);
+    vf ci = vf_mul(vf_sqrt(vf_fma(wi[0], wi[0], vf_mul(wi[2], wi[2]))), inv_i);
+    vf co = vf_mul(vf_sqrt(vf_fma(wo[0], wo[0], vf_mul(wo[2], wo[2]))), inv_o);
+    /* phi = phi_o - phi_i from the planar components (scale drops out of atan2) */
+    vf sin_part = vf_fnma(wo[2], wi[0], vf_mul(wo[0], wi[2]));
+    vf cos_part = vf_fma(wo[0], wi[0], vf_mul(wo[2], wi[2]));
+    g.phi = vf_atan2(sin_part, cos_part);
+    g.cos_phi = vf_cos(g.phi);
+    vf cos_diff = vf_fma(ci, co, vf_mul(si, so)); /* cos(theta_o - theta_i) = cos(2 theta_d) */
+    g.cos_theta_d = vf_sqrt(vf_max(vf_fma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
+    g.sin2_theta_d = vf_max(vf_fnma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f));
+    vf dot = vf_mul(vf_mul(inv_i, inv_o), vf_fma(wi[0], wo[0], vf_fma(wi[1], wo[1], vf_mul(wi[2], wo[2]))));
+    g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
+    vf N[HB_MAX_LOBES + 1][3];
+    azimuthal_deon(d, &g, N);
+#define HB_M_VECTORS(lobe) longitudinal_deon_vectors((lobe), wi, wo, i0)
+    HB_DEON_SUM(d, N, out, HB_M_VECTORS);
+#undef HB_M_VECTORS
+}
+
+#endif
