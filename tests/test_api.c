@@ -60,6 +60,7 @@ static void test_validation(hb_test_ctx *t)
         { "roughness", offsetof(hb_material, roughness), -1.0 },
         { "eccentricity", offsetof(hb_material, eccentricity), 1.0 },
         { "lobe_beta_m[2]", offsetof(hb_material, lobe_beta_m) + 2 * sizeof(double), 9.0 },
+        { "lobe_beta_n[1]", offsetof(hb_material, lobe_beta_n) + 1 * sizeof(double), 0.001 },
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         hb_material m;
@@ -94,7 +95,23 @@ static void test_unsupported_and_null(hb_test_ctx *t)
     CHECK(t, create(&m, &o, &err) == HB_ERR_UNSUPPORTED && strstr(err.message, "huang"), "huang: %s", err.message);
     o.model = HB_MODEL_DEON;
     o.term = HB_TERM_FULL;
-    CHECK(t, create(&m, &o, &err) == HB_ERR_UNSUPPORTED, "full deon is not implemented yet");
+    CHECK(t, create(&m, &o, &err) == HB_OK, "full deon: %s", err.message);
+    o.pmax = 2;
+    o.lobes = 1u << HB_LOBE_TRRT;
+    CHECK(t, create(&m, &o, &err) == HB_ERR_UNSUPPORTED && strstr(err.message, "pmax"), "TRRT above pmax 2: %s",
+          err.message);
+    o.pmax = 8;
+    o.lobes = HB_LOBES_DEFAULT;
+    CHECK(t, create(&m, &o, &err) == HB_ERR_PARAM && strstr(err.message, "pmax"), "pmax 8: %s", err.message);
+    o.pmax = 3;
+    o.quadrature_order = HB_MAX_NODES + 1;
+    CHECK(t, create(&m, &o, &err) == HB_ERR_PARAM && strstr(err.message, "quadrature_order"), "nodes: %s",
+          err.message);
+    o.quadrature_order = 0;
+    o.detector_tolerance = 0.5;
+    CHECK(t, create(&m, &o, &err) == HB_ERR_PARAM && strstr(err.message, "detector_tolerance"), "tol: %s",
+          err.message);
+    o.detector_tolerance = 0.0;
     o.term = HB_TERM_LONGITUDINAL;
     o.lobes = 1u << HB_LOBE_TT;
     CHECK(t, create(&m, &o, &err) == HB_ERR_UNSUPPORTED, "longitudinal term of TT");
