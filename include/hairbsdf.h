@@ -76,8 +76,9 @@ void hb_material_default(hb_material *material);
 /* sigma_a of the material: sigma_a plus the melanin absorption of dFH11 sec. 6.1. */
 void hb_material_absorption(const hb_material *material, double sigma_a_rgb[3]);
 
-/* Speed/accuracy levels. The longitudinal term has one kernel for every level but
- * REFERENCE; the levels differ for the terms with quadrature (the full models). */
+/* Speed/accuracy levels: error targets of about 1e-2, 1e-3 and 1e-4 relative to the
+ * double reference for N_p (dFH11: the node count follows from beta_n). The longitudinal
+ * term has one kernel for every level but REFERENCE. */
 typedef enum hb_quality {
     HB_QUALITY_FAST,
     HB_QUALITY_BALANCED,
@@ -113,6 +114,12 @@ typedef enum hb_absorption {
     HB_ABSORPTION_PAPER      /* T = exp(-2 mu_a (1 + cos 2 gamma_t)) as printed in MJC03 / dFH11 */
 } hb_absorption;
 
+/* The Fresnel factor of dFH11's R lobe. */
+typedef enum hb_r_fresnel {
+    HB_R_FRESNEL_HALF_ANGLE, /* eq. 12: at half the angle between w_i and w_o (the paper) */
+    HB_R_FRESNEL_OFFSET      /* eq. 14 at each offset h, like the other lobes: sum_p A(p, h) = 1, exact energy */
+} hb_r_fresnel;
+
 typedef struct hb_options {
     size_t struct_size; /* sizeof(hb_options), set by hb_options_default */
     hb_model model;     /* default HB_MODEL_DEON */
@@ -123,11 +130,12 @@ typedef struct hb_options {
     hb_i0 i0;           /* default HB_I0_ABRAMOWITZ */
     int pmax;           /* dFH11: highest explicit order, 0..7 (default 3, TRRT) */
     hb_absorption absorption; /* default HB_ABSORPTION_CORRECTED */
-    int quadrature_order;     /* dFH11 N_p nodes on h in [0, 1]; 0 = from quality, else 1..HB_MAX_NODES */
+    int quadrature_order;     /* dFH11 N_p nodes on h in [0, 1]; 0 = from quality and beta_n, else 1..HB_MAX_NODES */
     double detector_tolerance; /* dFH11 D_p truncation error bound; 0 = from quality */
+    hb_r_fresnel r_fresnel;    /* default HB_R_FRESNEL_HALF_ANGLE */
 } hb_options;
 
-#define HB_MAX_NODES 128
+#define HB_MAX_NODES 256
 #define HB_MAX_DETECTOR_TERMS 16
 
 void hb_options_default(hb_options *options);

@@ -186,6 +186,19 @@ static void math_map(hb_math_fn fn, size_t n, const float *a, const float *b, fl
     }
 }
 
+/* D_p(x) = (D_p(x - 0) + D_p(-x - 0)) / 2, D_p being even: the kernel's detector, for the tests. */
+static void detector_map(const hb_detector *d, size_t n, const float *x, float *out)
+{
+    for (size_t i = 0; i < n; i += HB_W) {
+        size_t lanes = n - i < HB_W ? n - i : HB_W;
+        vf phi, cos_n_phi[HB_MAX_DETECTOR_TERMS + 1];
+        load_block(&x, 1, i, lanes, 0.0f, &phi);
+        cos_multiples(vf_cos(phi), d->fourier ? d->terms : 0, cos_n_phi);
+        vf pair = detector_pair(d, phi, vf_set1(0.0f), cos_n_phi);
+        store_block(out, i, lanes, vf_mul(pair, vf_set1(0.5f)));
+    }
+}
+
 const hb_kernels HB_TABLE = {
     .isa = HB_TABLE_ISA,
     .width = HB_W,
@@ -194,4 +207,5 @@ const hb_kernels HB_TABLE = {
     .deon_angles = { deon_angles_abramowitz, deon_angles_paper },
     .deon_vectors = { deon_vectors_abramowitz, deon_vectors_paper },
     .math_map = math_map,
+    .detector_map = detector_map,
 };

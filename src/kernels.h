@@ -30,6 +30,7 @@ typedef struct hb_deon {
     int pmax;
     int nodes;
     int absorption_paper;
+    int r_fresnel_offset; /* R uses eq. 14 per node instead of eq. 12 */
     float eta, inv_eta2;
     float sigma_a[3];
     /* quadrature over gamma_i in [0, pi/2] (h = sin gamma_i), weights include 1/2 and dh/dgamma */
@@ -62,6 +63,7 @@ typedef struct hb_kernels {
     hb_deon_angles_fn deon_angles[2];                   /* indexed by hb_i0 */
     hb_deon_vectors_fn deon_vectors[2];
     void (*math_map)(hb_math_fn fn, size_t n, const float *a, const float *b, float *out);
+    void (*detector_map)(const hb_detector *d, size_t n, const float *x, float *out); /* D_p(x), for tests */
 } hb_kernels;
 
 /* NULL when the ISA is not compiled in or not supported by this CPU. */

@@ -59,7 +59,8 @@ void hb_test_longitudinal_setup(const hb_test_ctx *t, hb_material *m, hb_options
     o->isa = t->isa == HB_ISA_AUTO ? HB_ISA_SCALAR : t->isa;
 }
 
-static const hb_test *const suites[] = { hb_tests_api, hb_tests_vmath, hb_tests_longitudinal, hb_tests_cli };
+static const hb_test *const suites[] = { hb_tests_api, hb_tests_vmath, hb_tests_longitudinal, hb_tests_deon,
+                                          hb_tests_cli };
 
 static uint64_t name_hash(const char *s)
 {

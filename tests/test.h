@@ -48,6 +48,7 @@ void hb_test_longitudinal_setup(const hb_test_ctx *t, hb_material *m, hb_options
 /* Test tables of each file, terminated by a zero entry. */
 extern const hb_test hb_tests_vmath[];
 extern const hb_test hb_tests_longitudinal[];
+extern const hb_test hb_tests_deon[];
 extern const hb_test hb_tests_api[];
 extern const hb_test hb_tests_cli[];
 

@@ -206,7 +206,8 @@ static void azimuthal_ref(const hb_plan *plan, const deon_geometry *g, int n_pan
                 double beta = plan->beta_n[p];
                 double detect = hb_ref_detector(beta, g->phi - Phi) + hb_ref_detector(beta, -g->phi - Phi);
                 for (int c = 0; c < 3; c++) {
-                    double A = p == 0 ? fresnel_r : (1 - f) * (1 - f) * pow(f, p - 1) * pow(T[c], p); /* eq. 13 */
+                    double A = p > 0 ? (1 - f) * (1 - f) * pow(f, p - 1) * pow(T[c], p) /* eq. 13 */
+                                     : d->r_fresnel_offset ? f : fresnel_r;             /* eq. 14 or 12 */
                     N[p][c] += weight * A * detect;
                 }
             }

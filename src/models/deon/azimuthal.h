@@ -105,9 +105,10 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
         vf T[3], T_power[3];
         for (int c = 0; c < 3; c++)
             T_power[c] = T[c] = vf_exp(vf_neg(vf_mul(mu[c], path)));
-        if (d->lobes & 1u) { /* R: A(0, h) is the h-independent eq. 12, applied after the loop */
+        if (d->lobes & 1u) { /* R: eq. 12 does not depend on h and is applied after the loop */
             vf Phi = vf_set1(-2.0f * d->gamma_i[j]); /* eq. 8, p = 0 */
-            N[0][0] = vf_fma(weight, detector_pair(&d->detector[0], g->phi, Phi, cos_n_phi), N[0][0]);
+            vf w0 = d->r_fresnel_offset ? vf_mul(weight, f) : weight;
+            N[0][0] = vf_fma(w0, detector_pair(&d->detector[0], g->phi, Phi, cos_n_phi), N[0][0]);
         }
         vf A = vf_mul(vf_sub(vf_set1(1.0f), f), vf_sub(vf_set1(1.0f), f)); /* (1 - f)^2 f^(p-1), eq. 13 */
         for (int p = 1; p <= d->pmax; p++) {
@@ -130,7 +131,7 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
             }
         }
     }
-    vf fresnel_r = fresnel_dielectric(g->cos_half_io, d->eta, d->inv_eta2); /* eq. 12 */
+    vf fresnel_r = d->r_fresnel_offset ? vf_set1(1.0f) : fresnel_dielectric(g->cos_half_io, d->eta, d->inv_eta2); /* eq. 12 */
     N[0][0] = N[0][1] = N[0][2] = vf_mul(N[0][0], fresnel_r);
 }
 
