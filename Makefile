@@ -56,7 +56,7 @@ endif
 ALL_CFLAGS = $(BASE_CFLAGS) $(CFLAGS)
 LDLIBS := -lm
 
-LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/quadrature.c src/ref/deon_ref.c
+LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/quadrature.c src/furnace.c src/ref/deon_ref.c
 LIB_OBJS := $(LIB_SRCS:%.c=$(B)/%.o) $(ISAS:%=$(B)/kernel_%.o)
 TOOL_SRCS := $(wildcard tools/*.c)
 TEST_SRCS := $(wildcard tests/*.c)
@@ -104,7 +104,7 @@ $(BENCH_BIN): $(BENCH_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
 # The runner loops over every ISA this CPU has (or only $HB_ISA when it is set)
 # and drives the CLI through HB_TOOL.
 test: $(TEST_BIN) $(TOOL)
-	HB_TOOL="$(strip $(RUN) $(TOOL))" $(RUN) $(TEST_BIN)
+	HB_TOOL="$(strip $(RUN) $(TOOL))" HB_TEST_EMULATED=$(if $(RUN),1,0) $(RUN) $(TEST_BIN)
 
 bench: $(BENCH_BIN)
 	$(RUN) $(BENCH_BIN) --budgets bench/budgets.txt

@@ -6,9 +6,9 @@ int main(void)
 {
     hb_material material;
     hb_options options;
-    hb_material_default(&material);          /* eta 1.55, beta_m 0.1, ... */
-    hb_options_default(&options);
-    options.term = HB_TERM_LONGITUDINAL;      /* dFH11 M_p: the part that exists today */
+    hb_material_default(&material);          /* eta 1.55, beta_m 0.1, beta_n 0.3, alpha 0.035 */
+    material.eumelanin = 0.3;                 /* light brown (dFH11 sec. 6.1) */
+    hb_options_default(&options);             /* d'Eon 2011, R..TRRT + residual, balanced quality */
     hb_plan *plan;
     hb_error error;
     if (hb_plan_create(&material, &options, &plan, &error) != HB_OK) {

@@ -92,67 +92,56 @@ HB_INLINE void store_rgb(hb_rgb_soa out, size_t i, size_t lanes, vm valid, const
         store_block(planes[c], i, lanes, vf_select(valid, f[c], vf_set1(0.0f)));
 }
 
+/* The loop every entry point shares: blocks of W lanes (a padded tail last), `compute`
+ * turning the loaded lanes `a` (valid where `valid`) into stored results, and the count of
+ * invalid samples. */
+#define HB_BATCH(load, streams, in, n, invalid, compute)              \
+    do {                                                              \
+        size_t bad_ = 0;                                              \
+        for (size_t i = 0; i < (n); i += HB_W) {                      \
+            size_t lanes = (n) - i < HB_W ? (n) - i : HB_W;           \
+            vf a[streams];                                            \
+            vm valid = load((in), i, lanes, a);                       \
+            compute;                                                  \
+            bad_ += count_invalid(valid, lanes);                      \
+        }                                                             \
+        *(invalid) = bad_;                                            \
+    } while (0)
+
 /* One specialised kernel per I0 variant: the variant is a constant inside each. */
-#define HB_KERNEL_VARIANTS(suffix, i0)                                                                  \
-    static void longitudinal_angles_##suffix(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,   \
-                                             float *out, size_t *invalid)                              \
-    {                                                                                                   \
-        size_t bad = 0;                                                                                 \
-        for (size_t i = 0; i < n; i += HB_W) {                                                          \
-            size_t lanes = n - i < HB_W ? n - i : HB_W;                                                 \
-            vf a[4];                                                                                    \
-            vm valid = load_angles(in, i, lanes, a);                                                    \
-            vf m = longitudinal_deon_angles(lobe, a[0], a[2], i0);                                      \
-            store_block(out, i, lanes, vf_select(valid, m, vf_set1(0.0f)));                             \
-            bad += count_invalid(valid, lanes);                                                         \
-        }                                                                                               \
-        *invalid = bad;                                                                                 \
-    }                                                                                                   \
-    static void longitudinal_vectors_##suffix(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in, \
-                                              float *out, size_t *invalid)                             \
-    {                                                                                                   \
-        size_t bad = 0;                                                                                 \
-        for (size_t i = 0; i < n; i += HB_W) {                                                          \
-            size_t lanes = n - i < HB_W ? n - i : HB_W;                                                 \
-            vf a[6];                                                                                    \
-            vm valid = load_vectors(in, i, lanes, a);                                                   \
-            vf m = longitudinal_deon_vectors(lobe, a, a + 3, i0);                                       \
-            store_block(out, i, lanes, vf_select(valid, m, vf_set1(0.0f)));                             \
-            bad += count_invalid(valid, lanes);                                                         \
-        }                                                                                               \
-        *invalid = bad;                                                                                 \
-    }                                                                                                   \
-    static void deon_angles_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,   \
-                                     size_t *invalid)                                                  \
-    {                                                                                                   \
-        size_t bad = 0;                                                                                 \
-        for (size_t i = 0; i < n; i += HB_W) {                                                          \
-            size_t lanes = n - i < HB_W ? n - i : HB_W;                                                 \
-            vf a[4], f[3];                                                                              \
-            vm valid = load_angles(in, i, lanes, a);                                                    \
-            deon_angles(deon, a[0], a[1], a[2], a[3], i0, f);                                           \
-            store_rgb(out, i, lanes, valid, f);                                                         \
-            bad += count_invalid(valid, lanes);                                                         \
-        }                                                                                               \
-        *invalid = bad;                                                                                 \
-    }                                                                                                   \
-    static void deon_vectors_##suffix(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out, \
-                                      size_t *invalid)                                                 \
-    {                                                                                                   \
-        size_t bad = 0;                                                                                 \
-        for (size_t i = 0; i < n; i += HB_W) {                                                          \
-            size_t lanes = n - i < HB_W ? n - i : HB_W;                                                 \
-            vf a[6], f[3];                                                                              \
-            vm valid = load_vectors(in, i, lanes, a);                                                   \
-            deon_vectors(deon, a, a + 3, i0, f);                                                        \
-            store_rgb(out, i, lanes, valid, f);                                                         \
-            bad += count_invalid(valid, lanes);                                                         \
-        }                                                                                               \
-        *invalid = bad;                                                                                 \
+#define HB_KERNEL_VARIANTS(suffix, i0)                                                                    \
+    static void longitudinal_angles_##suffix(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,     \
+                                             float *out, size_t *invalid)                                \
+    {                                                                                                     \
+        HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
+                 store_block(out, i, lanes,                                                               \
+                             vf_select(valid, longitudinal_deon_angles(lobe, a[0], a[2], i0), vf_set1(0.0f)))); \
+    }                                                                                                     \
+    static void longitudinal_vectors_##suffix(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,   \
+                                              float *out, size_t *invalid)                               \
+    {                                                                                                     \
+        HB_BATCH(load_vectors, 6, in, n, invalid,                                                         \
+                 store_block(out, i, lanes,                                                               \
+                             vf_select(valid, longitudinal_deon_vectors(lobe, a, a + 3, i0), vf_set1(0.0f)))); \
+    }                                                                                                     \
+    static void deon_angles_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,     \
+                                     size_t *invalid)                                                    \
+    {                                                                                                     \
+        vf f[3];                                                                                          \
+        HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
+                 (deon_angles(deon, a[0], a[1], a[2], a[3], i0, f), store_rgb(out, i, lanes, valid, f))); \
+    }                                                                                                     \
+    static void deon_vectors_##suffix(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,   \
+                                      size_t *invalid)                                                   \
+    {                                                                                                     \
+        vf f[3];                                                                                          \
+        HB_BATCH(load_vectors, 6, in, n, invalid,                                                         \
+                 (deon_vectors(deon, a, a + 3, i0, f), store_rgb(out, i, lanes, valid, f)));              \
     }
 HB_KERNEL_VARIANTS(abramowitz, HB_I0_ABRAMOWITZ)
 HB_KERNEL_VARIANTS(paper, HB_I0_PAPER)
 #undef HB_KERNEL_VARIANTS
+#undef HB_BATCH
 
 HB_INLINE vf math_apply(hb_math_fn fn, vf a, vf b)
 {

@@ -3,6 +3,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "test.h"
 
@@ -87,13 +88,16 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    const char *emulation = getenv("HB_TEST_EMULATED");
+    int emulated = emulation && *emulation && strcmp(emulation, "0") != 0;
     hb_isa isas[HB_ISA_COUNT];
     int nisa = 0;
     const char *env = getenv("HB_ISA");
     for (int i = HB_ISA_SCALAR; i < HB_ISA_COUNT; i++)
         if (hb_isa_available((hb_isa)i) && (!env || !*env || hb_isa_from_name(env) == (hb_isa)i))
             isas[nisa++] = (hb_isa)i;
-    printf("seed %llu (rerun with --seed %llu); ISAs:", (unsigned long long)seed, (unsigned long long)seed);
+    printf("seed %llu (rerun with --seed %llu)%s; ISAs:", (unsigned long long)seed, (unsigned long long)seed,
+           emulated ? ", emulated: heavy model tests run fewer cases" : "");
     for (int i = 0; i < nisa; i++)
         printf(" %s", hb_isa_name(isas[i]));
     printf("\n");
@@ -106,15 +110,20 @@ int main(int argc, char **argv)
             int runs = test->per_isa ? nisa : 1;
             for (int r = 0; r < runs; r++) {
                 hb_test_ctx t = { test->name, test->per_isa ? isas[r] : HB_ISA_AUTO, NULL,
-                                  seed ^ name_hash(test->name), 0 };
+                                  seed ^ name_hash(test->name), 0, emulated };
                 t.kernels = test->per_isa ? hb_kernels_for(t.isa) : NULL;
                 if (list) {
                     printf("%s [%s]\n", test->name, test->per_isa ? hb_isa_name(t.isa) : "-");
                     continue;
                 }
+                struct timespec t0, t1;
+                clock_gettime(CLOCK_MONOTONIC, &t0);
                 test->run(&t);
-                printf("%s %s [%s]\n", t.failures ? "FAIL" : "ok  ", test->name,
-                       test->per_isa ? hb_isa_name(t.isa) : "-");
+                clock_gettime(CLOCK_MONOTONIC, &t1);
+                double ms = (t1.tv_sec - t0.tv_sec) * 1e3 + (t1.tv_nsec - t0.tv_nsec) / 1e6;
+                printf("%s %s [%s] %.0f ms\n", t.failures ? "FAIL" : "ok  ", test->name,
+                       test->per_isa ? hb_isa_name(t.isa) : "-", ms);
+                fflush(stdout);
                 if (t.failures)
                     failed++;
                 else

@@ -17,6 +17,7 @@ typedef struct hb_test_ctx {
     const hb_kernels *kernels; /* the ISA's table, NULL for ISA-independent tests */
     uint64_t rng;              /* seeded per test from the run's seed */
     unsigned failures;
+    int emulated; /* running under qemu ($HB_TEST_EMULATED): heavy ISA-independent tests use fewer cases */
 } hb_test_ctx;
 
 typedef struct hb_test {

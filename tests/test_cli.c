@@ -146,7 +146,44 @@ static void test_help(hb_test_ctx *t)
     CHECK(t, r.status == 0 && strstr(r.out, "scalar") && strstr(r.out, "(auto)"), "isa listing: %s", r.out);
 }
 
+/* The full dFH11 model's options reach the library, and furnace prints energies. */
+static void test_deon_commands(hb_test_ctx *t)
+{
+    run_result r;
+    if (!run_tool(t, "eval --pmax 5 --lobes R,TT,4,residual --absorption paper --r-fresnel offset --quadrature 40 "
+                     "--detector-tolerance 1e-6 --sigma-a 0.1,0.2,0.3",
+                  "0.3,0,-0.37,0.5\n", &r))
+        return;
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.sigma_a[0] = 0.1, m.sigma_a[1] = 0.2, m.sigma_a[2] = 0.3;
+    o.pmax = 5;
+    o.lobes = 1u << 0 | 1u << 1 | 1u << 4 | 1u << HB_LOBE_RESIDUAL;
+    o.absorption = HB_ABSORPTION_PAPER;
+    o.r_fresnel = HB_R_FRESNEL_OFFSET;
+    o.quadrature_order = 40;
+    o.detector_tolerance = 1e-6;
+    hb_plan *plan;
+    hb_plan_create(&m, &o, &plan, NULL);
+    float ti = 0.3f, pi = 0.0f, to = -0.37f, po = 0.5f, f[3], got[3];
+    hb_eval_angles(plan, 1, (hb_angles_soa){ &ti, &pi, &to, &po }, (hb_rgb_soa){ &f[0], &f[1], &f[2] }, NULL);
+    hb_plan_destroy(plan);
+    CHECK(t, r.status == 0 && sscanf(r.out, "%g,%g,%g", &got[0], &got[1], &got[2]) == 3 && got[0] == f[0] &&
+                 got[2] == f[2],
+          "eval with every dFH11 option: '%s' vs %.9g (stderr %s)", r.out, f[0], r.err);
+    run_tool(t, "eval --pmax 2 --lobes TRRT", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "pmax"), "lobe above pmax: %s", r.err);
+    run_tool(t, "furnace --r-fresnel offset --alpha 0 --theta-o 0.3,-1.2", "", &r);
+    double theta, e[3];
+    CHECK(t, r.status == 0 && sscanf(strchr(r.out, '\n') + 1, "%lf,%lf,%lf,%lf", &theta, &e[0], &e[1], &e[2]) == 4 &&
+                 fabs(e[0] - 1.0) < 1e-3,
+          "furnace output: %s", r.out);
+}
+
 const hb_test hb_tests_cli[] = {
+    { "cli_deon_commands", test_deon_commands, 0 },
     { "cli_eval_matches_library", test_eval_matches_library, 0 },
     { "cli_eval_errors", test_eval_errors, 0 },
     { "cli_help", test_help, 0 },

@@ -34,10 +34,11 @@ static void test_detector_series(hb_test_ctx *t)
     const double betas[] = { 0.02, 0.05, 0.1, 0.3, 0.5, 0.8, 1.0, 1.5, 2.0, 3.0 };
     for (size_t b = 0; b < sizeof betas / sizeof betas[0]; b++) {
         double beta = betas[b], peak = fmax(1.0 / (beta * sqrt(2 * M_PI)), 0.5 / M_PI), worst = 0.0, sum = 0.0;
-        enum { N = 4000 };
+        enum { N = 1000 };
+        int fourier_terms = (int)ceil(40.0 / beta); /* e^(-n^2 beta^2 / 2) < 1e-300 beyond */
         for (int k = 0; k < N; k++) {
             double x = -M_PI + 2 * M_PI * k / N;
-            double direct = hb_ref_detector_direct(beta, x, 30), fourier = hb_ref_detector_fourier(beta, x, 4000);
+            double direct = hb_ref_detector_direct(beta, x, 30), fourier = hb_ref_detector_fourier(beta, x, fourier_terms);
             worst = fmax(worst, fabs(direct - fourier) / peak);
             sum += direct;
         }
@@ -136,10 +137,11 @@ static void test_matches_reference(hb_test_ctx *t)
         hb_angles_soa in = { ti, pi, to, po };
         hb_eval_angles(ref_plan, N, in, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
         hb_plan_destroy(ref_plan);
-        double peak = 0.0;
+        double peak = 0.0; /* a compare, not fmax: aarch64 gcc 12's vectoriser crashes on this fmax reduction */
         for (int c = 0; c < 3; c++)
             for (int k = 0; k < N; k++)
-                peak = fmax(peak, ref[c][k]);
+                if (ref[c][k] > peak)
+                    peak = ref[c][k];
         for (int q = HB_QUALITY_FAST; q <= HB_QUALITY_HIGH; q++) {
             hb_plan *plan = deon_plan(t, &m, (hb_quality)q, HB_LOBES_DEFAULT);
             hb_eval_angles(plan, N, in, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
@@ -160,37 +162,11 @@ static void test_matches_reference(hb_test_ctx *t)
     }
 }
 
-/* E(w_o) = integral of f over w_i (SPEC.md section 2) for a lossless fibre with every order. */
-static double furnace(const hb_plan *plan, double theta_o, double beta_m, double beta_n)
+static double furnace(const hb_plan *plan, double theta_o)
 {
-    int panels = (int)ceil(M_PI / beta_m), nt = 8 * panels, nphi = (int)ceil(2 * M_PI / (beta_n / 6)) + 16;
-    double gx[8], gw[8];
-    size_t n = (size_t)nt * (size_t)nphi;
-    float *ti = malloc(n * sizeof(float)), *pi = malloc(n * sizeof(float)), *to = malloc(n * sizeof(float));
-    float *po = malloc(n * sizeof(float)), *f[3];
-    double *w = malloc(n * sizeof(double));
-    for (int c = 0; c < 3; c++)
-        f[c] = malloc(n * sizeof(float));
-    size_t k = 0;
-    for (int p = 0; p < panels; p++) {
-        hb_gauss_legendre(8, -M_PI_2 + M_PI * p / panels, -M_PI_2 + M_PI * (p + 1) / panels, gx, gw);
-        for (int j = 0; j < 8; j++)
-            for (int q = 0; q < nphi; q++, k++) {
-                ti[k] = (float)gx[j];
-                pi[k] = (float)(-M_PI + 2 * M_PI * (q + 0.5) / nphi);
-                to[k] = (float)theta_o;
-                po[k] = 0.0f;
-                w[k] = gw[j] * cos(gx[j]) * 2 * M_PI / nphi;
-            }
-    }
-    hb_eval_angles(plan, n, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
-    double e = 0.0;
-    for (k = 0; k < n; k++)
-        e += w[k] * f[0][k];
-    free(ti), free(pi), free(to), free(po), free(w);
-    for (int c = 0; c < 3; c++)
-        free(f[c]);
-    return e;
+    double e[3];
+    hb_furnace(plan, theta_o, e);
+    return e[0];
 }
 
 /* White furnace. With the R lobe's Fresnel per offset (eq. 14), sum_p A(p, h) = 1 and the
@@ -208,6 +184,8 @@ static void test_white_furnace(hb_test_ctx *t)
             for (int b = 0; b < 4; b++) {
                 if (variant > 0 && !(corner_beta[a] && corner_beta[b]))
                     continue;
+                if (t->emulated && (variant > 0 || a != b)) /* under qemu: the diagonal of the bound only */
+                    continue;
                 hb_material m;
                 hb_material_default(&m);
                 m.beta_m = betas[a];
@@ -223,7 +201,7 @@ static void test_white_furnace(hb_test_ctx *t)
                 for (int j = 0; j < 6; j++) {
                     if (variant > 0 && !corner_theta[j])
                         continue;
-                    double e = furnace(plan, thetas[j], betas[a], betas[b]);
+                    double e = furnace(plan, thetas[j]);
                     if (fabs(e - 1.0) >= fmax(1.0 - lo, hi - 1.0))
                         worst[0] = betas[a], worst[1] = betas[b], worst[2] = thetas[j];
                     lo = fmin(lo, e), hi = fmax(hi, e);
@@ -358,7 +336,37 @@ static void test_half_range_symmetry(hb_test_ctx *t)
     }
 }
 
+/* dFH11 Fig. 5: for a white fibre, TRRT and above carry almost 15% of the energy at grazing
+ * incidence and next to nothing at normal incidence. */
+static void test_fig5_high_orders(hb_test_ctx *t)
+{
+    hb_material m;
+    hb_material_default(&m);
+    m.alpha = 0.0;
+    const double thetas[] = { 0.0, 1.45 };
+    double share[2];
+    for (int k = 0; k < 2; k++) {
+        double total = 0.0, high = 0.0;
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+            if (p > 3 && p != HB_LOBE_RESIDUAL)
+                continue;
+            hb_plan *plan = deon_plan(t, &m, HB_QUALITY_BALANCED, 1u << p);
+            double e[3];
+            CHECK(t, hb_furnace(plan, thetas[k], e) == HB_OK, "furnace");
+            total += e[0];
+            high += p >= 3 ? e[0] : 0.0;
+            hb_plan_destroy(plan);
+        }
+        share[k] = high / total;
+    }
+    hb_test_note(t, "white fibre: TRRT and above carry %.1f%% of the energy at theta 0, %.1f%% at 1.45",
+                 100 * share[0], 100 * share[1]);
+    CHECK(t, share[1] > 0.10 && share[1] < 0.20, "grazing share %.3f is not 'almost 15%%'", share[1]);
+    CHECK(t, share[0] < 0.02, "normal incidence share %.3f", share[0]);
+}
+
 const hb_test hb_tests_deon[] = {
+    { "deon_fig5_high_orders", test_fig5_high_orders, 0 },
     { "deon_detector_series", test_detector_series, 0 },
     { "deon_detector_kernel", test_detector_kernel, 1 },
     { "deon_matches_reference", test_matches_reference, 1 },

@@ -22,5 +22,6 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
 extern const char cli_model_options_help[];
 
 int cmd_eval(int argc, char **argv);
+int cmd_furnace(int argc, char **argv);
 
 #endif

@@ -11,10 +11,15 @@ const char cli_model_options_help[] =
     "Model options:\n"
     "  --model deon|marschner|huang   scattering model (default deon)\n"
     "  --term full|longitudinal       full f, or only dFH11's M_p of the R lobe (default full)\n"
-    "  --lobes R,TT,TRT,TRRT|all      orders p to include (default: the model's full set)\n"
+    "  --lobes R,TT,TRT,TRRT,residual|all  orders p to include (default all: up to --pmax plus residual)\n"
     "  --quality fast|balanced|high|reference   reference runs the double-precision path\n"
     "  --isa auto|scalar|sse4.1|avx2|avx512|neon  instruction set (default auto, or $HB_ISA)\n"
     "  --i0 abramowitz|paper          I0 in dFH11 eq. 7: A&S 9.8.1/9.8.2, or the eq. 15 series\n"
+    "  --pmax N                       dFH11: highest explicit order (default 3); 'all' lobes add the residual\n"
+    "  --quadrature N                 dFH11: N_p nodes (default: from quality and beta_n)\n"
+    "  --detector-tolerance X         dFH11: truncation error of the Gaussian detector (default: from quality)\n"
+    "  --absorption corrected|paper   path length 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t)\n"
+    "  --r-fresnel half-angle|offset  dFH11 R lobe Fresnel: eq. 12 (paper), or eq. 14 per offset (exact energy)\n"
     "Material options:\n"
     "  --eta X  --sigma-a R,G,B  --eumelanin X  --pheomelanin X\n"
     "  --beta-m X  --beta-n X  --alpha X  --ndf ggx|beckmann  --roughness X  --eccentricity X\n";
@@ -50,6 +55,19 @@ static int parse_triple(const char *s, double out[3])
     return tok == NULL;
 }
 
+/* A whole field as an integer in [lo, hi]. */
+static int parse_int(const char *s, int lo, int hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long x = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno == ERANGE || x < lo || x > hi)
+        return 0;
+    *out = (int)x;
+    return 1;
+}
+
+/* Lobe names R, TT, TRT, TRRT, residual, or an order p as a number. */
 static int parse_lobes(const char *s, unsigned *mask)
 {
     static const char *const names[] = { "R", "TT", "TRT", "TRRT" };
@@ -64,12 +82,19 @@ static int parse_lobes(const char *s, unsigned *mask)
     unsigned m = 0;
     char *save = NULL;
     for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-        int found = 0;
-        for (unsigned p = 0; p < sizeof names / sizeof names[0]; p++)
-            if (strcmp(tok, names[p]) == 0) {
-                m |= 1u << p;
+        int found = 0, p;
+        for (unsigned k = 0; k < sizeof names / sizeof names[0]; k++)
+            if (strcmp(tok, names[k]) == 0) {
+                m |= 1u << k;
                 found = 1;
             }
+        if (strcmp(tok, "residual") == 0) {
+            m |= 1u << HB_LOBE_RESIDUAL;
+            found = 1;
+        } else if (!found && parse_int(tok, 0, HB_MAX_LOBES - 1, &p)) {
+            m |= 1u << p;
+            found = 1;
+        }
         if (!found)
             return 0;
     }
@@ -89,9 +114,13 @@ static int pick(const char *s, const char *const *choices)
 int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, char *err, size_t err_size)
 {
     static const char *const numeric[] = { "--eta", "--eumelanin", "--pheomelanin", "--beta-m", "--beta-n",
-                                           "--alpha", "--roughness", "--eccentricity", NULL };
+                                           "--alpha", "--roughness", "--eccentricity", "--detector-tolerance",
+                                           NULL };
     static const char *const with_value[] = { "--model", "--term", "--lobes", "--quality", "--isa", "--i0",
-                                              "--ndf", "--sigma-a", NULL };
+                                              "--ndf", "--sigma-a", "--pmax", "--quadrature", "--absorption",
+                                              "--r-fresnel", NULL };
+    static const char *const absorptions[] = { "corrected", "paper", NULL };
+    static const char *const r_fresnels[] = { "half-angle", "offset", NULL };
     static const char *const models[] = { "marschner", "deon", "huang", NULL };
     static const char *const terms[] = { "full", "longitudinal", NULL };
     static const char *const qualities[] = { "fast", "balanced", "high", "reference", NULL };
@@ -126,7 +155,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
             return -1;
         }
         double *const fields[] = { &m->eta, &m->eumelanin, &m->pheomelanin, &m->beta_m, &m->beta_n,
-                                   &m->alpha, &m->roughness, &m->eccentricity };
+                                   &m->alpha, &m->roughness, &m->eccentricity, &o->detector_tolerance };
         *fields[num] = x;
         return 1;
     }
@@ -147,7 +176,15 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         hb_isa isa = hb_isa_from_name(value);
         if (isa != HB_ISA_COUNT) o->isa = isa; else expected = "auto, scalar, sse4.1, avx2, avx512 or neon";
     } else if (strcmp(name, "--lobes") == 0) {
-        if (!parse_lobes(value, &o->lobes)) expected = "a comma list of R, TT, TRT, TRRT, or all";
+        if (!parse_lobes(value, &o->lobes)) expected = "a comma list of R, TT, TRT, TRRT, residual, orders 0-7, or all";
+    } else if (strcmp(name, "--absorption") == 0) {
+        if ((k = pick(value, absorptions)) >= 0) o->absorption = (hb_absorption)k; else expected = "corrected or paper";
+    } else if (strcmp(name, "--r-fresnel") == 0) {
+        if ((k = pick(value, r_fresnels)) >= 0) o->r_fresnel = (hb_r_fresnel)k; else expected = "half-angle or offset";
+    } else if (strcmp(name, "--pmax") == 0) {
+        if (!parse_int(value, 0, HB_MAX_LOBES - 1, &o->pmax)) expected = "an order from 0 to 7";
+    } else if (strcmp(name, "--quadrature") == 0) {
+        if (!parse_int(value, 1, HB_MAX_NODES, &o->quadrature_order)) expected = "a node count from 1 to 256";
     } else if (strcmp(name, "--sigma-a") == 0) {
         if (!parse_triple(value, m->sigma_a)) expected = "three finite numbers R,G,B";
     }

@@ -10,6 +10,7 @@ static void usage(FILE *to)
             "usage: hairbsdf <command> [options]\n"
             "Commands:\n"
             "  eval      evaluate f for CSV rows theta_i,phi_i,theta_o,phi_o on stdin\n"
+            "  furnace   white-furnace energy against theta_o, in total or by lobe\n"
             "  isa       list the instruction sets, which this CPU has, and which auto picks\n"
             "  version   print the library version\n"
             "Run 'hairbsdf <command> --help' for a command's options.\n\n%s",
@@ -38,6 +39,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "eval") == 0)
         return cmd_eval(argc - 1, argv + 1);
+    if (strcmp(cmd, "furnace") == 0)
+        return cmd_furnace(argc - 1, argv + 1);
     if (strcmp(cmd, "isa") == 0)
         return cmd_isa();
     if (strcmp(cmd, "version") == 0) {
