@@ -118,17 +118,14 @@ demo: all $(BENCH_BIN)
 	  $(RUN) $(TOOL) eval --model deon --term longitudinal
 	$(RUN) $(BENCH_BIN)
 
-$(B)/hairbsdf.pc: hairbsdf.pc.in
-	@mkdir -p $(B)
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(HB_SO_MAJOR).1|' $< > $(B)/hairbsdf.pc
-
-install: all $(B)/hairbsdf.pc
+# The pkg-config file is written at install time, so it always names this PREFIX.
+install: all
 	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
 	install -m 644 include/hairbsdf.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 $(STATIC_LIB) $(DESTDIR)$(PREFIX)/lib/
 	install -m 755 $(SHARED_LIB) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so.$(HB_SO_MAJOR)
 	ln -sf libhairbsdf.so.$(HB_SO_MAJOR) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so
-	install -m 644 $(B)/hairbsdf.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(HB_SO_MAJOR).1|' hairbsdf.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/hairbsdf.pc
 	install -m 755 $(TOOL) $(DESTDIR)$(PREFIX)/bin/
 
 clean:
