@@ -178,9 +178,10 @@ hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb
 hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                           hb_eval_report *report);
 
-/* White furnace: E(w_o) = integral over the sphere of f(w_i, w_o) dw_i per channel, for a
- * full-model plan, by quadrature fine enough for the plan's roughness (SPEC.md section 2).
- * A lossless fibre with every order gives E = 1 up to the model's approximations. */
+/* White furnace: E(w_o) = integral over the sphere of f(w_i, w_o) dw_i per channel, by
+ * quadrature fine enough for the plan's roughness (SPEC.md section 2). A lossless fibre with
+ * every order gives E = 1 up to the model's approximations. For HB_TERM_LONGITUDINAL the
+ * term T = f / N_p is integrated as T cos(theta_i) over theta_i (dFH11 eq. 5, Fig. 3). */
 hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3]);
 
 /* Instruction sets: names as used by --isa and the HB_ISA environment variable

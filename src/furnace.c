@@ -12,11 +12,14 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
 {
     if (!plan || !energy)
         return HB_ERR_NULL;
-    if (plan->options.term != HB_TERM_FULL || !(fabs(theta_o) <= M_PI_2))
-        return HB_ERR_UNSUPPORTED;
+    if (!(fabs(theta_o) <= M_PI_2))
+        return HB_ERR_PARAM;
+    /* The longitudinal term T is f / N_p: its energy is the integral of T cos(theta_i) over
+     * theta_i alone, as if N_p integrated to 1 (dFH11 eq. 5 and Fig. 3). */
+    int longitudinal = plan->options.term == HB_TERM_LONGITUDINAL;
     double beta_m = HUGE_VAL, beta_n = HUGE_VAL;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        if (plan->deon.lobes >> p & 1u) {
+        if (plan->deon.lobes >> p & 1u || (longitudinal && p == HB_LOBE_R)) {
             beta_m = fmin(beta_m, sqrt(plan->v[p]));
             if (p < HB_MAX_LOBES)
                 beta_n = fmin(beta_n, plan->beta_n[p]);
@@ -25,7 +28,7 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
      * rule in phi with steps of beta_n / 1.5 (its error for a Gaussian of width beta and step
      * h is about exp(-2 pi^2 beta^2 / h^2) = 5e-20) */
     int panels = (int)ceil(M_PI / (2.0 * fmin(beta_m, 0.5)));
-    int nphi = (int)ceil(3.0 * M_PI / fmin(beta_n, 1.0)) + 8;
+    int nphi = longitudinal ? 1 : (int)ceil(3.0 * M_PI / fmin(beta_n, 1.0)) + 8;
     float ti[CHUNK], pi[CHUNK], to[CHUNK], po[CHUNK], f[3][CHUNK];
     double weight[CHUNK], x[RULE], w[RULE];
     double sum[3] = { 0.0, 0.0, 0.0 };
@@ -38,7 +41,7 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
                 pi[count] = (float)(-M_PI + 2.0 * M_PI * (q + 0.5) / nphi);
                 to[count] = (float)theta_o;
                 po[count] = 0.0f;
-                weight[count] = w[j] * cos(x[j]) * 2.0 * M_PI / nphi; /* dw_i = cos(theta_i) dtheta_i dphi_i */
+                weight[count] = w[j] * cos(x[j]) * (longitudinal ? 1.0 : 2.0 * M_PI / nphi); /* dw_i = cos dtheta dphi */
                 int last = panel == panels - 1 && j == RULE - 1 && q == nphi - 1;
                 if (++count == CHUNK || last) {
                     hb_eval_angles(plan, (size_t)count, (hb_angles_soa){ ti, pi, to, po },

@@ -365,7 +365,58 @@ static void test_fig5_high_orders(hb_test_ctx *t)
     CHECK(t, share[0] < 0.02, "normal incidence share %.3f", share[0]);
 }
 
+/* dFH11 Fig. 3 / eq. 5 with N_R integrating to 1: the energy of a longitudinal function M
+ * that goes with MJC03's 1/cos^2(theta_d), H(theta_i) = integral of M / cos^2(theta_d) cos^2(theta_r)
+ * over theta_r, for the Gaussian of eq. 4 in theta_h (MJC03) or 2 theta_h (ZW07). */
+static double gaussian_energy(double beta, double theta_i, int twice)
+{
+    enum { N = 20000 };
+    double sum = 0.0;
+    for (int k = 0; k < N; k++) {
+        double tr = -M_PI_2 + M_PI * (k + 0.5) / N, th = 0.5 * (theta_i + tr), td = 0.5 * (tr - theta_i);
+        double x = twice ? 2 * th : th;
+        double g = exp(-x * x / (2 * beta * beta)) / (sqrt(2 * M_PI) * beta); /* eq. 4 */
+        sum += g / (cos(td) * cos(td)) * cos(tr) * cos(tr);
+    }
+    return sum * M_PI / N;
+}
+
+/* Fig. 3: the Gaussian doubles the energy (theta_h) or, in 2 theta_h, gains at grazing angles and
+ * loses at high roughness; eq. 7 (through hb_furnace on the longitudinal term) gives 1 throughout. */
+static void test_fig3_longitudinal_energy(hb_test_ctx *t)
+{
+    const double betas[] = { 0.1, 0.3, 0.6 }, thetas[] = { -1.5, -1.0, 0.0, 0.5, 1.2, 1.5 };
+    for (int b = 0; b < 3; b++) {
+        hb_material m;
+        hb_material_default(&m);
+        m.beta_m = betas[b];
+        m.alpha = 0.0;
+        hb_options o;
+        hb_options_default(&o);
+        o.term = HB_TERM_LONGITUDINAL;
+        hb_plan *plan;
+        hb_plan_create(&m, &o, &plan, NULL);
+        for (int k = 0; k < 6; k++) {
+            double e[3];
+            hb_furnace(plan, thetas[k], e);
+            CHECK(t, fabs(e[0] - 1.0) < 1e-5, "eq. 7, beta %g theta %g: energy %.7f", betas[b], thetas[k], e[0]);
+        }
+        hb_plan_destroy(plan);
+        hb_test_note(t, "beta %.1f: Gaussian(theta_h) energy %.3f at theta 0; Gaussian(2 theta_h) %.3f at 0, %.3f at 1.5",
+                     betas[b], gaussian_energy(betas[b], 0.0, 0), gaussian_energy(betas[b], 0.0, 1),
+                     gaussian_energy(betas[b], 1.5, 1));
+    }
+    /* the paper's reading of Fig. 3: "near 2 for most theta_i" at small roughness; with 2 theta_h,
+     * "extra energy at grazing angles and energy loss for high roughnesses" */
+    for (int k = 1; k < 5; k++)
+        CHECK(t, gaussian_energy(0.1, thetas[k], 0) > 1.8, "theta_h Gaussian at theta %g: %.3f, not near 2",
+              thetas[k], gaussian_energy(0.1, thetas[k], 0));
+    CHECK(t, gaussian_energy(0.3, 1.5, 1) > 1.1, "2 theta_h Gaussian should gain energy at grazing angles");
+    CHECK(t, gaussian_energy(0.6, 0.0, 1) < 0.9, "2 theta_h Gaussian should lose energy at high roughness");
+}
+
 const hb_test hb_tests_deon[] = {
+    { "deon_fig3_longitudinal_energy", test_fig3_longitudinal_energy, 0 },
     { "deon_fig5_high_orders", test_fig5_high_orders, 0 },
     { "deon_detector_series", test_detector_series, 0 },
     { "deon_detector_kernel", test_detector_kernel, 1 },
