@@ -109,13 +109,16 @@ test: $(TEST_BIN) $(TOOL)
 bench: $(BENCH_BIN)
 	$(RUN) $(BENCH_BIN) --budgets bench/budgets.txt
 
-# The main job on the default material: which ISA runs, the README example, a few
-# CLI rows, and the accuracy-and-cost table (budgets are enforced by make bench only).
+# The main job on the default material: which ISA runs, the README example, f for a few
+# directions (d'Eon 2011, full model, and its double reference beside it), the white furnace
+# by lobe, and the accuracy-and-cost table (budgets are enforced by make bench only).
+DEMO_ROWS := theta_i,phi_i,theta_o,phi_o\n0.3,0,-0.37,0.5\n0.3,0,-0.2,3.0\n-1,0,1,2\n1.5,0,-1.5,3\n
 demo: all $(BENCH_BIN)
 	$(RUN) $(TOOL) isa
 	$(RUN) $(EXAMPLE)
-	printf 'theta_i,phi_i,theta_o,phi_o\n0.3,0,-0.37,0.5\n0.3,0,-0.2,0.5\n-1,0,1,2\n1.5,0,-1.5,3\n' | \
-	  $(RUN) $(TOOL) eval --model deon --term longitudinal
+	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model deon --eumelanin 0.3
+	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model deon --eumelanin 0.3 --quality reference
+	$(RUN) $(TOOL) furnace --model deon --by-lobe --theta-o 0,0.8,1.45
 	$(RUN) $(BENCH_BIN)
 
 # The pkg-config file is written at install time, so it always names this PREFIX.
