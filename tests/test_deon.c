@@ -415,7 +415,87 @@ static void test_fig3_longitudinal_energy(hb_test_ctx *t)
     CHECK(t, gaussian_energy(0.6, 0.0, 1) < 0.9, "2 theta_h Gaussian should lose energy at high roughness");
 }
 
+/* Extreme but valid materials and directions: every output finite and >= 0 on every ISA. */
+static void test_hard_cases_finite(hb_test_ctx *t)
+{
+    const double etas[] = { 1.0001, 2.5 }, sigmas[] = { 0.0, 1e3 }, beta_ms[] = { 0.01, 1.5 }, beta_ns[] = { 0.02, 3.0 };
+    const float edge[] = { 1.57079637f, -1.57079637f, 0.0f, -0.0f, 1e-40f, 1.5707960f, 3.14159274f, -3.14159274f };
+    enum { N = 128 };
+    float ti[N], pi[N], to[N], po[N], f[3][N];
+    for (int k = 0; k < N; k++) {
+        ti[k] = k < 64 ? edge[k % 8] : (float)asin(hb_test_range(t, -1, 1));
+        to[k] = k < 64 ? edge[(k / 8) % 8] : (float)asin(hb_test_range(t, -1, 1));
+        pi[k] = k < 64 ? edge[(k + 3) % 8] : (float)hb_test_range(t, -M_PI, M_PI);
+        po[k] = k < 64 ? edge[(k / 8 + 5) % 8] : (float)hb_test_range(t, -M_PI, M_PI);
+        ti[k] = fmaxf(-1.57079637f, fminf(1.57079637f, ti[k]));
+        to[k] = fmaxf(-1.57079637f, fminf(1.57079637f, to[k]));
+    }
+    for (int combo = 0; combo < 16; combo++) {
+        hb_material m;
+        hb_material_default(&m);
+        m.eta = etas[combo & 1];
+        m.sigma_a[0] = m.sigma_a[1] = m.sigma_a[2] = sigmas[combo >> 1 & 1];
+        m.beta_m = beta_ms[combo >> 2 & 1];
+        m.beta_n = beta_ns[combo >> 3 & 1];
+        for (int q = HB_QUALITY_FAST; q <= HB_QUALITY_BALANCED; q++) {
+            hb_plan *plan = deon_plan(t, &m, (hb_quality)q, HB_LOBES_DEFAULT);
+            hb_eval_report rep;
+            hb_eval_angles(plan, N, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, &rep);
+            CHECK(t, rep.invalid == 0, "valid extreme directions counted invalid: %zu", rep.invalid);
+            for (int c = 0; c < 3; c++)
+                for (int k = 0; k < N; k++)
+                    CHECK(t, isfinite(f[c][k]) && f[c][k] >= 0.0f,
+                          "eta %g sigma %g beta_m %g beta_n %g: f(%g, %g, %g, %g) = %g", m.eta, m.sigma_a[0], m.beta_m,
+                          m.beta_n, ti[k], pi[k], to[k], po[k], f[c][k]);
+            hb_plan_destroy(plan);
+        }
+    }
+}
+
+/* The vector entry point against the double reference of the same float vectors. */
+static void test_vectors_match_reference(hb_test_ctx *t)
+{
+    enum { N = 64 };
+    float w[6][N], f[3][N], ref[3][N];
+    hb_material m;
+    set_material(&m, &materials[1]);
+    for (int k = 0; k < N; k++) {
+        double ti = asin(hb_test_range(t, -1, 1)), pi = hb_test_range(t, -M_PI, M_PI);
+        double to = k % 2 ? -ti + hb_test_range(t, -0.1, 0.1) : asin(hb_test_range(t, -1, 1));
+        double po = hb_test_range(t, -M_PI, M_PI);
+        to = fmax(-M_PI_2, fmin(M_PI_2, to));
+        if (k < 4) /* grazing and at the poles */
+            ti = k % 2 ? M_PI_2 : -M_PI_2, to = k < 2 ? 0.3 : -M_PI_2;
+        double dirs[2][2] = { { ti, pi }, { to, po } };
+        for (int d = 0; d < 2; d++) {
+            w[3 * d + 0][k] = (float)(sin(dirs[d][1]) * cos(dirs[d][0]));
+            w[3 * d + 1][k] = (float)sin(dirs[d][0]);
+            w[3 * d + 2][k] = (float)(cos(dirs[d][1]) * cos(dirs[d][0]));
+        }
+    }
+    hb_vectors_soa in = { w[0], w[1], w[2], w[3], w[4], w[5] };
+    hb_plan *ref_plan = deon_plan(t, &m, HB_QUALITY_REFERENCE, HB_LOBES_DEFAULT);
+    hb_eval_vectors(ref_plan, N, in, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+    hb_plan_destroy(ref_plan);
+    hb_plan *plan = deon_plan(t, &m, HB_QUALITY_HIGH, HB_LOBES_DEFAULT);
+    hb_eval_report rep;
+    hb_eval_vectors(plan, N, in, (hb_rgb_soa){ f[0], f[1], f[2] }, &rep);
+    hb_plan_destroy(plan);
+    CHECK(t, rep.invalid == 0, "unit vectors counted invalid: %zu", rep.invalid);
+    double peak = 0.0, worst = 0.0;
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < N; k++)
+            if (ref[c][k] > peak)
+                peak = ref[c][k];
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < N; k++)
+            worst = fmax(worst, fabs((double)f[c][k] - ref[c][k]) / fmax(ref[c][k], 1e-3 * peak));
+    CHECK(t, worst <= 1e-4, "vector entry point, quality high: error %.3g against the reference", worst);
+}
+
 const hb_test hb_tests_deon[] = {
+    { "deon_vectors_match_reference", test_vectors_match_reference, 1 },
+    { "deon_hard_cases_finite", test_hard_cases_finite, 1 },
     { "deon_fig3_longitudinal_energy", test_fig3_longitudinal_energy, 0 },
     { "deon_fig5_high_orders", test_fig5_high_orders, 0 },
     { "deon_detector_series", test_detector_series, 0 },
