@@ -76,6 +76,10 @@ $(B)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -MMD -MP -c $< -o $@
 
+# The tests gain nothing from auto-vectorisation, and aarch64 gcc 12's vectoriser crashes
+# (an internal compiler error) on some of their max-reductions.
+$(B)/tests/%.o: ALL_CFLAGS += -fno-tree-vectorize
+
 $(B)/kernel_%.o: src/kernel.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ISA_FLAGS_$*) -D$(ISA_MACRO_$*) -MMD -MP -c $< -o $@

@@ -40,6 +40,24 @@ double hb_test_uniform(hb_test_ctx *t)
     return (double)(z >> 11) * 0x1p-53;
 }
 
+double hb_test_spec_error(float *const f[3], float *const ref[3], size_t n, size_t *worst_sample)
+{
+    double peak = 0.0, worst = 0.0;
+    for (int c = 0; c < 3; c++)
+        for (size_t k = 0; k < n; k++)
+            peak = fmax(peak, ref[c][k]);
+    for (int c = 0; c < 3; c++)
+        for (size_t k = 0; k < n; k++) {
+            double e = fabs((double)f[c][k] - ref[c][k]) / fmax(ref[c][k], 1e-3 * peak);
+            if (!(e <= worst)) { /* NaN counts as the worst */
+                worst = isnan(e) ? INFINITY : e;
+                if (worst_sample)
+                    *worst_sample = k;
+            }
+        }
+    return worst;
+}
+
 double hb_test_ulp_error(float got, double want)
 {
     if (isnan(want) || isnan(got))

@@ -40,6 +40,10 @@ void hb_test_note(hb_test_ctx *t, const char *fmt, ...) __attribute__((format(pr
 double hb_test_uniform(hb_test_ctx *t);
 static inline double hb_test_range(hb_test_ctx *t, double lo, double hi) { return lo + (hi - lo) * hb_test_uniform(t); }
 
+/* SPEC.md section 6: max over the n samples of 3 channels of |f - ref| / max(|ref|, 1e-3 peak),
+ * peak being the largest reference value. */
+double hb_test_spec_error(float *const f[3], float *const ref[3], size_t n, size_t *worst_sample);
+
 /* Error of a float result in units of the float spacing at the double reference. */
 double hb_test_ulp_error(float got, double want);
 
