@@ -173,6 +173,20 @@ static void test_deon_commands(hb_test_ctx *t)
     CHECK(t, r.status == 0 && sscanf(r.out, "%g,%g,%g", &got[0], &got[1], &got[2]) == 3 && got[0] == f[0] &&
                  got[2] == f[2],
           "eval with every dFH11 option: '%s' vs %.9g (stderr %s)", r.out, f[0], r.err);
+    run_tool(t, "eval --lobe-beta-m 1=0.2 --lobe-beta-n 2=0.5 --lobe-alpha 0=-0.05 --quality reference",
+             "0.3,0,-0.2,2.5\n", &r);
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.lobe_beta_m[1] = 0.2, m.lobe_beta_n[2] = 0.5, m.lobe_alpha[0] = -0.05, m.lobe_alpha_override = 1u;
+    o.quality = HB_QUALITY_REFERENCE;
+    hb_plan_create(&m, &o, &plan, NULL);
+    to = -0.2f, po = 2.5f;
+    hb_eval_angles(plan, 1, (hb_angles_soa){ &ti, &pi, &to, &po }, (hb_rgb_soa){ &f[0], &f[1], &f[2] }, NULL);
+    hb_plan_destroy(plan);
+    CHECK(t, r.status == 0 && sscanf(r.out, "%g,%g,%g", &got[0], &got[1], &got[2]) == 3 && got[0] == f[0],
+          "per-lobe overrides: '%s' vs %.9g (stderr %s)", r.out, f[0], r.err);
+    run_tool(t, "eval --lobe-alpha 9=0.1", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--lobe-alpha"), "bad lobe order: %s", r.err);
     run_tool(t, "eval --pmax 2 --lobes TRRT", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "pmax"), "lobe above pmax: %s", r.err);
     run_tool(t, "furnace --r-fresnel offset --alpha 0 --theta-o 0.3,-1.2", "", &r);

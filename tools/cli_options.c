@@ -20,6 +20,7 @@ const char cli_model_options_help[] =
     "  --detector-tolerance X         dFH11: truncation error of the Gaussian detector (default: from quality)\n"
     "  --absorption corrected|paper   path length 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t)\n"
     "  --r-fresnel half-angle|offset  dFH11 R lobe Fresnel: eq. 12 (paper), or eq. 14 per offset (exact energy)\n"
+    "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
     "Material options:\n"
     "  --eta X  --sigma-a R,G,B  --eumelanin X  --pheomelanin X\n"
     "  --beta-m X  --beta-n X  --alpha X  --ndf ggx|beckmann  --roughness X  --eccentricity X\n";
@@ -119,6 +120,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     static const char *const with_value[] = { "--model", "--term", "--lobes", "--quality", "--isa", "--i0",
                                               "--ndf", "--sigma-a", "--pmax", "--quadrature", "--absorption",
                                               "--r-fresnel", NULL };
+    static const char *const per_lobe[] = { "--lobe-beta-m", "--lobe-beta-n", "--lobe-alpha", NULL };
     static const char *const absorptions[] = { "corrected", "paper", NULL };
     static const char *const r_fresnels[] = { "half-angle", "offset", NULL };
     static const char *const models[] = { "marschner", "deon", "huang", NULL };
@@ -134,8 +136,8 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         return 0;
     memcpy(name, arg, len);
     name[len] = '\0';
-    int num = pick(name, numeric), other = pick(name, with_value);
-    if (num < 0 && other < 0)
+    int num = pick(name, numeric), other = pick(name, with_value), lobe_option = pick(name, per_lobe);
+    if (num < 0 && other < 0 && lobe_option < 0)
         return 0;
     if (eq) {
         value = eq + 1;
@@ -157,6 +159,30 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         double *const fields[] = { &m->eta, &m->eumelanin, &m->pheomelanin, &m->beta_m, &m->beta_n,
                                    &m->alpha, &m->roughness, &m->eccentricity, &o->detector_tolerance };
         *fields[num] = x;
+        return 1;
+    }
+    if (lobe_option >= 0) { /* P=X */
+        char order[8];
+        const char *sep = strchr(value, '=');
+        int p;
+        if (!sep || (size_t)(sep - value) >= sizeof order || !parse_number(sep + 1, &x)) {
+            snprintf(err, err_size, "%s: '%s' is not P=X (an order and a number)", name, value);
+            return -1;
+        }
+        memcpy(order, value, (size_t)(sep - value));
+        order[sep - value] = '\0';
+        if (!parse_int(order, 0, HB_MAX_LOBES - 1, &p)) {
+            snprintf(err, err_size, "%s: order '%s' is not in 0..%d", name, order, HB_MAX_LOBES - 1);
+            return -1;
+        }
+        if (lobe_option == 0)
+            m->lobe_beta_m[p] = x;
+        else if (lobe_option == 1)
+            m->lobe_beta_n[p] = x;
+        else {
+            m->lobe_alpha[p] = x;
+            m->lobe_alpha_override |= 1u << p;
+        }
         return 1;
     }
     int k = 0;
