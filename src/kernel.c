@@ -147,6 +147,7 @@ HB_INLINE vf math_apply(hb_math_fn fn, vf a, vf b)
 {
     switch (fn) {
     case HB_FN_EXP: return vf_exp(a);
+    case HB_FN_EXP_FLUSH: return vf_exp_flush(a);
     case HB_FN_LOG: return vf_log(a);
     case HB_FN_LOG1P: return vf_log1p(a);
     case HB_FN_SIN: return vf_sin(a);

@@ -41,7 +41,7 @@ typedef struct hb_deon {
 
 /* Functions of src/math/vmath.h exported for the accuracy tests. */
 typedef enum hb_math_fn {
-    HB_FN_EXP, HB_FN_LOG, HB_FN_LOG1P, HB_FN_SIN, HB_FN_COS, HB_FN_ASIN, HB_FN_ACOS,
+    HB_FN_EXP, HB_FN_EXP_FLUSH, HB_FN_LOG, HB_FN_LOG1P, HB_FN_SIN, HB_FN_COS, HB_FN_ASIN, HB_FN_ACOS,
     HB_FN_ATAN2, HB_FN_SQRT, HB_FN_I0, HB_FN_I0E, HB_FN_LOG_I0, HB_FN_COUNT
 } hb_math_fn;
 

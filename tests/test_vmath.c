@@ -108,6 +108,20 @@ static void test_exp(hb_test_ctx *t)
     check_function(t, "exp", HB_FN_EXP, ref_exp, &s, ERR_ULP, 2.0);
 }
 
+/* exp with results below FLT_MIN flushed to 0, for x <= 88: 2 ulp where the result is normal, 0 below. */
+static double ref_exp_flush(double a, double b) { (void)b; return a < -87.33 ? 0.0 : exp(a); }
+
+static void test_exp_flush(hb_test_ctx *t)
+{
+    input_set s = { 0 };
+    push_grid(&s, -87.33, 88.0, DENSE);
+    push_grid(&s, -200.0, -87.34, 4096);
+    const float edges[] = { 0.0f, -0.0f, 1e-30f, -87.3f, -87.33f, 87.99f, 0.34657359f, -0.34657359f };
+    for (size_t k = 0; k < sizeof edges / sizeof edges[0]; k++)
+        push_neighbourhood(&s, edges[k], 64);
+    check_function(t, "exp_flush", HB_FN_EXP_FLUSH, ref_exp_flush, &s, ERR_ULP, 2.0);
+}
+
 static void test_log(hb_test_ctx *t)
 {
     input_set s = { 0 };
@@ -263,6 +277,7 @@ static void test_reference_i0(hb_test_ctx *t)
 
 const hb_test hb_tests_vmath[] = {
     { "vmath_exp", test_exp, 1 },
+    { "vmath_exp_flush", test_exp_flush, 1 },
     { "vmath_log", test_log, 1 },
     { "vmath_log1p", test_log1p, 1 },
     { "vmath_sin", test_sin, 1 },

@@ -59,8 +59,8 @@ HB_INLINE vf detector_pair(const hb_detector *d, vf phi, vf Phi, const vf *cos_n
     vf sum = vf_set1(0.0f);
     for (int k = -d->terms; k <= d->terms; k++) {
         vf d1 = vf_sub(x1, vf_set1(HB_TWO_PI_F * (float)k)), d2 = vf_sub(x2, vf_set1(HB_TWO_PI_F * (float)k));
-        sum = vf_add(sum, vf_exp(vf_mul(vf_mul(d1, d1), vf_set1(-d->inv_two_beta2))));
-        sum = vf_add(sum, vf_exp(vf_mul(vf_mul(d2, d2), vf_set1(-d->inv_two_beta2))));
+        sum = vf_add(sum, vf_exp_flush(vf_mul(vf_mul(d1, d1), vf_set1(-d->inv_two_beta2))));
+        sum = vf_add(sum, vf_exp_flush(vf_mul(vf_mul(d2, d2), vf_set1(-d->inv_two_beta2))));
     }
     return vf_mul(sum, vf_set1(d->gauss_norm));
 }
@@ -104,7 +104,7 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
                                       : vf_add(cos_gamma_t, cos_gamma_t);
         vf T[3], T_power[3];
         for (int c = 0; c < 3; c++)
-            T_power[c] = T[c] = vf_exp(vf_neg(vf_mul(mu[c], path)));
+            T_power[c] = T[c] = vf_exp_flush(vf_neg(vf_mul(mu[c], path)));
         if (d->lobes & 1u) { /* R: eq. 12 does not depend on h and is applied after the loop */
             vf Phi = vf_set1(-2.0f * d->gamma_i[j]); /* eq. 8, p = 0 */
             vf w0 = d->r_fresnel_offset ? vf_mul(weight, f) : weight;
