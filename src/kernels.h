@@ -37,6 +37,9 @@ typedef struct hb_deon {
     float gamma_i[HB_MAX_NODES], cos_gamma_i[HB_MAX_NODES], h[HB_MAX_NODES], weight[HB_MAX_NODES];
     hb_detector detector[HB_MAX_LOBES];
     hb_longitudinal longitudinal[HB_MAX_LOBES + 1]; /* index HB_LOBE_RESIDUAL: the residual lobe */
+    /* lobes whose M_p is the same function (same v and shift) share one evaluation: m_group[p]
+     * is the first included lobe with p's constants, and M_p is evaluated for it alone */
+    int m_group[HB_MAX_LOBES + 1];
 } hb_deon;
 
 /* Functions of src/math/vmath.h exported for the accuracy tests. */

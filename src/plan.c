@@ -256,6 +256,16 @@ static void derive_deon(hb_plan *plan)
     }
     unsigned all = ((2u << o->pmax) - 1u) | 1u << HB_LOBE_RESIDUAL;
     d->lobes = o->lobes == HB_LOBES_DEFAULT ? all : o->lobes;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        d->m_group[p] = p;
+        for (int q = 0; q < p; q++)
+            if ((d->lobes >> q & 1u) && q <= o->pmax && d->m_group[q] == q &&
+                d->longitudinal[q].inv_v == d->longitudinal[p].inv_v &&
+                d->longitudinal[q].shift == d->longitudinal[p].shift) {
+                d->m_group[p] = q;
+                break;
+            }
+    }
     d->pmax = o->pmax;
     d->absorption_paper = o->absorption == HB_ABSORPTION_PAPER;
     d->r_fresnel_offset = o->r_fresnel == HB_R_FRESNEL_OFFSET;

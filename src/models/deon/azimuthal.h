@@ -135,18 +135,27 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
     N[0][0] = N[0][1] = N[0][2] = vf_mul(N[0][0], fresnel_r);
 }
 
-/* f = sum_p M_p N_p over the plan's lobes; M_p from a caller-supplied evaluator so the
- * angle and vector entry points share everything else. */
-#define HB_DEON_SUM(d, N, out, longitudinal_of_lobe)                                 \
-    do {                                                                             \
-        (out)[0] = (out)[1] = (out)[2] = vf_set1(0.0f);                              \
-        for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                             \
-            if (!((d)->lobes >> p_ & 1u) || (p_ > (d)->pmax && p_ != HB_LOBE_RESIDUAL)) \
-                continue;                                                            \
-            vf m_ = longitudinal_of_lobe(&(d)->longitudinal[p_]);                    \
-            for (int c_ = 0; c_ < 3; c_++)                                           \
-                (out)[c_] = vf_fma(m_, (N)[p_][c_], (out)[c_]);                      \
-        }                                                                            \
+/* f = sum_p M_p N_p over the plan's lobes, with lobes of equal M_p summed first so each
+ * distinct M_p is evaluated once; M_p from a caller-supplied evaluator so the angle and
+ * vector entry points share everything else. */
+#define HB_DEON_SUM(d, N, out, longitudinal_of_lobe)                                    \
+    do {                                                                                \
+        (out)[0] = (out)[1] = (out)[2] = vf_set1(0.0f);                                 \
+        for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                \
+            int g_ = (d)->m_group[p_];                                                  \
+            if (g_ == p_ || !((d)->lobes >> p_ & 1u) || (p_ > (d)->pmax && p_ != HB_LOBE_RESIDUAL)) \
+                continue;                                                               \
+            for (int c_ = 0; c_ < 3; c_++)                                              \
+                (N)[g_][c_] = vf_add((N)[g_][c_], (N)[p_][c_]);                         \
+        }                                                                               \
+        for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                \
+            if ((d)->m_group[p_] != p_ || !((d)->lobes >> p_ & 1u) ||                   \
+                (p_ > (d)->pmax && p_ != HB_LOBE_RESIDUAL))                             \
+                continue;                                                               \
+            vf m_ = longitudinal_of_lobe(&(d)->longitudinal[p_]);                       \
+            for (int c_ = 0; c_ < 3; c_++)                                              \
+                (out)[c_] = vf_fma(m_, (N)[p_][c_], (out)[c_]);                         \
+        }                                                                               \
     } while (0)
 
 /* f from angles. */
