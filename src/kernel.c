@@ -6,6 +6,7 @@
 #include "simd/simd.h"
 #include "math/vmath.h"
 #include "models/deon/azimuthal.h"
+#include "models/marschner/longitudinal.h"
 #include "kernels.h"
 
 #if defined(HB_TARGET_SCALAR)
@@ -138,6 +139,22 @@ HB_INLINE void store_rgb(hb_rgb_soa out, size_t i, size_t lanes, vm valid, const
         HB_BATCH(load_vectors, 6, in, n, invalid,                                                         \
                  (deon_vectors(deon, a, a + 3, i0, f), store_rgb(out, i, lanes, valid, f)));              \
     }
+static void marschner_longitudinal_angles(const hb_gaussian_lobe *lobe, size_t n, hb_angles_soa in, float *out,
+                                          size_t *invalid)
+{
+    HB_BATCH(load_angles, 4, in, n, invalid,
+             store_block(out, i, lanes,
+                         vf_select(valid, longitudinal_marschner_angles(lobe, a[0], a[2]), vf_set1(0.0f))));
+}
+
+static void marschner_longitudinal_vectors(const hb_gaussian_lobe *lobe, size_t n, hb_vectors_soa in, float *out,
+                                           size_t *invalid)
+{
+    HB_BATCH(load_vectors, 6, in, n, invalid,
+             store_block(out, i, lanes,
+                         vf_select(valid, longitudinal_marschner_vectors(lobe, a, a + 3), vf_set1(0.0f))));
+}
+
 HB_KERNEL_VARIANTS(abramowitz, HB_I0_ABRAMOWITZ)
 HB_KERNEL_VARIANTS(paper, HB_I0_PAPER)
 #undef HB_KERNEL_VARIANTS
@@ -196,6 +213,8 @@ const hb_kernels HB_TABLE = {
     .longitudinal_vectors = { longitudinal_vectors_abramowitz, longitudinal_vectors_paper },
     .deon_angles = { deon_angles_abramowitz, deon_angles_paper },
     .deon_vectors = { deon_vectors_abramowitz, deon_vectors_paper },
+    .marschner_longitudinal_angles = marschner_longitudinal_angles,
+    .marschner_longitudinal_vectors = marschner_longitudinal_vectors,
     .math_map = math_map,
     .detector_map = detector_map,
 };

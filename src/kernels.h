@@ -14,6 +14,13 @@ typedef struct hb_longitudinal {
     double cos_shift, sin_shift;
 } hb_longitudinal;
 
+/* MJC03's unit-area Gaussian M_p = g(mean, beta; theta_h). */
+typedef struct hb_gaussian_lobe {
+    float mean;          /* alpha_p, the shift of the lobe in theta_h */
+    float inv_two_beta2; /* 1 / (2 beta^2) */
+    float norm;          /* 1 / (beta sqrt(2 pi)) */
+} hb_gaussian_lobe;
+
 /* dFH11's Gaussian detector D_p (eq. 11), a wrapped Gaussian (a Jacobi theta function),
  * truncated at plan creation to the cheaper of its two series for the tolerance. */
 typedef struct hb_detector {
@@ -53,6 +60,10 @@ typedef void (*hb_longitudinal_angles_fn)(const hb_longitudinal *lobe, size_t n,
 typedef void (*hb_longitudinal_vectors_fn)(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,
                                            float *out, size_t *invalid);
 
+typedef void (*hb_gaussian_angles_fn)(const hb_gaussian_lobe *lobe, size_t n, hb_angles_soa in, float *out,
+                                      size_t *invalid);
+typedef void (*hb_gaussian_vectors_fn)(const hb_gaussian_lobe *lobe, size_t n, hb_vectors_soa in, float *out,
+                                       size_t *invalid);
 typedef void (*hb_deon_angles_fn)(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,
                                   size_t *invalid);
 typedef void (*hb_deon_vectors_fn)(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,
@@ -65,6 +76,8 @@ typedef struct hb_kernels {
     hb_longitudinal_vectors_fn longitudinal_vectors[2]; /* indexed by hb_i0 */
     hb_deon_angles_fn deon_angles[2];                   /* indexed by hb_i0 */
     hb_deon_vectors_fn deon_vectors[2];
+    hb_gaussian_angles_fn marschner_longitudinal_angles;
+    hb_gaussian_vectors_fn marschner_longitudinal_vectors;
     void (*math_map)(hb_math_fn fn, size_t n, const float *a, const float *b, float *out);
     void (*detector_map)(const hb_detector *d, size_t n, const float *x, float *out); /* D_p(x), for tests */
 } hb_kernels;

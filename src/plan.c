@@ -126,9 +126,11 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
                     o->struct_size, sizeof *o);
     if (o->model != HB_MODEL_DEON && o->model != HB_MODEL_MARSCHNER && o->model != HB_MODEL_HUANG)
         return fail(error, HB_ERR_PARAM, "model = %d is not a model", (int)o->model);
-    if (o->model != HB_MODEL_DEON)
-        return fail(error, HB_ERR_UNSUPPORTED, "the %s model is not implemented yet",
-                    o->model == HB_MODEL_MARSCHNER ? "marschner" : "huang");
+    if (o->model == HB_MODEL_HUANG)
+        return fail(error, HB_ERR_UNSUPPORTED, "the huang model is not implemented yet");
+    if (o->model == HB_MODEL_MARSCHNER && o->term != HB_TERM_LONGITUDINAL)
+        return fail(error, HB_ERR_UNSUPPORTED,
+                    "the full marschner model (N_p) is not implemented yet; its longitudinal term is");
     if (o->term != HB_TERM_FULL && o->term != HB_TERM_LONGITUDINAL)
         return fail(error, HB_ERR_PARAM, "term = %d is not a term", (int)o->term);
     if (o->pmax < 0 || o->pmax >= HB_MAX_LOBES)
@@ -294,6 +296,20 @@ static void derive_deon(hb_plan *plan)
     }
 }
 
+/* MJC03 R lobe: M_R = g(alpha_R, beta_R; theta_h) with alpha_R = -alpha, so the R highlight
+ * peaks at theta_o = -theta_i - 2 alpha, toward the root as in dFH11. */
+static void derive_marschner(hb_plan *plan)
+{
+    const hb_material *m = &plan->material;
+    double beta = m->lobe_beta_m[HB_LOBE_R] > 0.0 ? m->lobe_beta_m[HB_LOBE_R] : m->beta_m;
+    double mean = (m->lobe_alpha_override & 1u) ? m->lobe_alpha[HB_LOBE_R] : -m->alpha;
+    plan->marschner_beta_r = beta;
+    plan->marschner_mean_r = mean;
+    plan->marschner_r.mean = (float)mean;
+    plan->marschner_r.inv_two_beta2 = (float)(1.0 / (2.0 * beta * beta));
+    plan->marschner_r.norm = (float)(1.0 / (beta * sqrt(2.0 * M_PI)));
+}
+
 hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **out, hb_error *error)
 {
     if (error) {
@@ -321,6 +337,7 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
     plan->isa = isa;
     plan->kernels = options->quality == HB_QUALITY_REFERENCE ? NULL : hb_kernels_for(isa);
     derive_deon(plan);
+    derive_marschner(plan);
     *out = plan;
     return HB_OK;
 }

@@ -14,6 +14,8 @@ struct hb_plan {
     double beta_n[HB_MAX_LOBES];     /* dFH11 azimuthal roughness per lobe */
     double sigma_a[3];               /* sigma_a plus melanin */
     hb_deon deon;                    /* float constants of the SIMD kernels */
+    double marschner_mean_r, marschner_beta_r; /* MJC03 M_R = g(mean, beta; theta_h) */
+    hb_gaussian_lobe marschner_r;
 };
 
 #endif

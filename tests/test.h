@@ -54,6 +54,7 @@ void hb_test_longitudinal_setup(const hb_test_ctx *t, hb_material *m, hb_options
 extern const hb_test hb_tests_vmath[];
 extern const hb_test hb_tests_longitudinal[];
 extern const hb_test hb_tests_deon[];
+extern const hb_test hb_tests_marschner[];
 extern const hb_test hb_tests_api[];
 extern const hb_test hb_tests_cli[];
 

@@ -93,6 +93,12 @@ static void test_unsupported_and_null(hb_test_ctx *t)
     hb_test_longitudinal_setup(t, &m, &o);
     o.model = HB_MODEL_HUANG;
     CHECK(t, create(&m, &o, &err) == HB_ERR_UNSUPPORTED && strstr(err.message, "huang"), "huang: %s", err.message);
+    o.model = HB_MODEL_MARSCHNER;
+    o.term = HB_TERM_FULL;
+    CHECK(t, create(&m, &o, &err) == HB_ERR_UNSUPPORTED && strstr(err.message, "marschner"), "full marschner: %s",
+          err.message);
+    o.term = HB_TERM_LONGITUDINAL;
+    CHECK(t, create(&m, &o, &err) == HB_OK, "marschner longitudinal: %s", err.message);
     o.model = HB_MODEL_DEON;
     o.term = HB_TERM_FULL;
     CHECK(t, create(&m, &o, &err) == HB_OK, "full deon: %s", err.message);

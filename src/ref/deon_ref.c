@@ -74,6 +74,11 @@ static int theta_valid(float theta) { return fabsf(theta) <= 1.57079637f; } /* f
 /* The plan's term at one direction pair, in double; writes three channels. */
 static void eval_ref(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
 {
+    if (plan->options.model == HB_MODEL_MARSCHNER) {
+        f[0] = f[1] = f[2] = hb_ref_marschner_longitudinal(plan->marschner_beta_r, plan->marschner_mean_r, theta_i,
+                                                           theta_o);
+        return;
+    }
     if (plan->options.term == HB_TERM_LONGITUDINAL) {
         f[0] = f[1] = f[2] = hb_ref_deon_longitudinal(plan->v[HB_LOBE_R], theta_i,
                                                       theta_o - plan->deon.longitudinal[HB_LOBE_R].shift,

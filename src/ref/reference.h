@@ -14,6 +14,10 @@ double hb_ref_log_bessel_i0(double x);
 /* dFH11 eq. 7, M_p(v, theta_i, theta_o); with HB_I0_PAPER, I0 is the series of eq. 15. */
 double hb_ref_deon_longitudinal(double v, double theta_i, double theta_o, hb_i0 i0);
 
+/* MJC03's longitudinal term g(mean, beta; theta_h) cos(theta_i) / cos^2(theta_d), with
+ * cos^2(theta_d) floored at 1e-8 as in the kernels. */
+double hb_ref_marschner_longitudinal(double beta, double mean, double theta_i, double theta_o);
+
 /* Unpolarised Fresnel reflectance of a dielectric of relative index eta at incidence cos_i. */
 double hb_ref_fresnel(double eta, double cos_i);
 

@@ -1,0 +1,40 @@
+/* MJC03 longitudinal part over the SIMD vocabulary: f = sum_p M_p N_p cos(theta_i) / cos^2(theta_d)
+ * (SPEC.md section 2), M_p = g(alpha_p, beta_p; theta_h) the unit-area Gaussian (MJC03, the
+ * survey's M_p and g). The longitudinal term is T = M_R cos(theta_i) / cos^2(theta_d). */
+#ifndef HB_MARSCHNER_LONGITUDINAL_H
+#define HB_MARSCHNER_LONGITUDINAL_H
+
+#include "../../math/vmath.h"
+#include "../../kernels.h"
+
+/* 1/cos^2(theta_d) diverges (integrably) where theta_i -> -pi/2 and theta_o -> pi/2 together;
+ * cos^2(theta_d) is floored so the term stays finite. */
+#define HB_MJC_COS2_THETA_D_FLOOR 1e-8f
+
+/* g(alpha, beta; theta_h) cos(theta_i) / cos^2(theta_d) from the half and difference angles. */
+HB_INLINE vf longitudinal_marschner(const hb_gaussian_lobe *lobe, vf theta_h, vf cos_theta_i, vf cos_theta_d)
+{
+    vf x = vf_sub(theta_h, vf_set1(lobe->mean));
+    vf g = vf_mul(vf_exp_flush(vf_mul(vf_mul(x, x), vf_set1(-lobe->inv_two_beta2))), vf_set1(lobe->norm));
+    vf cos2_d = vf_max(vf_mul(cos_theta_d, cos_theta_d), vf_set1(HB_MJC_COS2_THETA_D_FLOOR));
+    return vf_div(vf_mul(g, vf_max(cos_theta_i, vf_set1(0.0f))), cos2_d);
+}
+
+HB_INLINE vf longitudinal_marschner_angles(const hb_gaussian_lobe *lobe, vf theta_i, vf theta_o)
+{
+    vf theta_h = vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o));
+    vf theta_d = vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i));
+    return longitudinal_marschner(lobe, theta_h, vf_cos(theta_i), vf_cos(theta_d));
+}
+
+HB_INLINE vf longitudinal_marschner_vectors(const hb_gaussian_lobe *lobe, const vf wi[3], const vf wo[3])
+{
+    vf planar_i = vf_sqrt(vf_fma(wi[0], wi[0], vf_mul(wi[2], wi[2])));
+    vf planar_o = vf_sqrt(vf_fma(wo[0], wo[0], vf_mul(wo[2], wo[2])));
+    vf theta_i = vf_atan2(wi[1], planar_i), theta_o = vf_atan2(wo[1], planar_o);
+    vf inv_norm_i = vf_rcp(vf_sqrt(vf_fma(wi[1], wi[1], vf_mul(planar_i, planar_i))));
+    return longitudinal_marschner(lobe, vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o)), vf_mul(planar_i, inv_norm_i),
+                                  vf_cos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i))));
+}
+
+#endif
