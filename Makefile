@@ -69,7 +69,7 @@ EXAMPLE := $(B)/example_minimal
 TEST_BIN := $(B)/hairbsdf_tests
 BENCH_BIN := $(B)/hairbsdf_bench
 
-.PHONY: all test bench demo install clean
+.PHONY: all test bench bench-instr demo install clean
 all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LIB)) $(TOOL) $(EXAMPLE)
 
 $(B)/%.o: %.c
@@ -112,6 +112,10 @@ test: $(TEST_BIN) $(TOOL)
 
 bench: $(BENCH_BIN)
 	$(RUN) $(BENCH_BIN) --budgets bench/budgets.txt
+
+# Instructions per sample under callgrind (repeatable, unlike time on a shared machine).
+bench-instr: $(BENCH_BIN)
+	bench/instr.sh $(BENCH_BIN)
 
 # The main job on the default material: which ISA runs, the README example, f for a few
 # directions (d'Eon 2011, full model, and its double reference beside it), the white furnace

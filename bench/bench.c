@@ -152,14 +152,54 @@ static void reference_of(const hb_material *m, const config *c)
     hb_plan_destroy(plan);
 }
 
+/* --once CONFIG: evaluate one batch of CONFIG once on $HB_ISA and exit, for callgrind
+ * (make bench-instr counts the instructions inside hb_eval_angles). */
+static int run_once(const char *name)
+{
+    for (size_t ci = 0; ci < N_CONFIGS; ci++) {
+        char label[64];
+        snprintf(label, sizeof label, "%s/%s", configs[ci].term, configs[ci].variant);
+        if (strcmp(label, name) != 0)
+            continue;
+        hb_material m;
+        hb_material_default(&m);
+        m.sigma_a[0] = 0.1, m.sigma_a[1] = 0.25, m.sigma_a[2] = 0.6;
+        make_inputs(m.beta_m * m.beta_m);
+        hb_options o;
+        hb_options_default(&o);
+        o.term = configs[ci].term_enum;
+        o.quality = configs[ci].quality;
+        o.quadrature_order = configs[ci].quadrature_order;
+        o.i0 = configs[ci].i0;
+        hb_plan *plan;
+        hb_error err;
+        if (hb_plan_create(&m, &o, &plan, &err) != HB_OK) {
+            fprintf(stderr, "bench: %s\n", err.message);
+            return 2;
+        }
+        hb_eval_angles(plan, BATCH, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
+                       (hb_rgb_soa){ out[0], out[1], out[2] }, NULL);
+        hb_plan_destroy(plan);
+        return 0;
+    }
+    fprintf(stderr, "bench: no configuration '%s'\n", name);
+    return 2;
+}
+
 int main(int argc, char **argv)
 {
     const char *budgets = NULL;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--budgets") == 0 && i + 1 < argc)
             budgets = argv[++i];
-        else {
-            fprintf(stderr, "usage: %s [--budgets FILE]\n", argv[0]);
+        else if (strcmp(argv[i], "--once") == 0 && i + 1 < argc)
+            return run_once(argv[++i]);
+        else if (strcmp(argv[i], "--list") == 0) {
+            for (size_t ci = 0; ci < N_CONFIGS; ci++)
+                printf("%s/%s\n", configs[ci].term, configs[ci].variant);
+            return 0;
+        } else {
+            fprintf(stderr, "usage: %s [--budgets FILE | --list | --once TERM/VARIANT]\n", argv[0]);
             return 2;
         }
     }
