@@ -69,7 +69,7 @@ EXAMPLE := $(B)/example_minimal
 TEST_BIN := $(B)/hairbsdf_tests
 BENCH_BIN := $(B)/hairbsdf_bench
 
-.PHONY: all test bench bench-instr demo install clean
+.PHONY: all test bench bench-instr demo images install clean
 all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LIB)) $(TOOL) $(EXAMPLE)
 
 $(B)/%.o: %.c
@@ -78,7 +78,7 @@ $(B)/%.o: %.c
 
 # The tests gain nothing from auto-vectorisation, and aarch64 gcc 12's vectoriser crashes
 # (an internal compiler error) on some of their max-reductions.
-$(B)/tests/%.o: ALL_CFLAGS += -fno-tree-vectorize
+$(B)/tests/%.o: ALL_CFLAGS += -fno-tree-vectorize -Itools
 
 $(B)/kernel_%.o: src/kernel.c
 	@mkdir -p $(dir $@)
@@ -99,7 +99,7 @@ $(TOOL): $(TOOL_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
 $(EXAMPLE): $(B)/examples/minimal.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
 
-$(TEST_BIN): $(TEST_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
+$(TEST_BIN): $(TEST_SRCS:%.c=$(B)/%.o) $(B)/tools/image.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
 
 $(BENCH_BIN): $(BENCH_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
@@ -127,7 +127,17 @@ demo: all $(BENCH_BIN)
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model deon --eumelanin 0.3
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model deon --eumelanin 0.3 --quality reference
 	$(RUN) $(TOOL) furnace --model deon --by-lobe --theta-o 0,0.8,1.45
+	$(RUN) $(TOOL) dump --model deon --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_deon.png
+	$(RUN) $(TOOL) dump --model deon --eumelanin 0.3 --theta-i 0.3 -o $(B)/lobes_deon.pfm
+	@echo "lobe images: $(B)/lobes_deon.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
 	$(RUN) $(BENCH_BIN)
+
+# The README's pictures, by the commands the README shows.
+images: $(TOOL)
+	$(TOOL) dump --model deon --eumelanin 0.3 --theta-i 0.3 --exposure 2 --width 384 --height 192 \
+	  -o docs/images/deon_brown_theta0.3.png
+	$(TOOL) dump --model deon --theta-i -1.0 --beta-m 0.2 --beta-n 0.6 --exposure 2 --width 384 --height 192 \
+	  -o docs/images/deon_white_theta-1.0.png
 
 # The pkg-config file is written at install time, so it always names this PREFIX.
 install: all

@@ -57,5 +57,6 @@ extern const hb_test hb_tests_deon[];
 extern const hb_test hb_tests_marschner[];
 extern const hb_test hb_tests_api[];
 extern const hb_test hb_tests_cli[];
+extern const hb_test hb_tests_images[];
 
 #endif

@@ -23,5 +23,6 @@ extern const char cli_model_options_help[];
 
 int cmd_eval(int argc, char **argv);
 int cmd_furnace(int argc, char **argv);
+int cmd_dump(int argc, char **argv);
 
 #endif

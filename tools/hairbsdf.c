@@ -11,6 +11,7 @@ static void usage(FILE *to)
             "Commands:\n"
             "  eval      evaluate f for CSV rows theta_i,phi_i,theta_o,phi_o on stdin\n"
             "  furnace   white-furnace energy against theta_o, in total or by lobe\n"
+            "  dump      a lat-long image of f over all w_o for one w_i (PFM or PNG)\n"
             "  isa       list the instruction sets, which this CPU has, and which auto picks\n"
             "  version   print the library version\n"
             "Run 'hairbsdf <command> --help' for a command's options.\n\n%s",
@@ -39,6 +40,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "eval") == 0)
         return cmd_eval(argc - 1, argv + 1);
+    if (strcmp(cmd, "dump") == 0)
+        return cmd_dump(argc - 1, argv + 1);
     if (strcmp(cmd, "furnace") == 0)
         return cmd_furnace(argc - 1, argv + 1);
     if (strcmp(cmd, "isa") == 0)

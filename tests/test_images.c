@@ -1,0 +1,165 @@
+/* The CLI's image writers, read back: PFM floats, PNG chunks (CRC-32), stored deflate blocks,
+ * Adler-32 and pixels; and `hairbsdf dump` against the library. */
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "test.h"
+#include "image.h"
+
+static uint8_t *slurp(const char *path, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    uint8_t *d = malloc((size_t)size + 1);
+    *n = fread(d, 1, (size_t)size, f);
+    fclose(f);
+    return d;
+}
+
+static uint32_t be32(const uint8_t *p) { return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3]; }
+
+/* The standard check values of CRC-32 and Adler-32. */
+static void test_checksums(hb_test_ctx *t)
+{
+    CHECK(t, image_crc32((const uint8_t *)"123456789", 9, 0) == 0xcbf43926u, "CRC-32 check value");
+    CHECK(t, image_adler32((const uint8_t *)"Wikipedia", 9) == 0x11e60398u, "Adler-32 check value");
+}
+
+/* Reads a float-RGB PFM back, bottom row first in the file. */
+static float *read_pfm(const char *path, int *w, int *h)
+{
+    size_t n;
+    uint8_t *d = slurp(path, &n);
+    if (!d)
+        return NULL;
+    float scale;
+    int used = 0;
+    if (sscanf((const char *)d, "PF\n%d %d\n%f\n%n", w, h, &scale, &used) != 3 || scale >= 0 ||
+        n != (size_t)used + (size_t)*w * *h * 12) {
+        free(d);
+        return NULL;
+    }
+    float *rgb = malloc((size_t)*w * *h * 12);
+    for (int y = 0; y < *h; y++)
+        memcpy(rgb + (size_t)y * *w * 3, d + used + (size_t)(*h - 1 - y) * *w * 12, (size_t)*w * 12);
+    free(d);
+    return rgb;
+}
+
+static void test_pfm_round_trip(hb_test_ctx *t)
+{
+    float rgb[3 * 2 * 3];
+    for (int k = 0; k < 18; k++)
+        rgb[k] = (float)(k * 0.37 - 2.0);
+    char path[] = "/tmp/hb_pfm_XXXXXX";
+    close(mkstemp(path));
+    CHECK(t, image_write_pfm(path, 3, 2, rgb) == 0, "write");
+    int w, h;
+    float *back = read_pfm(path, &w, &h);
+    CHECK(t, back && w == 3 && h == 2 && memcmp(back, rgb, sizeof rgb) == 0, "PFM read back differs");
+    free(back);
+    unlink(path);
+}
+
+/* Parses the PNG: signature, chunk CRCs, IHDR, stored deflate blocks, Adler-32, filter bytes, pixels. */
+static void test_png_round_trip(hb_test_ctx *t)
+{
+    enum { W = 300, H = 250 }; /* more than one 65535-byte stored block */
+    static uint8_t rgb[W * H * 3];
+    for (size_t k = 0; k < sizeof rgb; k++)
+        rgb[k] = (uint8_t)(k * 7 + k / 13);
+    char path[] = "/tmp/hb_png_XXXXXX";
+    close(mkstemp(path));
+    CHECK(t, image_write_png(path, W, H, rgb) == 0, "write");
+    size_t n;
+    uint8_t *d = slurp(path, &n);
+    CHECK(t, d && n > 8 && memcmp(d, "\x89PNG\r\n\x1a\n", 8) == 0, "signature");
+    size_t raw_size = (size_t)(W * 3 + 1) * H, raw_n = 0, pos = 8;
+    uint8_t *raw = malloc(raw_size);
+    int seen_end = 0;
+    while (d && pos + 12 <= n && !seen_end) {
+        uint32_t len = be32(d + pos);
+        const uint8_t *type = d + pos + 4, *data = d + pos + 8;
+        CHECK(t, image_crc32(type, 4 + len, 0) == be32(data + len), "chunk %.4s CRC", (const char *)type);
+        if (memcmp(type, "IHDR", 4) == 0)
+            CHECK(t, be32(data) == W && be32(data + 4) == H && data[8] == 8 && data[9] == 2, "IHDR");
+        if (memcmp(type, "IDAT", 4) == 0) {
+            CHECK(t, data[0] == 0x78 && (data[0] * 256 + data[1]) % 31 == 0, "zlib header");
+            size_t z = 2;
+            for (int final = 0; !final && z + 5 <= len;) {
+                final = data[z] & 1;
+                CHECK(t, (data[z] >> 1 & 3) == 0, "not a stored block");
+                size_t blen = data[z + 1] | (size_t)data[z + 2] << 8, nlen = data[z + 3] | (size_t)data[z + 4] << 8;
+                CHECK(t, (blen ^ 0xffff) == nlen && raw_n + blen <= raw_size, "stored block length");
+                if (raw_n + blen > raw_size)
+                    break;
+                memcpy(raw + raw_n, data + z + 5, blen);
+                raw_n += blen, z += 5 + blen;
+            }
+            CHECK(t, z + 4 == len && be32(data + z) == image_adler32(raw, raw_n), "Adler-32 trailer");
+        }
+        seen_end = memcmp(type, "IEND", 4) == 0;
+        pos += 12 + len;
+    }
+    CHECK(t, seen_end && raw_n == raw_size, "IEND and all rows");
+    for (int y = 0; y < H && raw_n == raw_size; y++) {
+        CHECK(t, raw[(size_t)y * (W * 3 + 1)] == 0, "filter byte of row %d", y);
+        CHECK(t, memcmp(raw + (size_t)y * (W * 3 + 1) + 1, rgb + (size_t)y * W * 3, W * 3) == 0, "row %d", y);
+    }
+    free(raw);
+    free(d);
+    unlink(path);
+    uint8_t px[3];
+    float f[3] = { 0.0f, 1.0f, 1e9f };
+    image_tonemap(1, f, 1.0f, px);
+    CHECK(t, px[0] == 0 && px[1] == 188 && px[2] == 255, "tone map: %d %d %d", px[0], px[1], px[2]);
+}
+
+/* hairbsdf dump: the PFM's pixels are the library's f at the pixel centres. */
+static void test_dump_matches_library(hb_test_ctx *t)
+{
+    const char *tool = getenv("HB_TOOL");
+    if (!tool || !*tool) {
+        CHECK(t, 0, "HB_TOOL is not set");
+        return;
+    }
+    char path[] = "/tmp/hb_dump_XXXXXX.pfm", cmd[512];
+    close(mkstemps(path, 4));
+    snprintf(cmd, sizeof cmd, "%s dump --theta-i 0.3 --phi-i 0.2 --eumelanin 0.3 --width 16 --height 8 -o %s", tool,
+             path);
+    CHECK(t, system(cmd) == 0, "dump failed: %s", cmd);
+    int w = 0, h = 0;
+    float *img = read_pfm(path, &w, &h);
+    CHECK(t, img && w == 16 && h == 8, "PFM %dx%d", w, h);
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.eumelanin = 0.3;
+    hb_plan *plan;
+    hb_plan_create(&m, &o, &plan, NULL);
+    for (int y = 0; img && y < h; y++)
+        for (int x = 0; x < w; x++) {
+            float ti = 0.3f, pi = 0.2f, f[3];
+            float to = (float)(M_PI_2 - M_PI * (y + 0.5) / h), po = (float)(-M_PI + 2 * M_PI * (x + 0.5) / w);
+            hb_eval_angles(plan, 1, (hb_angles_soa){ &ti, &pi, &to, &po }, (hb_rgb_soa){ &f[0], &f[1], &f[2] }, NULL);
+            const float *px = img + ((size_t)y * w + x) * 3;
+            CHECK(t, px[0] == f[0] && px[1] == f[1] && px[2] == f[2], "pixel (%d, %d): %g vs %g", x, y, px[0], f[0]);
+        }
+    hb_plan_destroy(plan);
+    free(img);
+    unlink(path);
+}
+
+const hb_test hb_tests_images[] = {
+    { "image_checksums", test_checksums, 0 },
+    { "image_pfm_round_trip", test_pfm_round_trip, 0 },
+    { "image_png_round_trip", test_png_round_trip, 0 },
+    { "image_dump_matches_library", test_dump_matches_library, 0 },
+    { NULL, NULL, 0 },
+};
