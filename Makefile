@@ -111,7 +111,8 @@ test: $(TEST_BIN) $(TOOL)
 	HB_TOOL="$(strip $(RUN) $(TOOL))" HB_TEST_EMULATED=$(if $(RUN),1,0) $(RUN) $(TEST_BIN)
 
 bench: $(BENCH_BIN)
-	$(RUN) $(BENCH_BIN) --budgets bench/budgets.txt
+	@mkdir -p bench/results
+	$(RUN) $(BENCH_BIN) --results bench/results --budgets bench/budgets.txt
 
 # Instructions per sample under callgrind (repeatable, unlike time on a shared machine).
 bench-instr: $(BENCH_BIN)

@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "hairbsdf.h"
+#include "plot.h"
 
 enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
 
@@ -188,10 +189,12 @@ static int run_once(const char *name)
 
 int main(int argc, char **argv)
 {
-    const char *budgets = NULL;
+    const char *budgets = NULL, *results_dir = NULL;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--budgets") == 0 && i + 1 < argc)
             budgets = argv[++i];
+        else if (strcmp(argv[i], "--results") == 0 && i + 1 < argc)
+            results_dir = argv[++i];
         else if (strcmp(argv[i], "--once") == 0 && i + 1 < argc)
             return run_once(argv[++i]);
         else if (strcmp(argv[i], "--list") == 0) {
@@ -199,7 +202,7 @@ int main(int argc, char **argv)
                 printf("%s/%s\n", configs[ci].term, configs[ci].variant);
             return 0;
         } else {
-            fprintf(stderr, "usage: %s [--budgets FILE | --list | --once TERM/VARIANT]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--budgets FILE] [--results DIR] | --list | --once TERM/VARIANT\n", argv[0]);
             return 2;
         }
     }
@@ -247,6 +250,33 @@ int main(int argc, char **argv)
         printf("| %s | %s | %s | %.2f | %.2f | %.1f | %.1e | %.1fx |\n", rows[k].term, rows[k].variant,
                hb_isa_name(rows[k].isa), rows[k].min_ns, rows[k].median_ns, 1e3 / rows[k].min_ns,
                rows[k].max_rel_err, scalar / rows[k].min_ns);
+    }
+    static bench_point points[N_CONFIGS * HB_ISA_COUNT + N_CONFIGS];
+    static char labels[N_CONFIGS * HB_ISA_COUNT + N_CONFIGS][48];
+    int npoints = 0;
+    for (int k = 0; k < nrows; k++)
+        if (!strcmp(rows[k].term, "full") || strcmp(rows[k].variant, "paper")) { /* the paper series is 100% off */
+            snprintf(labels[npoints], sizeof labels[0], "%s/%s", rows[k].term, rows[k].variant);
+            points[npoints] = (bench_point){ labels[npoints], hb_isa_name(rows[k].isa), rows[k].min_ns,
+                                             rows[k].max_rel_err };
+            npoints++;
+        }
+    if (results_dir) {
+        char csv[512], svg[512];
+        snprintf(csv, sizeof csv, "%s/deon.csv", results_dir);
+        snprintf(svg, sizeof svg, "%s/deon.svg", results_dir);
+        /* the plot compares the full model's quality levels (M_p alone is another quantity) */
+        static bench_point full[N_CONFIGS * HB_ISA_COUNT];
+        int nfull = 0;
+        for (int k = 0; k < npoints; k++)
+            if (!strncmp(points[k].label, "full/", 5))
+                full[nfull++] = points[k];
+        if (bench_write_csv(csv, points, npoints) ||
+            bench_write_svg(svg, "d'Eon 2011 full model: error against time per sample, Pareto front per ISA", full,
+                            nfull))
+            fprintf(stderr, "bench: cannot write %s or %s\n", csv, svg);
+        else
+            printf("wrote %s and %s\n", csv, svg);
     }
     return budgets && check_budgets(budgets, rows, nrows) ? 1 : 0;
 }
