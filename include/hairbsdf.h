@@ -63,8 +63,10 @@ typedef struct hb_material {
     double roughness;    /* HHH22 microfacet roughness, default 0.1 */
     double eccentricity; /* elliptical fibre (HHH22, MJC03), default 0 */
     /* Per-lobe overrides, index p. Roughness 0 means "derived": dFH11 uses beta_m and beta_n
-     * for every lobe. A shift applies when bit p of lobe_alpha_override is set; otherwise
-     * dFH11 shifts M_p by alpha_R = -2 alpha, alpha_TT = alpha, alpha_TRT = 3 alpha, 0 above. */
+     * for every lobe. A shift applies when bit p of lobe_alpha_override is set, in the model's
+     * own terms (dFH11: M_p at theta_o - alpha_p; MJC03: the mean of M_p in theta_h); otherwise
+     * dFH11 shifts by alpha_R = -2 alpha, alpha_TT = alpha, alpha_TRT = 3 alpha, 0 above, and
+     * MJC03's R lobe is centred at theta_h = -alpha. */
     double lobe_beta_m[HB_MAX_LOBES];
     double lobe_beta_n[HB_MAX_LOBES];
     double lobe_alpha[HB_MAX_LOBES];
@@ -99,7 +101,9 @@ typedef enum hb_isa {
 /* What a plan evaluates. */
 typedef enum hb_term {
     HB_TERM_FULL,         /* f, the whole BCSDF times cos(theta_i) */
-    HB_TERM_LONGITUDINAL  /* dFH11 only: the R lobe's M_p(v_R, theta_i, theta_o - alpha_R) (eq. 7), in every channel */
+    HB_TERM_LONGITUDINAL  /* the R lobe's longitudinal factor T = f / N_R, in every channel: dFH11's
+                             M_p(v_R, theta_i, theta_o - alpha_R) (eq. 7), or MJC03's
+                             g(alpha_R, beta_R; theta_h) cos(theta_i) / cos^2(theta_d) */
 } hb_term;
 
 /* The modified Bessel function I0 inside dFH11 eq. 7. */
@@ -130,7 +134,8 @@ typedef struct hb_options {
     hb_i0 i0;           /* default HB_I0_ABRAMOWITZ */
     int pmax;           /* dFH11: highest explicit order, 0..7 (default 3, TRRT) */
     hb_absorption absorption; /* default HB_ABSORPTION_CORRECTED */
-    int quadrature_order;     /* dFH11 N_p nodes on h in [0, 1]; 0 = from quality and beta_n, else 1..HB_MAX_NODES */
+    int quadrature_order;     /* dFH11 N_p nodes (Gauss-Legendre in gamma_i, h = sin gamma_i in [0, 1]);
+                                 0 = from quality and beta_n, else 1..HB_MAX_NODES */
     double detector_tolerance; /* dFH11 D_p truncation error bound; 0 = from quality */
     hb_r_fresnel r_fresnel;    /* default HB_R_FRESNEL_HALF_ANGLE */
 } hb_options;
