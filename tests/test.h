@@ -58,5 +58,6 @@ extern const hb_test hb_tests_marschner[];
 extern const hb_test hb_tests_api[];
 extern const hb_test hb_tests_cli[];
 extern const hb_test hb_tests_images[];
+extern const hb_test hb_tests_corpus[];
 
 #endif
