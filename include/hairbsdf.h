@@ -170,9 +170,12 @@ typedef struct hb_rgb_soa {
 } hb_rgb_soa;
 
 /* Per-call report. A sample is invalid when an angle is NaN or +-Inf, |theta| exceeds
- * pi/2 (as a float, 1.57079637f), or a vector is not finite or its length differs from
- * 1 by more than HB_UNIT_TOLERANCE. Invalid samples get f = 0 in every channel. */
+ * pi/2 (as a float, 1.57079637f), |phi| exceeds HB_PHI_LIMIT (phi is wrapped into
+ * (-pi, pi], and a float that large has no sub-radian precision left), or a vector is not
+ * finite or its squared length differs from 1 by more than HB_UNIT_TOLERANCE. Invalid
+ * samples get f = 0 in every channel. */
 #define HB_UNIT_TOLERANCE 1e-3f
+#define HB_PHI_LIMIT 1e4f
 typedef struct hb_eval_report {
     size_t invalid;
 } hb_eval_report;

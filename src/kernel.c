@@ -58,10 +58,10 @@ HB_INLINE size_t count_invalid(vm valid, size_t lanes)
     return (size_t)__builtin_popcount(~vm_bits(valid) & live);
 }
 
-/* theta finite and |theta| <= pi/2 (as a float), phi finite. */
+/* theta in [-pi/2, pi/2] (as floats), |phi| <= HB_PHI_LIMIT; false for NaN and Inf. */
 HB_INLINE vm angle_pair_valid(vf theta, vf phi)
 {
-    return vm_and(vf_le(vf_abs(theta), vf_set1(HB_PIO2_F)), vf_isfinite(phi));
+    return vm_and(vf_le(vf_abs(theta), vf_set1(HB_PIO2_F)), vf_le(vf_abs(phi), vf_set1(HB_PHI_LIMIT)));
 }
 
 HB_INLINE vm unit_vector_valid(const vf w[3])
@@ -71,18 +71,27 @@ HB_INLINE vm unit_vector_valid(const vf w[3])
 }
 
 /* Loads lane block i of an angle batch; returns which lanes are valid samples. */
+/* Loads lane block i of an angle batch; returns which lanes are valid samples. Invalid lanes
+ * are replaced by a benign direction, so no NaN or huge value reaches the math (a float-to-int
+ * conversion of one is undefined behaviour); their output is 0 anyway. */
 HB_INLINE vm load_angles(hb_angles_soa in, size_t i, size_t lanes, vf a[4])
 {
     const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
     load_block(src, 4, i, lanes, 0.0f, a);
-    return vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
+    vm valid = vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
+    for (int k = 0; k < 4; k++)
+        a[k] = vf_select(valid, a[k], vf_set1(0.0f));
+    return valid;
 }
 
 HB_INLINE vm load_vectors(hb_vectors_soa in, size_t i, size_t lanes, vf a[6])
 {
     const float *src[6] = { in.wi_x, in.wi_y, in.wi_z, in.wo_x, in.wo_y, in.wo_z };
     load_block(src, 6, i, lanes, 0.0f, a);
-    return vm_and(unit_vector_valid(a), unit_vector_valid(a + 3));
+    vm valid = vm_and(unit_vector_valid(a), unit_vector_valid(a + 3));
+    for (int k = 0; k < 6; k++)
+        a[k] = vf_select(valid, a[k], vf_set1(k % 3 == 2 ? 1.0f : 0.0f)); /* w = (0, 0, 1) */
+    return valid;
 }
 
 /* Invalid lanes get 0 in every plane. */

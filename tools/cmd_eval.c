@@ -131,7 +131,7 @@ int cmd_eval(int argc, char **argv)
     free(line);
     hb_plan_destroy(plan);
     if (invalid)
-        fprintf(stderr, "hairbsdf eval: %zu invalid sample%s (NaN/Inf angle or |theta| > pi/2) written as 0,0,0\n",
+        fprintf(stderr, "hairbsdf eval: %zu invalid sample%s (NaN/Inf angle, |theta| > pi/2 or |phi| > 1e4) written as 0,0,0\n",
                 invalid, invalid == 1 ? "" : "s");
     if (fflush(stdout) != 0)
         return 1;

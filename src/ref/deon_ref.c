@@ -100,8 +100,8 @@ size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rg
     size_t invalid = 0;
     for (size_t k = 0; k < n; k++) {
         double f[3] = { 0.0, 0.0, 0.0 };
-        if (theta_valid(in.theta_i[k]) && theta_valid(in.theta_o[k]) && isfinite(in.phi_i[k]) &&
-            isfinite(in.phi_o[k]))
+        if (theta_valid(in.theta_i[k]) && theta_valid(in.theta_o[k]) && fabsf(in.phi_i[k]) <= HB_PHI_LIMIT &&
+            fabsf(in.phi_o[k]) <= HB_PHI_LIMIT)
             eval_ref(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k], f);
         else
             invalid++;
