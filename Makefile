@@ -23,7 +23,8 @@ endif
 
 SANITIZE ?=
 PREFIX ?= /usr/local
-B := build/$(ARCH)-$(notdir $(firstword $(CC)))$(if $(SANITIZE),-san)
+FUZZ ?=
+B := build/$(ARCH)-$(notdir $(firstword $(CC)))$(if $(SANITIZE),-san)$(if $(FUZZ),-fuzz)
 
 ifeq ($(ARCH),x86_64)
   ISAS := scalar sse41 avx2 avx512
@@ -53,6 +54,9 @@ ifneq ($(SANITIZE),)
   BASE_CFLAGS += -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
   LDFLAGS += -fsanitize=address,undefined
 endif
+ifneq ($(FUZZ),)
+  BASE_CFLAGS += -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+endif
 ALL_CFLAGS = $(BASE_CFLAGS) $(CFLAGS)
 LDLIBS := -lm
 
@@ -60,6 +64,7 @@ LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/quadrature.c s
 LIB_OBJS := $(LIB_SRCS:%.c=$(B)/%.o) $(ISAS:%=$(B)/kernel_%.o)
 TOOL_SRCS := $(wildcard tools/*.c)
 TEST_SRCS := $(wildcard tests/*.c)
+FUZZ_TARGETS := fuzz_cli fuzz_eval
 BENCH_SRCS := $(wildcard bench/*.c)
 
 STATIC_LIB := $(B)/libhairbsdf.a
@@ -69,7 +74,7 @@ EXAMPLE := $(B)/example_minimal
 TEST_BIN := $(B)/hairbsdf_tests
 BENCH_BIN := $(B)/hairbsdf_bench
 
-.PHONY: all test bench bench-instr demo images install clean
+.PHONY: all test bench bench-instr demo images fuzz fuzz-run install clean
 all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LIB)) $(TOOL) $(EXAMPLE)
 
 $(B)/%.o: %.c
@@ -107,8 +112,13 @@ $(BENCH_BIN): $(BENCH_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
 
 # The runner loops over every ISA this CPU has (or only $HB_ISA when it is set)
 # and drives the CLI through HB_TOOL.
-test: $(TEST_BIN) $(TOOL)
+test: $(TEST_BIN) $(TOOL) $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%)
+	for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t tests/fuzz/corpus/$$t || exit 1; done
 	HB_TOOL="$(strip $(RUN) $(TOOL))" HB_TEST_EMULATED=$(if $(RUN),1,0) $(RUN) $(TEST_BIN)
+
+# The fuzz harnesses without libFuzzer, replaying the kept corpus (make test runs them).
+$(B)/replay_fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(B)/tools/csv.o $(B)/tools/cli_options.o $(STATIC_LIB)
+	$(CC) $(ALL_CFLAGS) -Itools $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
 
 bench: $(BENCH_BIN)
 	@mkdir -p bench/results
@@ -132,6 +142,19 @@ demo: all $(BENCH_BIN)
 	$(RUN) $(TOOL) dump --model deon --eumelanin 0.3 --theta-i 0.3 -o $(B)/lobes_deon.pfm
 	@echo "lobe images: $(B)/lobes_deon.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
 	$(RUN) $(BENCH_BIN)
+
+# libFuzzer (clang): CLI parsing and plan creation + evaluation, FUZZ_SECONDS per target; the
+# corpus of interesting inputs is kept in tests/fuzz/corpus/ and replayed by later runs.
+FUZZ_SECONDS ?= 60
+fuzz:
+	$(MAKE) CC=clang FUZZ=1 fuzz-run
+
+fuzz-run: $(FUZZ_TARGETS:%=$(B)/%)
+	for t in $(FUZZ_TARGETS); do mkdir -p tests/fuzz/corpus/$$t; \
+	  $(B)/$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 tests/fuzz/corpus/$$t || exit 1; done
+
+$(B)/fuzz_%: tests/fuzz/fuzz_%.c $(B)/tools/csv.o $(B)/tools/cli_options.o $(STATIC_LIB)
+	$(CC) $(ALL_CFLAGS) -Itools -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
 
 # The README's pictures, by the commands the README shows.
 images: $(TOOL)

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "csv.h"
 
 #define BATCH 1024
 
@@ -28,38 +29,6 @@ static size_t flush(const hb_plan *plan, eval_batch *b)
         printf("%.9g,%.9g,%.9g\n", b->out[0][k], b->out[1][k], b->out[2][k]);
     b->count = 0;
     return report.invalid;
-}
-
-static char *trim(char *s)
-{
-    while (isspace((unsigned char)*s))
-        s++;
-    char *e = s + strlen(s);
-    while (e > s && isspace((unsigned char)e[-1]))
-        *--e = '\0';
-    return s;
-}
-
-/* Four comma-separated numbers (nan and inf parse, and become invalid samples). */
-static int parse_row(char *line, float row[4])
-{
-    char *field = line;
-    for (int c = 0; c < 4; c++) {
-        char *comma = strchr(field, ',');
-        if ((c < 3) != (comma != NULL))
-            return 0;
-        if (comma)
-            *comma = '\0';
-        char *s = trim(field), *end;
-        errno = 0;
-        double x = strtod(s, &end);
-        if (end == s || *end != '\0')
-            return 0;
-        row[c] = (float)x;
-        if (comma)
-            field = comma + 1;
-    }
-    return 1;
 }
 
 static void eval_usage(FILE *to)
@@ -103,13 +72,13 @@ int cmd_eval(int argc, char **argv)
     int seen_content = 0, status = 0;
     while (getline(&line, &cap, stdin) >= 0) {
         lineno++;
-        char *s = trim(line);
+        char *s = csv_trim(line);
         if (!*s)
             continue;
         float row[4];
         char copy[512];
         snprintf(copy, sizeof copy, "%s", s);
-        if (!parse_row(s, row)) {
+        if (!csv_parse_row(s, row)) {
             if (!seen_content && isalpha((unsigned char)*s)) { /* a header line */
                 seen_content = 1;
                 continue;

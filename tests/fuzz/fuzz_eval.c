@@ -1,0 +1,79 @@
+/* libFuzzer: arbitrary bytes as material, options and directions. Plan creation either refuses
+ * with a message or succeeds, and every valid sample's f must be finite and >= 0. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hairbsdf.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+enum { MAX_SAMPLES = 16 };
+
+static size_t take(const uint8_t **data, size_t *size, void *out, size_t n)
+{
+    size_t k = *size < n ? *size : n;
+    memset(out, 0, n);
+    memcpy(out, *data, k);
+    *data += k, *size -= k;
+    return k;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    double params[8];
+    uint8_t opts[8];
+    take(&data, &size, params, sizeof params);
+    take(&data, &size, opts, sizeof opts);
+    m.eta = params[0], m.sigma_a[0] = params[1], m.sigma_a[1] = fabs(params[1]), m.sigma_a[2] = params[2];
+    m.beta_m = params[3], m.beta_n = params[4], m.alpha = params[5], m.eumelanin = params[6];
+    m.lobe_beta_n[opts[7] & 7] = params[7];
+    o.model = (hb_model)(opts[0] % 4);
+    o.term = (hb_term)(opts[1] % 3);
+    o.quality = (hb_quality)(opts[2] % 5);
+    o.i0 = (hb_i0)(opts[3] % 3);
+    o.pmax = opts[4] % 9;
+    o.lobes = opts[5] & 1 ? 0u : (unsigned)opts[5] << 1;
+    o.quadrature_order = opts[6] % 70;
+    o.absorption = (hb_absorption)(opts[7] >> 6 & 1);
+    o.r_fresnel = (hb_r_fresnel)(opts[7] >> 7);
+    hb_plan *plan;
+    hb_error error;
+    if (hb_plan_create(&m, &o, &plan, &error) != HB_OK) {
+        if (!error.message[0])
+            abort(); /* every refusal must say why */
+        return 0;
+    }
+    float a[4][MAX_SAMPLES], f[3][MAX_SAMPLES];
+    size_t n = size / 16 < MAX_SAMPLES ? size / 16 : MAX_SAMPLES;
+    if (o.quality == HB_QUALITY_REFERENCE && n > 1)
+        n = 1; /* the reference is slow */
+    for (size_t k = 0; k < n; k++)
+        for (int c = 0; c < 4; c++)
+            take(&data, &size, &a[c][k], sizeof(float));
+    for (int entry = 0; entry < 2; entry++) {
+        hb_eval_report rep;
+        if (entry == 0) {
+            hb_eval_angles(plan, n, (hb_angles_soa){ a[0], a[1], a[2], a[3] }, (hb_rgb_soa){ f[0], f[1], f[2] }, &rep);
+        } else { /* the same numbers as vectors: most are not unit length, which must be counted */
+            float z[MAX_SAMPLES];
+            for (size_t k = 0; k < n; k++)
+                z[k] = a[3][k] * a[0][k];
+            hb_eval_vectors(plan, n, (hb_vectors_soa){ a[0], a[1], a[2], a[3], a[1], z }, (hb_rgb_soa){ f[0], f[1], f[2] },
+                            &rep);
+        }
+        if (rep.invalid > n)
+            abort();
+        for (int c = 0; c < 3; c++)
+            for (size_t k = 0; k < n; k++)
+                if (!(isfinite(f[c][k]) && f[c][k] >= 0.0f))
+                    abort();
+    }
+    hb_plan_destroy(plan);
+    return 0;
+}

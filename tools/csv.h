@@ -1,0 +1,12 @@
+/* The CSV rows of hairbsdf eval. */
+#ifndef HB_CSV_H
+#define HB_CSV_H
+
+/* Strips leading and trailing white space in place. */
+char *csv_trim(char *s);
+
+/* theta_i,phi_i,theta_o,phi_o: four comma-separated numbers (nan and inf parse, and become
+ * invalid samples). Modifies line. Returns 0 for a malformed row. */
+int csv_parse_row(char *line, float row[4]);
+
+#endif
