@@ -43,6 +43,7 @@ typedef struct hb_deon {
     /* quadrature over gamma_i in [0, pi/2] (h = sin gamma_i), weights include 1/2 and dh/dgamma */
     float gamma_i[HB_MAX_NODES], cos_gamma_i[HB_MAX_NODES], h[HB_MAX_NODES], weight[HB_MAX_NODES];
     hb_detector detector[HB_MAX_LOBES];
+    int fourier_terms; /* the most Fourier terms any lobe's detector uses (cos(n phi) to precompute) */
     hb_longitudinal longitudinal[HB_MAX_LOBES + 1]; /* index HB_LOBE_RESIDUAL: the residual lobe */
     /* lobes whose M_p is the same function (same v and shift) share one evaluation: m_group[p]
      * is the first included lobe with p's constants, and M_p is evaluated for it alone */

@@ -269,6 +269,10 @@ static void derive_deon(hb_plan *plan)
             }
     }
     d->pmax = o->pmax;
+    d->fourier_terms = 0;
+    for (int p = 0; p <= o->pmax; p++)
+        if (d->detector[p].fourier && d->detector[p].terms > d->fourier_terms)
+            d->fourier_terms = d->detector[p].terms;
     d->absorption_paper = o->absorption == HB_ABSORPTION_PAPER;
     d->r_fresnel_offset = o->r_fresnel == HB_R_FRESNEL_OFFSET;
     d->eta = (float)m->eta;

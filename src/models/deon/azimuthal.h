@@ -84,12 +84,8 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
     vf mu[3]; /* mu_a' = mu_a / cos(theta_t) (sec. 6) */
     for (int c = 0; c < 3; c++)
         mu[c] = vf_div(vf_set1(d->sigma_a[c]), cos_theta_t);
-    int fourier_terms = 0;
-    for (int p = 0; p <= d->pmax; p++)
-        if (d->detector[p].fourier && d->detector[p].terms > fourier_terms)
-            fourier_terms = d->detector[p].terms;
     vf cos_n_phi[HB_MAX_DETECTOR_TERMS + 1];
-    cos_multiples(g->cos_phi, fourier_terms, cos_n_phi);
+    cos_multiples(g->cos_phi, d->fourier_terms, cos_n_phi);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
         N[p][0] = N[p][1] = N[p][2] = vf_set1(0.0f);
 
