@@ -150,7 +150,7 @@ static void test_help(hb_test_ctx *t)
 static void test_deon_commands(hb_test_ctx *t)
 {
     run_result r;
-    if (!run_tool(t, "eval --pmax 5 --lobes R,TT,4,residual --absorption paper --r-fresnel offset --quadrature 40 "
+    if (!run_tool(t, "eval --pmax 5 --lobes R,TT,4,residual --absorption paper --r-fresnel half-angle --quadrature 40 "
                      "--detector-tolerance 1e-6 --sigma-a 0.1,0.2,0.3",
                   "0.3,0,-0.37,0.5\n", &r))
         return;
@@ -162,7 +162,7 @@ static void test_deon_commands(hb_test_ctx *t)
     o.pmax = 5;
     o.lobes = 1u << 0 | 1u << 1 | 1u << 4 | 1u << HB_LOBE_RESIDUAL;
     o.absorption = HB_ABSORPTION_PAPER;
-    o.r_fresnel = HB_R_FRESNEL_OFFSET;
+    o.r_fresnel = HB_R_FRESNEL_HALF_ANGLE;
     o.quadrature_order = 40;
     o.detector_tolerance = 1e-6;
     hb_plan *plan;
@@ -189,7 +189,7 @@ static void test_deon_commands(hb_test_ctx *t)
     CHECK(t, r.status == 2 && strstr(r.err, "--lobe-alpha"), "bad lobe order: %s", r.err);
     run_tool(t, "eval --pmax 2 --lobes TRRT", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "pmax"), "lobe above pmax: %s", r.err);
-    run_tool(t, "furnace --r-fresnel offset --alpha 0 --theta-o 0.3,-1.2", "", &r);
+    run_tool(t, "furnace --alpha 0 --theta-o 0.3,-1.2", "", &r);
     double theta, e[3];
     CHECK(t, r.status == 0 && sscanf(strchr(r.out, '\n') + 1, "%lf,%lf,%lf,%lf", &theta, &e[0], &e[1], &e[2]) == 4 &&
                  fabs(e[0] - 1.0) < 1e-3,

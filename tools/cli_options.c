@@ -19,7 +19,7 @@ const char cli_model_options_help[] =
     "  --quadrature N                 dFH11: N_p nodes (default: from quality and beta_n)\n"
     "  --detector-tolerance X         dFH11: truncation error of the Gaussian detector (default: from quality)\n"
     "  --absorption corrected|paper   path length 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t)\n"
-    "  --r-fresnel half-angle|offset  dFH11 R lobe Fresnel: eq. 12 (paper), or eq. 14 per offset (exact energy)\n"
+    "  --r-fresnel offset|half-angle  dFH11 R lobe Fresnel: eq. 14 per offset (default, exact energy), or eq. 12 (paper)\n"
     "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
     "Material options:\n"
     "  --eta X  --sigma-a R,G,B  --eumelanin X  --pheomelanin X\n"
@@ -122,7 +122,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
                                               "--r-fresnel", NULL };
     static const char *const per_lobe[] = { "--lobe-beta-m", "--lobe-beta-n", "--lobe-alpha", NULL };
     static const char *const absorptions[] = { "corrected", "paper", NULL };
-    static const char *const r_fresnels[] = { "half-angle", "offset", NULL };
+    static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
     static const char *const models[] = { "marschner", "deon", "huang", NULL };
     static const char *const terms[] = { "full", "longitudinal", NULL };
     static const char *const qualities[] = { "fast", "balanced", "high", "reference", NULL };
@@ -206,7 +206,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     } else if (strcmp(name, "--absorption") == 0) {
         if ((k = pick(value, absorptions)) >= 0) o->absorption = (hb_absorption)k; else expected = "corrected or paper";
     } else if (strcmp(name, "--r-fresnel") == 0) {
-        if ((k = pick(value, r_fresnels)) >= 0) o->r_fresnel = (hb_r_fresnel)k; else expected = "half-angle or offset";
+        if ((k = pick(value, r_fresnels)) >= 0) o->r_fresnel = (hb_r_fresnel)k; else expected = "offset or half-angle";
     } else if (strcmp(name, "--pmax") == 0) {
         if (!parse_int(value, 0, HB_MAX_LOBES - 1, &o->pmax)) expected = "an order from 0 to 7";
     } else if (strcmp(name, "--quadrature") == 0) {
