@@ -71,6 +71,14 @@ typedef struct hb_material {
     double lobe_beta_n[HB_MAX_LOBES];
     double lobe_alpha[HB_MAX_LOBES];
     unsigned lobe_alpha_override;
+    /* MJC03 TRT caustic treatment (its sec. 4.3 and Table 1; README "Marschner"): near a
+     * caustic the cubic's N_TRT is faded out over a Gaussian of width caustic_width and a
+     * glint of glint_scale * A(h_c) * dh * that Gaussian is added, dh at most caustic_limit;
+     * the caustic fades out over eta' in [2, 2 + caustic_fade] as it merges at phi = 0. */
+    double glint_scale;   /* k_G, default 0.5 (MJC03: 0.5 to 5) */
+    double caustic_width; /* w_c in radians, default 15 degrees (MJC03: 10 to 25 degrees) */
+    double caustic_fade;  /* Delta eta', default 0.3 (MJC03: 0.2 to 0.4) */
+    double caustic_limit; /* Delta h_M, default 0.5 (MJC03: 0.5) */
 } hb_material;
 
 void hb_material_default(hb_material *material);

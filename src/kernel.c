@@ -6,7 +6,7 @@
 #include "simd/simd.h"
 #include "math/vmath.h"
 #include "models/deon/azimuthal.h"
-#include "models/marschner/longitudinal.h"
+#include "models/marschner/azimuthal.h"
 #include "kernels.h"
 
 #if defined(HB_TARGET_SCALAR)
@@ -164,6 +164,21 @@ static void marschner_longitudinal_vectors(const hb_gaussian_lobe *lobe, size_t 
                          vf_select(valid, longitudinal_marschner_vectors(lobe, a, a + 3), vf_set1(0.0f))));
 }
 
+static void marschner_angles_kernel(const hb_marschner *mjc, size_t n, hb_angles_soa in, hb_rgb_soa out,
+                                    size_t *invalid)
+{
+    vf f[3];
+    HB_BATCH(load_angles, 4, in, n, invalid,
+             (marschner_angles(mjc, a[0], a[1], a[2], a[3], f), store_rgb(out, i, lanes, valid, f)));
+}
+
+static void marschner_vectors_kernel(const hb_marschner *mjc, size_t n, hb_vectors_soa in, hb_rgb_soa out,
+                                     size_t *invalid)
+{
+    vf f[3];
+    HB_BATCH(load_vectors, 6, in, n, invalid, (marschner_vectors(mjc, a, a + 3, f), store_rgb(out, i, lanes, valid, f)));
+}
+
 HB_KERNEL_VARIANTS(abramowitz, HB_I0_ABRAMOWITZ)
 HB_KERNEL_VARIANTS(paper, HB_I0_PAPER)
 #undef HB_KERNEL_VARIANTS
@@ -215,6 +230,25 @@ static void detector_map(const hb_detector *d, size_t n, const float *x, float *
     }
 }
 
+/* The cubic solver on arrays, all three roots (NaN where a root is not real), for the tests. */
+static void cubic_map(size_t n, const float *P, const float *Q, float *roots)
+{
+    const float *src[2] = { P, Q };
+    for (size_t i = 0; i < n; i += HB_W) {
+        size_t lanes = n - i < HB_W ? n - i : HB_W;
+        vf pq[2], root[3];
+        vm real[3];
+        load_block(src, 2, i, lanes, 1.0f, pq);
+        cubic_roots(pq[0], pq[1], 1, root, real);
+        for (int k = 0; k < 3; k++) {
+            float buf[HB_W];
+            vf_storeu(buf, vf_select(real[k], root[k], vf_set1(__builtin_nanf(""))));
+            for (size_t j = 0; j < lanes; j++)
+                roots[3 * (i + j) + (size_t)k] = buf[j];
+        }
+    }
+}
+
 const hb_kernels HB_TABLE = {
     .isa = HB_TABLE_ISA,
     .width = HB_W,
@@ -224,6 +258,9 @@ const hb_kernels HB_TABLE = {
     .deon_vectors = { deon_vectors_abramowitz, deon_vectors_paper },
     .marschner_longitudinal_angles = marschner_longitudinal_angles,
     .marschner_longitudinal_vectors = marschner_longitudinal_vectors,
+    .marschner_angles = marschner_angles_kernel,
+    .marschner_vectors = marschner_vectors_kernel,
+    .cubic_map = cubic_map,
     .math_map = math_map,
     .detector_map = detector_map,
 };

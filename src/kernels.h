@@ -21,6 +21,25 @@ typedef struct hb_gaussian_lobe {
     float norm;          /* 1 / (beta sqrt(2 pi)) */
 } hb_gaussian_lobe;
 
+/* Everything the MJC03 kernel reads, fixed at plan creation (README, "Marschner"). */
+typedef struct hb_marschner {
+    unsigned lobes;       /* bits R, TT, TRT */
+    int absorption_paper;
+    /* per lobe p (TT, TRT), from the smallest eta' the plan can see (eta, or min eta*):
+     * folds[p]: the cubic can have three real roots (eta' < fold_index[p] = 1 / sin(pi / 3p));
+     * caustic[p]: the caustic treatment can be non-zero (eta' < fold_index[p] + caustic_fade) */
+    int folds[3], caustic[3];
+    float fold_index[3];
+    int trt_branches;     /* 1, or 3 when TRT's cubic spans more than 2 pi (eta* near 1): phi + 2 pi k, |k| <= 1 */
+    int eccentric;        /* TRT sees eta*(phi_h) (MJC03), not eta */
+    float eta2_minus_one, inv_eta2;
+    float eta_star_mean, eta_star_swing; /* eta* = mean + swing cos(2 phi_h) = mean + swing cos(phi_i + phi_o) */
+    float sigma_a[3];
+    hb_gaussian_lobe lobe[3];
+    float caustic_inv_two_w2, caustic_norm, caustic_width; /* the fade and glint Gaussian g(w_c; x) */
+    float caustic_fade, caustic_limit, glint_scale;
+} hb_marschner;
+
 /* dFH11's Gaussian detector D_p (eq. 11), a wrapped Gaussian (a Jacobi theta function),
  * truncated at plan creation to the cheaper of its two series for the tolerance. */
 typedef struct hb_detector {
@@ -65,6 +84,10 @@ typedef void (*hb_gaussian_angles_fn)(const hb_gaussian_lobe *lobe, size_t n, hb
                                       size_t *invalid);
 typedef void (*hb_gaussian_vectors_fn)(const hb_gaussian_lobe *lobe, size_t n, hb_vectors_soa in, float *out,
                                        size_t *invalid);
+typedef void (*hb_marschner_angles_fn)(const hb_marschner *mjc, size_t n, hb_angles_soa in, hb_rgb_soa out,
+                                       size_t *invalid);
+typedef void (*hb_marschner_vectors_fn)(const hb_marschner *mjc, size_t n, hb_vectors_soa in, hb_rgb_soa out,
+                                        size_t *invalid);
 typedef void (*hb_deon_angles_fn)(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,
                                   size_t *invalid);
 typedef void (*hb_deon_vectors_fn)(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,
@@ -79,6 +102,11 @@ typedef struct hb_kernels {
     hb_deon_vectors_fn deon_vectors[2];
     hb_gaussian_angles_fn marschner_longitudinal_angles;
     hb_gaussian_vectors_fn marschner_longitudinal_vectors;
+    hb_marschner_angles_fn marschner_angles;
+    hb_marschner_vectors_fn marschner_vectors;
+    /* the real roots of gamma^3 + P gamma + Q = 0 the kernels find, for tests: roots[3 * i + k],
+     * NaN where root k does not exist */
+    void (*cubic_map)(size_t n, const float *P, const float *Q, float *roots);
     void (*math_map)(hb_math_fn fn, size_t n, const float *a, const float *b, float *out);
     void (*detector_map)(const hb_detector *d, size_t n, const float *x, float *out); /* D_p(x), for tests */
 } hb_kernels;

@@ -32,6 +32,10 @@ void hb_material_default(hb_material *m)
     m->alpha = 0.035;
     m->ndf = HB_NDF_GGX;
     m->roughness = 0.1;
+    m->glint_scale = 0.5;
+    m->caustic_width = 15.0 * M_PI / 180.0;
+    m->caustic_fade = 0.3;
+    m->caustic_limit = 0.5;
 }
 
 void hb_material_absorption(const hb_material *m, double out[3])
@@ -115,6 +119,14 @@ static hb_status validate_material(const hb_material *m, hb_error *error)
     if (!in_range(m->eccentricity, 0.0, ECCENTRICITY_MAX))
         return fail(error, HB_ERR_PARAM, "eccentricity = %g must be in [0, %g]", m->eccentricity,
                     ECCENTRICITY_MAX);
+    if (!in_range(m->glint_scale, 0.0, 100.0))
+        return fail(error, HB_ERR_PARAM, "glint_scale = %g must be in [0, 100]", m->glint_scale);
+    if (!in_range(m->caustic_width, 1e-3, 1.0))
+        return fail(error, HB_ERR_PARAM, "caustic_width = %g must be in [0.001, 1] radians", m->caustic_width);
+    if (!in_range(m->caustic_fade, 1e-3, 2.0))
+        return fail(error, HB_ERR_PARAM, "caustic_fade = %g must be in [0.001, 2]", m->caustic_fade);
+    if (!in_range(m->caustic_limit, 0.0, 2.0))
+        return fail(error, HB_ERR_PARAM, "caustic_limit = %g must be in [0, 2]", m->caustic_limit);
     return HB_OK;
 }
 
@@ -128,9 +140,9 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
         return fail(error, HB_ERR_PARAM, "model = %d is not a model", (int)o->model);
     if (o->model == HB_MODEL_HUANG)
         return fail(error, HB_ERR_UNSUPPORTED, "the huang model is not implemented yet");
-    if (o->model == HB_MODEL_MARSCHNER && o->term != HB_TERM_LONGITUDINAL)
-        return fail(error, HB_ERR_UNSUPPORTED,
-                    "the full marschner model (N_p) is not implemented yet; its longitudinal term is");
+    if (o->model == HB_MODEL_MARSCHNER && o->term == HB_TERM_FULL && o->lobes != HB_LOBES_DEFAULT &&
+        (o->lobes & ~7u))
+        return fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the marschner model has R, TT and TRT only", o->lobes);
     if (o->term != HB_TERM_FULL && o->term != HB_TERM_LONGITUDINAL)
         return fail(error, HB_ERR_PARAM, "term = %d is not a term", (int)o->term);
     if (o->pmax < 0 || o->pmax >= HB_MAX_LOBES)
@@ -300,18 +312,69 @@ static void derive_deon(hb_plan *plan)
     }
 }
 
-/* MJC03 R lobe: M_R = g(alpha_R, beta_R; theta_h) with alpha_R = -alpha, so the R highlight
- * peaks at theta_o = -theta_i - 2 alpha, toward the root as in dFH11. */
+/* The largest |phi_hat(p, gamma) - p pi| over gamma in [-pi/2, pi/2] for index eta': the
+ * endpoint |2pc - pi| or, where the cubic folds, the fold value (2/3) B gamma_c. */
+static double marschner_cubic_span(int p, double eta_prime)
+{
+    double c = asin(1.0 / eta_prime), a = -8.0 * p * c / (M_PI * M_PI * M_PI), b = 6.0 * p * c / M_PI - 2.0;
+    double span = fabs(2.0 * p * c - M_PI);
+    if (b > 0.0) {
+        double gamma_c = sqrt(b / (-3.0 * a));
+        if (gamma_c < M_PI_2)
+            span = fmax(span, 2.0 / 3.0 * b * gamma_c);
+    }
+    return span;
+}
+
+/* MJC03 lobes (Table 1 ratios, SPEC.md section 3): beta_R = beta_m, beta_TT = beta_R / 2,
+ * beta_TRT = 2 beta_R; means alpha_R = -alpha (the R highlight toward the root, as dFH11's),
+ * alpha_TT = -alpha_R / 2, alpha_TRT = -3 alpha_R / 2; per-lobe overrides win. */
 static void derive_marschner(hb_plan *plan)
 {
     const hb_material *m = &plan->material;
-    double beta = m->lobe_beta_m[HB_LOBE_R] > 0.0 ? m->lobe_beta_m[HB_LOBE_R] : m->beta_m;
-    double mean = (m->lobe_alpha_override & 1u) ? m->lobe_alpha[HB_LOBE_R] : -m->alpha;
-    plan->marschner_beta_r = beta;
-    plan->marschner_mean_r = mean;
-    plan->marschner_r.mean = (float)mean;
-    plan->marschner_r.inv_two_beta2 = (float)(1.0 / (2.0 * beta * beta));
-    plan->marschner_r.norm = (float)(1.0 / (beta * sqrt(2.0 * M_PI)));
+    hb_marschner *k = &plan->marschner;
+    static const double beta_ratio[3] = { 1.0, 0.5, 2.0 }, mean_ratio[3] = { -1.0, 0.5, 1.5 };
+    for (int p = 0; p < 3; p++) {
+        double beta = m->lobe_beta_m[p] > 0.0 ? m->lobe_beta_m[p] : beta_ratio[p] * m->beta_m;
+        double mean = (m->lobe_alpha_override >> p & 1u) ? m->lobe_alpha[p] : mean_ratio[p] * m->alpha;
+        plan->marschner_beta[p] = beta;
+        plan->marschner_mean[p] = mean;
+        k->lobe[p].mean = (float)mean;
+        k->lobe[p].inv_two_beta2 = (float)(1.0 / (2.0 * beta * beta));
+        k->lobe[p].norm = (float)(1.0 / (beta * sqrt(2.0 * M_PI)));
+    }
+    k->lobes = plan->options.lobes == HB_LOBES_DEFAULT ? 7u : plan->options.lobes;
+    k->absorption_paper = plan->options.absorption == HB_ABSORPTION_PAPER;
+    k->eta2_minus_one = (float)((m->eta - 1.0) * (m->eta + 1.0));
+    k->inv_eta2 = (float)(1.0 / (m->eta * m->eta));
+    for (int c = 0; c < 3; c++)
+        k->sigma_a[c] = (float)plan->sigma_a[c];
+    /* eta* (MJC03 sec. 4.4) with the axis ratio a = sqrt(1 - e^2): eta1 = 2(eta - 1) a^2 - eta + 2
+     * at phi_h = 0 (both directions along z, the minor axis), eta2 = 2(eta - 1) / a^2 - eta + 2 at
+     * phi_h = pi/2; clamped to 1.0001 where a very flat fibre would take it below 1 */
+    double a2 = 1.0 - m->eccentricity * m->eccentricity;
+    double eta1 = 2.0 * (m->eta - 1.0) * a2 - m->eta + 2.0, eta2 = 2.0 * (m->eta - 1.0) / a2 - m->eta + 2.0;
+    k->eccentric = m->eccentricity > 0.0;
+    plan->eta_star_mean = 0.5 * (eta1 + eta2);
+    plan->eta_star_swing = 0.5 * (eta1 - eta2);
+    k->eta_star_mean = (float)plan->eta_star_mean;
+    k->eta_star_swing = (float)plan->eta_star_swing;
+    plan->eta_star_min = k->eccentric ? fmax(1.0001, fmin(eta1, eta2)) : m->eta;
+    /* eta' >= eta, so the smallest index a lobe sees decides which roots and caustics can exist */
+    for (int p = 1; p < 3; p++) {
+        double smallest = p == 2 ? plan->eta_star_min : m->eta;
+        double fold = 1.0 / sin(M_PI / (3.0 * p));
+        k->fold_index[p] = (float)fold;
+        k->folds[p] = smallest < fold;
+        k->caustic[p] = smallest < fold + m->caustic_fade;
+    }
+    k->trt_branches = marschner_cubic_span(2, plan->eta_star_min) > M_PI - 1e-6 ? 3 : 1;
+    k->caustic_width = (float)m->caustic_width;
+    k->caustic_inv_two_w2 = (float)(1.0 / (2.0 * m->caustic_width * m->caustic_width));
+    k->caustic_norm = (float)(1.0 / (m->caustic_width * sqrt(2.0 * M_PI)));
+    k->caustic_fade = (float)m->caustic_fade;
+    k->caustic_limit = (float)m->caustic_limit;
+    k->glint_scale = (float)m->glint_scale;
 }
 
 hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **out, hb_error *error)

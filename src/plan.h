@@ -14,8 +14,10 @@ struct hb_plan {
     double beta_n[HB_MAX_LOBES];     /* dFH11 azimuthal roughness per lobe */
     double sigma_a[3];               /* sigma_a plus melanin */
     hb_deon deon;                    /* float constants of the SIMD kernels */
-    double marschner_mean_r, marschner_beta_r; /* MJC03 M_R = g(mean, beta; theta_h) */
-    hb_gaussian_lobe marschner_r;
+    double marschner_mean[3], marschner_beta[3]; /* MJC03 M_p = g(mean_p, beta_p; theta_h) */
+    double eta_star_mean, eta_star_swing;        /* MJC03 eta*(phi_h) = mean + swing cos(2 phi_h) */
+    double eta_star_min;                         /* MJC03: the smallest eta* of the fibre (eta if circular) */
+    hb_marschner marschner;                      /* float constants of the SIMD kernels */
 };
 
 #endif

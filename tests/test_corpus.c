@@ -77,6 +77,7 @@ static void test_hard_case_corpus(hb_test_ctx *t)
     const struct { hb_model model; hb_term term; const char *name; } terms[] = {
         { HB_MODEL_DEON, HB_TERM_FULL, "deon" },
         { HB_MODEL_DEON, HB_TERM_LONGITUDINAL, "deon longitudinal" },
+        { HB_MODEL_MARSCHNER, HB_TERM_FULL, "marschner" },
         { HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, "marschner longitudinal" },
     };
     for (size_t k = 0; k < sizeof terms / sizeof terms[0]; k++)

@@ -23,7 +23,9 @@ const char cli_model_options_help[] =
     "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
     "Material options:\n"
     "  --eta X  --sigma-a R,G,B  --eumelanin X  --pheomelanin X\n"
-    "  --beta-m X  --beta-n X  --alpha X  --ndf ggx|beckmann  --roughness X  --eccentricity X\n";
+    "  --beta-m X  --beta-n X  --alpha X  --ndf ggx|beckmann  --roughness X  --eccentricity X\n"
+    "  --glint-scale X  --caustic-width X  --caustic-fade X  --caustic-limit X   MJC03 TRT caustics\n"
+    "                                 (k_G 0.5, w_c 0.2618 rad, Delta eta' 0.3, Delta h_M 0.5)\n";
 
 void cli_model_args_default(cli_model_args *args)
 {
@@ -116,6 +118,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
 {
     static const char *const numeric[] = { "--eta", "--eumelanin", "--pheomelanin", "--beta-m", "--beta-n",
                                            "--alpha", "--roughness", "--eccentricity", "--detector-tolerance",
+                                           "--glint-scale", "--caustic-width", "--caustic-fade", "--caustic-limit",
                                            NULL };
     static const char *const with_value[] = { "--model", "--term", "--lobes", "--quality", "--isa", "--i0",
                                               "--ndf", "--sigma-a", "--pmax", "--quadrature", "--absorption",
@@ -157,7 +160,8 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
             return -1;
         }
         double *const fields[] = { &m->eta, &m->eumelanin, &m->pheomelanin, &m->beta_m, &m->beta_n,
-                                   &m->alpha, &m->roughness, &m->eccentricity, &o->detector_tolerance };
+                                   &m->alpha, &m->roughness, &m->eccentricity, &o->detector_tolerance,
+                                   &m->glint_scale, &m->caustic_width, &m->caustic_fade, &m->caustic_limit };
         *fields[num] = x;
         return 1;
     }

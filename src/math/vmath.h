@@ -15,6 +15,8 @@
 #define HB_PI_F 3.14159274f
 #define HB_PI_LO -8.74227766e-8f
 #define HB_PIO2_D 1.5707963267948966
+#define HB_TWO_PI_F 6.28318548f
+#define HB_TWO_PI_LO -1.74845553e-7f
 
 HB_INLINE vf vf_poly2(vf x, float c0, float c1, float c2)
 {
@@ -288,6 +290,13 @@ HB_INLINE vdw vdw_sin_taylor(vdw t)
     p = vdw_fma(p, z, vdw_set1(1.0 / 120.0));                /* 1/5! */
     p = vdw_fma(p, z, vdw_set1(-1.0 / 6.0));                 /* -1/3! */
     return vdw_fma(vdw_mul(p, z), t, t);
+}
+
+/* x - 2 pi k in [-pi, pi], with 2 pi split in two floats. */
+HB_INLINE vf wrap_angle(vf x)
+{
+    vf k = vf_round(vf_mul(x, vf_set1(0.159154943f)));
+    return vf_fnma(k, vf_set1(HB_TWO_PI_LO), vf_fnma(k, vf_set1(HB_TWO_PI_F), x));
 }
 
 #endif

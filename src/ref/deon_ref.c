@@ -75,8 +75,11 @@ static int theta_valid(float theta) { return fabsf(theta) <= 1.57079637f; } /* f
 static void eval_ref(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
 {
     if (plan->options.model == HB_MODEL_MARSCHNER) {
-        f[0] = f[1] = f[2] = hb_ref_marschner_longitudinal(plan->marschner_beta_r, plan->marschner_mean_r, theta_i,
-                                                           theta_o);
+        if (plan->options.term == HB_TERM_LONGITUDINAL)
+            f[0] = f[1] = f[2] = hb_ref_marschner_longitudinal(plan->marschner_beta[HB_LOBE_R],
+                                                               plan->marschner_mean[HB_LOBE_R], theta_i, theta_o);
+        else
+            hb_ref_marschner(plan, theta_i, phi_i, theta_o, phi_o, f);
         return;
     }
     if (plan->options.term == HB_TERM_LONGITUDINAL) {

@@ -6,9 +6,6 @@
 
 #include "longitudinal.h"
 
-#define HB_TWO_PI_F 6.28318548f
-#define HB_TWO_PI_LO -1.74845553e-7f
-
 /* Unpolarised Fresnel reflectance entering a dielectric of index eta > 1, cos_i in [0, 1]. */
 HB_INLINE vf fresnel_dielectric(vf cos_i, float eta, float inv_eta2)
 {
@@ -18,13 +15,6 @@ HB_INLINE vf fresnel_dielectric(vf cos_i, float eta, float inv_eta2)
     vf rs = vf_div(vf_sub(cos_i, eta_cos_t), vf_add(cos_i, eta_cos_t));
     vf rp = vf_div(vf_sub(eta_cos_i, cos_t), vf_add(eta_cos_i, cos_t));
     return vf_mul(vf_set1(0.5f), vf_fma(rs, rs, vf_mul(rp, rp)));
-}
-
-/* x - 2 pi k in [-pi, pi], with 2 pi split in two floats. */
-HB_INLINE vf wrap_angle(vf x)
-{
-    vf k = vf_round(vf_mul(x, vf_set1(0.159154943f)));
-    return vf_fnma(k, vf_set1(HB_TWO_PI_LO), vf_fnma(k, vf_set1(HB_TWO_PI_F), x));
 }
 
 /* cos(n phi) for n = 1..terms by the Chebyshev recurrence, for the Fourier detectors. */

@@ -11,13 +11,24 @@
  * cos^2(theta_d) is floored so the term stays finite. */
 #define HB_MJC_COS2_THETA_D_FLOOR 1e-8f
 
+/* M_p = g(alpha_p, beta_p; theta_h), the unit-area Gaussian (MJC03 sec. 4.2). */
+HB_INLINE vf gaussian_marschner(const hb_gaussian_lobe *lobe, vf theta_h)
+{
+    vf x = vf_sub(theta_h, vf_set1(lobe->mean));
+    return vf_mul(vf_exp_flush(vf_mul(vf_mul(x, x), vf_set1(-lobe->inv_two_beta2))), vf_set1(lobe->norm));
+}
+
+/* cos(theta_i) / cos^2(theta_d), the factor every lobe shares (SPEC.md section 2). */
+HB_INLINE vf projection_marschner(vf cos_theta_i, vf cos_theta_d)
+{
+    vf cos2_d = vf_max(vf_mul(cos_theta_d, cos_theta_d), vf_set1(HB_MJC_COS2_THETA_D_FLOOR));
+    return vf_div(vf_max(cos_theta_i, vf_set1(0.0f)), cos2_d);
+}
+
 /* g(alpha, beta; theta_h) cos(theta_i) / cos^2(theta_d) from the half and difference angles. */
 HB_INLINE vf longitudinal_marschner(const hb_gaussian_lobe *lobe, vf theta_h, vf cos_theta_i, vf cos_theta_d)
 {
-    vf x = vf_sub(theta_h, vf_set1(lobe->mean));
-    vf g = vf_mul(vf_exp_flush(vf_mul(vf_mul(x, x), vf_set1(-lobe->inv_two_beta2))), vf_set1(lobe->norm));
-    vf cos2_d = vf_max(vf_mul(cos_theta_d, cos_theta_d), vf_set1(HB_MJC_COS2_THETA_D_FLOOR));
-    return vf_div(vf_mul(g, vf_max(cos_theta_i, vf_set1(0.0f))), cos2_d);
+    return vf_mul(gaussian_marschner(lobe, theta_h), projection_marschner(cos_theta_i, cos_theta_d));
 }
 
 HB_INLINE vf longitudinal_marschner_angles(const hb_gaussian_lobe *lobe, vf theta_i, vf theta_o)
