@@ -121,21 +121,27 @@ static int check_budgets(const char *path, const row *rows, int nrows)
 }
 
 typedef struct config {
-    const char *term, *variant;
+    const char *model, *term, *variant;
+    hb_model model_enum;
     hb_term term_enum;
     hb_quality quality;
     int quadrature_order;
     hb_i0 i0;
 } config;
 
-/* What each row measures: M_p alone, and the full model (R..TRRT + residual, RGB) per quality. */
+/* What each row measures: dFH11's M_p alone and its full model (R..TRRT + residual, RGB) per
+ * quality; MJC03's longitudinal term and its full model (R + TT + TRT, RGB: one closed-form
+ * kernel for every quality). */
 static const config configs[] = {
-    { "longitudinal", "abramowitz", HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ },
-    { "longitudinal", "paper", HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER },
-    { "full", "fast", HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ },
-    { "full", "balanced", HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ },
-    { "full", "high", HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ },
-    { "full", "nodes35", HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ },
+    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ },
+    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER },
+    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ },
+    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ },
+    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ },
+    { "deon", "full", "nodes35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ },
+    { "marschner", "longitudinal", "gaussian", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0,
+      HB_I0_ABRAMOWITZ },
+    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ },
 };
 #define N_CONFIGS (sizeof configs / sizeof configs[0])
 
@@ -144,6 +150,7 @@ static void reference_of(const hb_material *m, const config *c)
 {
     hb_options o;
     hb_options_default(&o);
+    o.model = c->model_enum;
     o.term = c->term_enum;
     o.quality = HB_QUALITY_REFERENCE;
     hb_plan *plan;
@@ -159,7 +166,7 @@ static int run_once(const char *name)
 {
     for (size_t ci = 0; ci < N_CONFIGS; ci++) {
         char label[64];
-        snprintf(label, sizeof label, "%s/%s", configs[ci].term, configs[ci].variant);
+        snprintf(label, sizeof label, "%s/%s/%s", configs[ci].model, configs[ci].term, configs[ci].variant);
         if (strcmp(label, name) != 0)
             continue;
         hb_material m;
@@ -168,6 +175,7 @@ static int run_once(const char *name)
         make_inputs(m.beta_m * m.beta_m);
         hb_options o;
         hb_options_default(&o);
+        o.model = configs[ci].model_enum;
         o.term = configs[ci].term_enum;
         o.quality = configs[ci].quality;
         o.quadrature_order = configs[ci].quadrature_order;
@@ -199,10 +207,10 @@ int main(int argc, char **argv)
             return run_once(argv[++i]);
         else if (strcmp(argv[i], "--list") == 0) {
             for (size_t ci = 0; ci < N_CONFIGS; ci++)
-                printf("%s/%s\n", configs[ci].term, configs[ci].variant);
+                printf("%s/%s/%s\n", configs[ci].model, configs[ci].term, configs[ci].variant);
             return 0;
         } else {
-            fprintf(stderr, "usage: %s [--budgets FILE] [--results DIR] | --list | --once TERM/VARIANT\n", argv[0]);
+            fprintf(stderr, "usage: %s [--budgets FILE] [--results DIR] | --list | --once MODEL/TERM/VARIANT\n", argv[0]);
             return 2;
         }
     }
@@ -227,53 +235,53 @@ int main(int argc, char **argv)
                 continue;
             hb_options o;
             hb_options_default(&o);
+            o.model = c->model_enum;
             o.term = c->term_enum;
             o.quality = c->quality;
             o.quadrature_order = c->quadrature_order;
             o.i0 = c->i0;
             o.isa = (hb_isa)isa;
-            row r = { "deon", c->term, c->variant, HB_ISA_SCALAR, 0, 0, 0 };
+            row r = { c->model, c->term, c->variant, HB_ISA_SCALAR, 0, 0, 0 };
             if (time_plan(&m, &o, &r))
                 rows[nrows++] = r;
         }
     }
-    printf("dFH11 on blond hair (sigma_a 0.1/0.25/0.6, beta_m %.2g, beta_n %.2g), batch %d, one core\n", m.beta_m,
-           m.beta_n, BATCH);
-    printf("| term | variant | ISA | ns/sample (min) | ns/sample (median) | Msamples/s | max error | speed-up vs scalar |\n");
-    printf("|---|---|---|---|---|---|---|---|\n");
+    printf("Blond hair (sigma_a 0.1/0.25/0.6, beta_m %.2g, beta_n %.2g, alpha %.3g), batch %d, one core\n", m.beta_m,
+           m.beta_n, m.alpha, BATCH);
+    printf("| model | term | variant | ISA | ns/sample (min) | ns/sample (median) | Msamples/s | max error | speed-up vs scalar |\n");
+    printf("|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < nrows; k++) {
         double scalar = 0.0;
         for (int j = 0; j < nrows; j++)
             if (rows[j].isa == HB_ISA_SCALAR && !strcmp(rows[j].variant, rows[k].variant) &&
-                !strcmp(rows[j].term, rows[k].term))
+                !strcmp(rows[j].term, rows[k].term) && !strcmp(rows[j].model, rows[k].model))
                 scalar = rows[j].min_ns;
-        printf("| %s | %s | %s | %.2f | %.2f | %.1f | %.1e | %.1fx |\n", rows[k].term, rows[k].variant,
+        printf("| %s | %s | %s | %s | %.2f | %.2f | %.1f | %.1e | %.1fx |\n", rows[k].model, rows[k].term, rows[k].variant,
                hb_isa_name(rows[k].isa), rows[k].min_ns, rows[k].median_ns, 1e3 / rows[k].min_ns,
                rows[k].max_rel_err, scalar / rows[k].min_ns);
     }
-    static bench_point points[N_CONFIGS * HB_ISA_COUNT + N_CONFIGS];
-    static char labels[N_CONFIGS * HB_ISA_COUNT + N_CONFIGS][48];
-    int npoints = 0;
-    for (int k = 0; k < nrows; k++)
-        if (!strcmp(rows[k].term, "full") || strcmp(rows[k].variant, "paper")) { /* the paper series is 100% off */
+    /* per model: a CSV of every row and an SVG of the full model's error against time */
+    static const char *const models[][2] = { { "deon", "d'Eon 2011 full model" },
+                                             { "marschner", "Marschner 2003 full model" } };
+    for (int mi = 0; mi < 2 && results_dir; mi++) {
+        static bench_point points[N_CONFIGS * HB_ISA_COUNT], full[N_CONFIGS * HB_ISA_COUNT];
+        static char labels[N_CONFIGS * HB_ISA_COUNT][48];
+        int npoints = 0, nfull = 0;
+        for (int k = 0; k < nrows; k++) {
+            if (strcmp(rows[k].model, models[mi][0]))
+                continue;
             snprintf(labels[npoints], sizeof labels[0], "%s/%s", rows[k].term, rows[k].variant);
             points[npoints] = (bench_point){ labels[npoints], hb_isa_name(rows[k].isa), rows[k].min_ns,
                                              rows[k].max_rel_err };
+            if (!strcmp(rows[k].term, "full")) /* M_p alone is another quantity */
+                full[nfull++] = points[npoints];
             npoints++;
         }
-    if (results_dir) {
-        char csv[512], svg[512];
-        snprintf(csv, sizeof csv, "%s/deon.csv", results_dir);
-        snprintf(svg, sizeof svg, "%s/deon.svg", results_dir);
-        /* the plot compares the full model's quality levels (M_p alone is another quantity) */
-        static bench_point full[N_CONFIGS * HB_ISA_COUNT];
-        int nfull = 0;
-        for (int k = 0; k < npoints; k++)
-            if (!strncmp(points[k].label, "full/", 5))
-                full[nfull++] = points[k];
-        if (bench_write_csv(csv, points, npoints) ||
-            bench_write_svg(svg, "d'Eon 2011 full model: error against time per sample, Pareto front per ISA", full,
-                            nfull))
+        char csv[512], svg[512], title[128];
+        snprintf(csv, sizeof csv, "%s/%s.csv", results_dir, models[mi][0]);
+        snprintf(svg, sizeof svg, "%s/%s.svg", results_dir, models[mi][0]);
+        snprintf(title, sizeof title, "%s: error against time per sample, Pareto front per ISA", models[mi][1]);
+        if (bench_write_csv(csv, points, npoints) || bench_write_svg(svg, title, full, nfull))
             fprintf(stderr, "bench: cannot write %s or %s\n", csv, svg);
         else
             printf("wrote %s and %s\n", csv, svg);

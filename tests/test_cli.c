@@ -196,8 +196,61 @@ static void test_deon_commands(hb_test_ctx *t)
           "furnace output: %s", r.out);
 }
 
+/* hairbsdf eval --model marschner with every option it has, against the library, and the
+ * double reference by --quality reference; the full-model furnace runs. */
+static void test_marschner_commands(hb_test_ctx *t)
+{
+    run_result r;
+    if (!run_tool(t, "eval --model marschner --lobes R,TT,TRT --eta 1.6 --sigma-a 0.2,0.3,0.5 --beta-m 0.12 "
+                     "--alpha 0.05 --eccentricity 0.4 --glint-scale 2 --caustic-width 0.2 --caustic-fade 0.25 "
+                     "--caustic-limit 0.4 --absorption paper --lobe-beta-m 2=0.3 --lobe-alpha 1=0.02",
+                  "0.3,0.2,-0.37,0.5\n", &r))
+        return;
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.eta = 1.6, m.beta_m = 0.12, m.alpha = 0.05, m.eccentricity = 0.4;
+    m.sigma_a[0] = 0.2, m.sigma_a[1] = 0.3, m.sigma_a[2] = 0.5;
+    m.glint_scale = 2, m.caustic_width = 0.2, m.caustic_fade = 0.25, m.caustic_limit = 0.4;
+    m.lobe_beta_m[2] = 0.3, m.lobe_alpha[1] = 0.02, m.lobe_alpha_override = 2u;
+    o.model = HB_MODEL_MARSCHNER;
+    o.lobes = 7u;
+    o.absorption = HB_ABSORPTION_PAPER;
+    float ti = 0.3f, pi = 0.2f, to = -0.37f, po = 0.5f, f[3], got[3];
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1) {
+            run_tool(t, "eval --model marschner --quality reference --eccentricity 0.4", "0.3,0.2,-0.37,0.5\n", &r);
+            hb_material_default(&m);
+            hb_options_default(&o);
+            m.eccentricity = 0.4;
+            o.model = HB_MODEL_MARSCHNER;
+            o.quality = HB_QUALITY_REFERENCE;
+        }
+        hb_plan *plan = NULL;
+        CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "plan");
+        if (!plan)
+            return;
+        hb_eval_angles(plan, 1, (hb_angles_soa){ &ti, &pi, &to, &po }, (hb_rgb_soa){ &f[0], &f[1], &f[2] }, NULL);
+        hb_plan_destroy(plan);
+        CHECK(t, r.status == 0 && sscanf(r.out, "%g,%g,%g", &got[0], &got[1], &got[2]) == 3 && got[0] == f[0] &&
+                     got[2] == f[2] && f[0] > 0.0f,
+              "marschner eval pass %d: '%s' vs %.9g (stderr %s)", pass, r.out, f[0], r.err);
+    }
+    run_tool(t, "eval --model marschner --lobes TRRT", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "marschner"), "marschner TRRT: %s", r.err);
+    run_tool(t, "eval --model marschner --caustic-width 0", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "caustic_width"), "caustic width 0: %s", r.err);
+    run_tool(t, "furnace --model marschner --theta-o 0.3", "", &r);
+    double theta, e[3];
+    CHECK(t, r.status == 0 && sscanf(strchr(r.out, '\n') + 1, "%lf,%lf,%lf,%lf", &theta, &e[0], &e[1], &e[2]) == 4 &&
+                 e[0] > 1.5 && e[0] < 2.5,
+          "marschner furnace: %s", r.out);
+}
+
 const hb_test hb_tests_cli[] = {
     { "cli_deon_commands", test_deon_commands, 0 },
+    { "cli_marschner_commands", test_marschner_commands, 0 },
     { "cli_eval_matches_library", test_eval_matches_library, 0 },
     { "cli_eval_errors", test_eval_errors, 0 },
     { "cli_help", test_help, 0 },

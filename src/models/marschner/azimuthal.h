@@ -14,34 +14,33 @@
 /* cos(theta_d) floor for eta' = sqrt(eta^2 - sin^2 theta_d) / cos(theta_d) at theta_d = +-pi/2. */
 #define HB_MJC_COS_THETA_D_FLOOR 1e-6f
 
-/* (a - b) / (a + b) squared for a, b >= 0, and 1 where both vanish (the total reflection limit). */
-HB_INLINE vf reflectance_ratio2(vf a, vf b)
-{
-    vf sum = vf_add(a, b);
-    vf r = vf_div(vf_sub(a, b), vf_max(sum, vf_set1(1e-30f)));
-    return vf_select(vf_gt(sum, vf_set1(0.0f)), vf_mul(r, r), vf_set1(1.0f));
-}
-
 /* The survey's corrected Fresnel F = (F_s(n1s, n2s)^2 + F_t(n1p, n2p)^2) / 2 at an angle of
  * incidence with sine s and cosine c (the survey's "Definition of F"; MJC03 sec. 4.1 and its
  * appendix B): eta' for the perpendicular component, eta'' for the parallel one. Written
  * homogeneously, with k = n2 cos(refracted) = sqrt(n2^2 - n1^2 s^2), so no index is divided by:
- *   F_s = (n1 c - k_s) / (n1 c + k_s),   F_t = (n1 k_p - n2^2 c) / (n1 k_p + n2^2 c).
- * Outside the fibre (n1, n2) = (1, eta'), (1, eta''); inside F(1/eta', 1/eta'', gamma_t) is
- * the same ratio with (eta', 1), (eta'', 1). k = 0 is total reflection. */
+ *   F_s = (n1 c - k_s) / (n1 c + k_s),   F_t = (n1 k_p - n2^2 c) / (n1 k_p + n2^2 c),
+ * and both ratios over one division. Outside the fibre (n1, n2) = (1, eta'), (1, eta''); inside
+ * F(1/eta', 1/eta'', gamma_t) is the same ratio with (eta', 1), (eta'', 1). k = 0 is total
+ * reflection; where a ratio is 0/0 (grazing and total at once) it is 1. */
 HB_INLINE vf fresnel_bravais(vf n1s, vf n2s, vf n1p, vf n2p, vf s, vf c)
 {
     vf s2 = vf_mul(s, s);
     vf ks = vf_sqrt(vf_max(vf_fnma(vf_mul(n1s, n1s), s2, vf_mul(n2s, n2s)), vf_set1(0.0f)));
     vf kp = vf_sqrt(vf_max(vf_fnma(vf_mul(n1p, n1p), s2, vf_mul(n2p, n2p)), vf_set1(0.0f)));
-    vf fs2 = reflectance_ratio2(vf_mul(n1s, c), ks);
-    vf ft2 = reflectance_ratio2(vf_mul(n1p, kp), vf_mul(vf_mul(n2p, n2p), c));
-    return vf_mul(vf_set1(0.5f), vf_add(fs2, ft2));
+    vf xs = vf_mul(n1s, c), ys = ks, xp = vf_mul(n1p, kp), yp = vf_mul(vf_mul(n2p, n2p), c);
+    vf one = vf_set1(1.0f);
+    xs = vf_select(vf_gt(vf_add(xs, ys), vf_set1(0.0f)), xs, one);
+    xp = vf_select(vf_gt(vf_add(xp, yp), vf_set1(0.0f)), xp, one);
+    vf ds = vf_add(xs, ys), dp = vf_add(xp, yp), ns = vf_sub(xs, ys), np = vf_sub(xp, yp);
+    vf ds2 = vf_mul(ds, ds), dp2 = vf_mul(dp, dp);
+    vf num = vf_fma(vf_mul(ns, ns), dp2, vf_mul(vf_mul(np, np), ds2));
+    return vf_div(vf_mul(vf_set1(0.5f), num), vf_mul(ds2, dp2));
 }
 
 /* The Bravais indices for one fibre index and the cubic phi_hat(p, gamma) = B gamma + A gamma^3 + p pi. */
 typedef struct mjc_index {
     vf eta_perp;  /* eta'  = sqrt(eta^2 - sin^2 theta_d) / cos(theta_d)  (the survey's eta') */
+    vf inv_eta_perp;
     vf eta_par;   /* eta'' = eta^2 cos(theta_d) / sqrt(eta^2 - sin^2 theta_d) = eta^2 / eta' */
     vf cubic_a;   /* -8 p c / pi^3, c = asin(1 / eta') */
     vf cubic_b;   /* 6 p c / pi - 2 */
@@ -54,8 +53,10 @@ HB_INLINE mjc_index bravais_index(vf eta2_minus_one, vf cos_theta_d, int p)
 {
     mjc_index ix;
     vf cos_d = vf_max(cos_theta_d, vf_set1(HB_MJC_COS_THETA_D_FLOOR));
-    ix.eta_perp = vf_div(vf_sqrt(vf_fma(cos_d, cos_d, eta2_minus_one)), cos_d);
-    ix.eta_par = vf_div(vf_add(eta2_minus_one, vf_set1(1.0f)), ix.eta_perp);
+    vf q = vf_sqrt(vf_fma(cos_d, cos_d, eta2_minus_one)), inv_q = vf_div(vf_set1(1.0f), q);
+    ix.eta_perp = vf_div(q, cos_d);
+    ix.inv_eta_perp = vf_mul(cos_d, inv_q);
+    ix.eta_par = vf_mul(vf_add(eta2_minus_one, vf_set1(1.0f)), ix.inv_eta_perp);
     vf c = vf_atan2(cos_d, vf_sqrt(eta2_minus_one));
     ix.cubic_a = vf_mul(c, vf_set1(-8.0f * (float)p / 31.0062767f));
     ix.cubic_b = vf_fma(c, vf_set1(6.0f * (float)p / 3.14159265f), vf_set1(-2.0f));
@@ -75,7 +76,7 @@ HB_INLINE void attenuation_marschner(const hb_marschner *m, int p, const mjc_ind
 {
     vf one = vf_set1(1.0f);
     vf fe = fresnel_bravais(one, ix->eta_perp, one, ix->eta_par, sin_gi, cos_gi);
-    vf sin_gt = vf_div(sin_gi, ix->eta_perp);
+    vf sin_gt = vf_mul(sin_gi, ix->inv_eta_perp);
     vf cos_gt = vf_sqrt(vf_max(vf_fnma(sin_gt, sin_gt, one), vf_set1(0.0f)));
     vf base = vf_mul(vf_sub(one, fe), vf_sub(one, fe));
     if (p == 2)

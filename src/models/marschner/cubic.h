@@ -14,20 +14,9 @@
 
 #include "../../math/vmath.h"
 
-/* |P| below this is treated as this (with its sign): the roots are continuous there. */
-#define HB_CUBIC_P_FLOOR 1e-12f
-
-/* sinh(y) for y >= 0 without cancellation at small y. */
-HB_INLINE vf sinh_nonnegative(vf y)
-{
-    vf e = vf_exp(y);
-    vf big = vf_mul(vf_set1(0.5f), vf_sub(e, vf_div(vf_set1(1.0f), e)));
-    vf y2 = vf_mul(y, y); /* y (1 + y^2/6 + y^4/120 + y^6/5040): relative error < 3e-9 for y < 0.5 */
-    vf small = vf_mul(y, vf_fma(y2, vf_fma(y2, vf_fma(y2, vf_set1(1.0f / 5040.0f), vf_set1(1.0f / 120.0f)),
-                                           vf_set1(1.0f / 6.0f)),
-                                vf_set1(1.0f)));
-    return vf_select(vf_lt(y, vf_set1(0.5f)), small, big);
-}
+/* |P| below this is treated as this (with its sign): the roots are continuous there, and
+ * it keeps z = Q / (2 r^3) below 1e17 for every cubic of the model, so z^2 cannot overflow. */
+#define HB_CUBIC_P_FLOOR 1e-6f
 
 /* The root that always exists (the only one unless P < 0 and |z| <= 1), and whether all three
  * are real. Writes r and z for the trigonometric roots. */
@@ -36,22 +25,23 @@ HB_INLINE vf cubic_first_root(vf P, vf Q, vf *r_out, vf *z_out, vm *three)
     vf abs_p = vf_max(vf_abs(P), vf_set1(HB_CUBIC_P_FLOOR));
     vf r = vf_sqrt(vf_mul(abs_p, vf_set1(1.0f / 3.0f)));
     vf z = vf_div(Q, vf_mul(vf_set1(2.0f), vf_mul(r, vf_mul(r, r))));
-    vf az = vf_abs(z);
+    vf az = vf_abs(z), z2 = vf_mul(z, z);
     vm hyperbolic_cos = vf_lt(P, vf_set1(0.0f));
     *three = vm_and(hyperbolic_cos, vf_le(az, vf_set1(1.0f)));
-    /* asinh|z| or acosh|z| = log(|z| + sqrt(z^2 +- 1)): log1p for small |z| (asinh only), and
-     * log|z| + log(1 + sqrt(1 +- 1/z^2)) for |z| >= 1 so z^2 cannot overflow */
-    vf s = vf_select(hyperbolic_cos, vf_set1(-1.0f), vf_set1(1.0f));
-    vf az_safe = vf_max(az, vf_set1(1.0f));
-    vf inv2 = vf_div(vf_set1(1.0f), vf_mul(az_safe, az_safe));
-    vf large = vf_add(vf_log(az_safe), vf_log1p(vf_sqrt(vf_max(vf_fma(s, inv2, vf_set1(1.0f)), vf_set1(0.0f)))));
-    vf az2 = vf_mul(az, az);
-    vf small = vf_log1p(vf_add(az, vf_div(az2, vf_add(vf_set1(1.0f), vf_sqrt(vf_add(vf_set1(1.0f), az2))))));
-    vf a = vf_select(vf_lt(az, vf_set1(1.0f)), small, large);
-    vf y = vf_mul(a, vf_set1(1.0f / 3.0f));
-    vf e = vf_exp(y);
-    vf cosh_y = vf_mul(vf_set1(0.5f), vf_add(e, vf_div(vf_set1(1.0f), e)));
-    vf hyper = vf_select(hyperbolic_cos, cosh_y, sinh_nonnegative(y));
+    /* asinh|z| = log1p(|z| + z^2 / (sqrt(z^2 + 1) + 1)) and acosh|z| = log1p(|z| - 1 + sqrt(z^2 - 1)),
+     * both without cancellation (acosh is only used for |z| > 1) */
+    vf root_term = vf_sqrt(vf_max(vf_add(z2, vf_select(hyperbolic_cos, vf_set1(-1.0f), vf_set1(1.0f))), vf_set1(0.0f)));
+    vf excess = vf_select(hyperbolic_cos, vf_sub(root_term, vf_set1(1.0f)),
+                          vf_div(z2, vf_add(root_term, vf_set1(1.0f))));
+    vf y = vf_mul(vf_log1p(vf_add(az, excess)), vf_set1(1.0f / 3.0f));
+    /* sinh(y) or cosh(y) from one exponential; sinh by its series where e - 1/e would cancel */
+    vf e = vf_exp(y), inv_e = vf_div(vf_set1(1.0f), e);
+    vf y2 = vf_mul(y, y); /* y (1 + y^2/6 + y^4/120 + y^6/5040): relative error < 3e-9 for y < 0.5 */
+    vf sinh_series = vf_mul(y, vf_fma(y2, vf_fma(y2, vf_fma(y2, vf_set1(1.0f / 5040.0f), vf_set1(1.0f / 120.0f)),
+                                                 vf_set1(1.0f / 6.0f)),
+                                      vf_set1(1.0f)));
+    vf sinh_y = vf_select(vf_lt(y, vf_set1(0.5f)), sinh_series, vf_mul(vf_set1(0.5f), vf_sub(e, inv_e)));
+    vf hyper = vf_select(hyperbolic_cos, vf_mul(vf_set1(0.5f), vf_add(e, inv_e)), sinh_y);
     vf sign_z = vf_select(vf_lt(z, vf_set1(0.0f)), vf_set1(-1.0f), vf_set1(1.0f));
     *r_out = r;
     *z_out = z;
