@@ -140,7 +140,10 @@ demo: all $(BENCH_BIN)
 	$(RUN) $(TOOL) furnace --model deon --by-lobe --theta-o 0,0.8,1.45
 	$(RUN) $(TOOL) dump --model deon --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_deon.png
 	$(RUN) $(TOOL) dump --model deon --eumelanin 0.3 --theta-i 0.3 -o $(B)/lobes_deon.pfm
-	@echo "lobe images: $(B)/lobes_deon.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
+	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model marschner --eumelanin 0.3
+	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model marschner --eumelanin 0.3 --quality reference
+	$(RUN) $(TOOL) dump --model marschner --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_marschner.png
+	@echo "lobe images: $(B)/lobes_deon.png, $(B)/lobes_marschner.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
 	$(RUN) $(BENCH_BIN)
 
 # libFuzzer (clang): CLI parsing and plan creation + evaluation, FUZZ_SECONDS per target; the
@@ -162,6 +165,8 @@ images: $(TOOL)
 	  -o docs/images/deon_brown_theta0.3.png
 	$(TOOL) dump --model deon --theta-i -1.0 --beta-m 0.2 --beta-n 0.6 --exposure 2 --width 384 --height 192 \
 	  -o docs/images/deon_white_theta-1.0.png
+	$(TOOL) dump --model marschner --eumelanin 0.3 --theta-i 0.3 --exposure 2 --width 384 --height 192 \
+	  -o docs/images/marschner_brown_theta0.3.png
 
 # The pkg-config file is written at install time, so it always names this PREFIX.
 install: all
