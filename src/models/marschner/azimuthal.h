@@ -96,6 +96,16 @@ HB_INLINE vf azimuthal_marschner_r(const mjc_index *ix, vf phi)
     return vf_mul(fresnel_bravais(one, ix->eta_perp, one, ix->eta_par, s, c), vf_mul(vf_abs(c), vf_set1(0.25f)));
 }
 
+/* phi - p pi wrapped to [-pi, pi], for phi in [-pi, pi], so that -phi gives exactly its negative:
+ * phi itself for even p, phi -+ pi (pi split in two floats) for odd p. */
+HB_INLINE vf centre_on_lobe(vf phi, int p)
+{
+    if (p % 2 == 0)
+        return phi;
+    vf hi = vf_copysign(vf_set1(HB_PI_F), phi), lo = vf_copysign(vf_set1(HB_PI_LO), phi);
+    return vf_sub(vf_sub(phi, hi), lo);
+}
+
 /* sum over the roots gamma_i of phi_hat(p, gamma_i) = phi + 2 pi k of A(p, h) |2 d phi_hat / dh|^-1
  * (the survey's N_p), for the plan's branches k. */
 HB_INLINE void azimuthal_marschner_roots(const hb_marschner *m, int p, int all_three, int branches,
@@ -103,7 +113,7 @@ HB_INLINE void azimuthal_marschner_roots(const hb_marschner *m, int p, int all_t
 {
     vf inv_a = vf_div(vf_set1(1.0f), ix->cubic_a);
     vf P = vf_mul(ix->cubic_b, inv_a);
-    vf target = wrap_angle(vf_sub(phi, vf_set1((float)p * HB_PI_F))); /* phi_hat - p pi = target + 2 pi k */
+    vf target = centre_on_lobe(phi, p); /* phi_hat - p pi = target + 2 pi k */
     N[0] = N[1] = N[2] = vf_set1(0.0f);
     for (int k = -(branches / 2); k <= branches / 2; k++) {
         vf Q = vf_mul(vf_neg(vf_add(target, vf_set1(HB_TWO_PI_F * (float)k))), inv_a);
@@ -151,7 +161,7 @@ HB_INLINE void caustic_marschner(const hb_marschner *m, int p, const mjc_index *
     vf x = vf_mul(vf_sub(ix->eta_perp, vf_set1(m->fold_index[p])), vf_set1(1.0f / m->caustic_fade));
     x = vf_min(vf_max(x, vf_set1(0.0f)), vf_set1(1.0f));
     vf t = vf_fnma(vf_mul(x, x), vf_fnma(vf_set1(2.0f), x, vf_set1(3.0f)), vf_set1(1.0f)); /* 1 - smoothstep */
-    vf centred = wrap_angle(vf_sub(phi, vf_set1((float)p * HB_PI_F)));
+    vf centred = centre_on_lobe(phi, p);
     vf d_plus = wrap_angle(vf_sub(centred, phi_c)), d_minus = wrap_angle(vf_add(centred, phi_c));
     vf g_plus = vf_exp_flush(vf_mul(vf_mul(d_plus, d_plus), vf_set1(-m->caustic_inv_two_w2)));
     vf g_minus = vf_exp_flush(vf_mul(vf_mul(d_minus, d_minus), vf_set1(-m->caustic_inv_two_w2)));

@@ -59,11 +59,14 @@ HB_INLINE void cubic_roots(vf P, vf Q, int all_three, vf root[3], vm real[3])
     real[1] = real[2] = vm_not(real[0]);
     root[1] = root[2] = vf_set1(0.0f);
     if (all_three) {
-        /* 2 r cos(t - 2 pi k / 3) with t = acos(-z) / 3, from one sincos */
-        vf t = vf_mul(vf_acos(vf_max(vf_min(vf_neg(z), vf_set1(1.0f)), vf_set1(-1.0f))), vf_set1(1.0f / 3.0f));
+        /* 2 r cos(t - 2 pi k / 3), t = acos(-z) / 3, from one sincos. Computed for -|z| and the
+         * set negated for z > 0 (the roots of Q and -Q are negatives), so phi and -phi give
+         * roots that are exact negatives, as they are for the hyperbolic root. */
+        vf t = vf_mul(vf_acos(vf_min(vf_abs(z), vf_set1(1.0f))), vf_set1(1.0f / 3.0f));
         vf st, ct;
         vf_sincos(t, &st, &ct);
-        vf two_r = vf_add(r, r);
+        vf sign_z = vf_select(vf_lt(z, vf_set1(0.0f)), vf_set1(-1.0f), vf_set1(1.0f));
+        vf two_r = vf_mul(vf_mul(vf_set1(-2.0f), sign_z), r);
         vf half = vf_mul(vf_set1(-0.5f), ct), root3_half = vf_mul(vf_set1(0.866025404f), st);
         first = vf_select(three, vf_mul(two_r, ct), first);
         root[1] = vf_mul(two_r, vf_add(half, root3_half)); /* k = 1: cos(t - 2 pi / 3) */
