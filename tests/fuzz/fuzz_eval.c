@@ -26,13 +26,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     hb_options o;
     hb_material_default(&m);
     hb_options_default(&o);
-    double params[8];
+    double params[12];
     uint8_t opts[8];
     take(&data, &size, params, sizeof params);
     take(&data, &size, opts, sizeof opts);
     m.eta = params[0], m.sigma_a[0] = params[1], m.sigma_a[1] = fabs(params[1]), m.sigma_a[2] = params[2];
     m.beta_m = params[3], m.beta_n = params[4], m.alpha = params[5], m.eumelanin = params[6];
     m.lobe_beta_n[opts[7] & 7] = params[7];
+    m.eccentricity = params[8], m.glint_scale = params[9], m.caustic_width = params[10], m.caustic_fade = params[11];
     o.model = (hb_model)(opts[0] % 4);
     o.term = (hb_term)(opts[1] % 3);
     o.quality = (hb_quality)(opts[2] % 5);
