@@ -40,6 +40,16 @@ double hb_test_uniform(hb_test_ctx *t)
     return (double)(z >> 11) * 0x1p-53;
 }
 
+void hb_test_vectors_of(float theta_i, float phi_i, float theta_o, float phi_o, float *const w[6], size_t k)
+{
+    const double dirs[2][2] = { { theta_i, phi_i }, { theta_o, phi_o } };
+    for (int d = 0; d < 2; d++) {
+        w[3 * d][k] = (float)(sin(dirs[d][1]) * cos(dirs[d][0]));
+        w[3 * d + 1][k] = (float)sin(dirs[d][0]);
+        w[3 * d + 2][k] = (float)(cos(dirs[d][1]) * cos(dirs[d][0]));
+    }
+}
+
 double hb_test_spec_error(float *const f[3], float *const ref[3], size_t n, size_t *worst_sample)
 {
     double peak = 0.0, worst = 0.0;

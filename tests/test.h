@@ -44,6 +44,9 @@ static inline double hb_test_range(hb_test_ctx *t, double lo, double hi) { retur
  * peak being the largest reference value. */
 double hb_test_spec_error(float *const f[3], float *const ref[3], size_t n, size_t *worst_sample);
 
+/* Unit vectors of sample k's angle pair (SPEC.md section 1): w[0..2] = w_i, w[3..5] = w_o. */
+void hb_test_vectors_of(float theta_i, float phi_i, float theta_o, float phi_o, float *const w[6], size_t k);
+
 /* Error of a float result in units of the float spacing at the double reference. */
 double hb_test_ulp_error(float got, double want);
 

@@ -37,12 +37,8 @@ static void test_matches_reference(hb_test_ctx *t)
             pi[k] = (float)hb_test_range(t, -M_PI, M_PI), po[k] = (float)hb_test_range(t, -M_PI, M_PI);
             if (k < 4)
                 ti[k] = k % 2 ? 1.57079637f : -1.57079637f, to[k] = -ti[k];
-            double dirs[2][2] = { { ti[k], pi[k] }, { to[k], po[k] } };
-            for (int d = 0; d < 2; d++) {
-                w[3 * d][k] = (float)(sin(dirs[d][1]) * cos(dirs[d][0]));
-                w[3 * d + 1][k] = (float)sin(dirs[d][0]);
-                w[3 * d + 2][k] = (float)(cos(dirs[d][1]) * cos(dirs[d][0]));
-            }
+            hb_test_vectors_of(ti[k], pi[k], to[k], po[k], (float *const[6]){ w[0], w[1], w[2], w[3], w[4], w[5] },
+                           (size_t)k);
         }
         hb_plan *plan = marschner_plan(t, betas[b], 0.035, HB_QUALITY_BALANCED);
         hb_plan *ref_plan = marschner_plan(t, betas[b], 0.035, HB_QUALITY_REFERENCE);

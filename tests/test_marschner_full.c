@@ -63,12 +63,8 @@ static void directions(hb_test_ctx *t, float *ti, float *pi, float *to, float *p
         if (k < 6) /* grazing pairs, and phi exactly 0 and pi */
             ti[k] = k % 2 ? 1.57079637f : -1.57079637f, to[k] = k < 4 ? -ti[k] : 0.3f, pi[k] = 0.0f,
             po[k] = k < 2 ? 0.0f : 3.14159265f;
-        double dirs[2][2] = { { ti[k], pi[k] }, { to[k], po[k] } };
-        for (int d = 0; d < 2; d++) {
-            w[3 * d][k] = (float)(sin(dirs[d][1]) * cos(dirs[d][0]));
-            w[3 * d + 1][k] = (float)sin(dirs[d][0]);
-            w[3 * d + 2][k] = (float)(cos(dirs[d][1]) * cos(dirs[d][0]));
-        }
+        hb_test_vectors_of(ti[k], pi[k], to[k], po[k], (float *const[6]){ w[0], w[1], w[2], w[3], w[4], w[5] },
+                           (size_t)k);
     }
 }
 

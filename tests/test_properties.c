@@ -77,12 +77,8 @@ static void test_properties(hb_test_ctx *t)
                 /* phi = phi_o - phi_i just inside +pi, against just inside -pi */
                 wrapped.ti[j] = b.ti[j & ~1], wrapped.to[j] = b.to[j & ~1], wrapped.pi[j] = 0.0f;
                 wrapped.po[j] = j % 2 ? 3.1415925f : -3.1415925f;
-                double dirs[2][2] = { { b.ti[j], b.pi[j] }, { b.to[j], b.po[j] } };
-                for (int d = 0; d < 2; d++) {
-                    w[3 * d][j] = (float)(sin(dirs[d][1]) * cos(dirs[d][0]));
-                    w[3 * d + 1][j] = (float)sin(dirs[d][0]);
-                    w[3 * d + 2][j] = (float)(cos(dirs[d][1]) * cos(dirs[d][0]));
-                }
+                hb_test_vectors_of(b.ti[j], b.pi[j], b.to[j], b.po[j], (float *const[6]){ w[0], w[1], w[2], w[3], w[4], w[5] },
+                                   (size_t)j);
             }
             hb_plan *plan = plan_for(t, &m, models[mi], t->isa), *scalar = plan_for(t, &m, models[mi], HB_ISA_SCALAR);
             if (!plan || !scalar)
