@@ -37,7 +37,7 @@ typedef struct hb_marschner {
     float sigma_a[3];
     hb_gaussian_lobe lobe[3];
     float caustic_inv_two_w2, caustic_norm, caustic_width; /* the fade and glint Gaussian g(w_c; x) */
-    float caustic_fade, caustic_limit, glint_scale;
+    float inv_caustic_fade, caustic_limit, glint_scale;
 } hb_marschner;
 
 /* dFH11's Gaussian detector D_p (eq. 11), a wrapped Gaussian (a Jacobi theta function),

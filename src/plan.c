@@ -372,7 +372,7 @@ static void derive_marschner(hb_plan *plan)
     k->caustic_width = (float)m->caustic_width;
     k->caustic_inv_two_w2 = (float)(1.0 / (2.0 * m->caustic_width * m->caustic_width));
     k->caustic_norm = (float)(1.0 / (m->caustic_width * sqrt(2.0 * M_PI)));
-    k->caustic_fade = (float)m->caustic_fade;
+    k->inv_caustic_fade = (float)(1.0 / m->caustic_fade);
     k->caustic_limit = (float)m->caustic_limit;
     k->glint_scale = (float)m->glint_scale;
 }

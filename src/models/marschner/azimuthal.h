@@ -158,7 +158,7 @@ HB_INLINE void caustic_marschner(const hb_marschner *m, int p, const mjc_index *
     vf curvature = vf_abs(vf_div(vf_mul(vf_mul(vf_set1(6.0f), ix->cubic_a), gamma_c), vf_mul(c, c)));
     vf dh = vf_sqrt(vf_div(vf_set1(2.0f * m->caustic_width), vf_max(curvature, vf_set1(1e-30f))));
     dh = vf_min(vf_add(dh, dh), vf_set1(m->caustic_limit));
-    vf x = vf_mul(vf_sub(ix->eta_perp, vf_set1(m->fold_index[p])), vf_set1(1.0f / m->caustic_fade));
+    vf x = vf_mul(vf_sub(ix->eta_perp, vf_set1(m->fold_index[p])), vf_set1(m->inv_caustic_fade));
     x = vf_min(vf_max(x, vf_set1(0.0f)), vf_set1(1.0f));
     vf t = vf_fnma(vf_mul(x, x), vf_fnma(vf_set1(2.0f), x, vf_set1(3.0f)), vf_set1(1.0f)); /* 1 - smoothstep */
     vf centred = centre_on_lobe(phi, p);
@@ -242,17 +242,15 @@ HB_INLINE void marschner_angles(const hb_marschner *m, vf theta_i, vf phi_i, vf 
 HB_INLINE void marschner_vectors(const hb_marschner *m, const vf wi[3], const vf wo[3], vf out[3])
 {
     mjc_geometry g;
-    vf planar_i = vf_sqrt(vf_fma(wi[0], wi[0], vf_mul(wi[2], wi[2])));
-    vf planar_o = vf_sqrt(vf_fma(wo[0], wo[0], vf_mul(wo[2], wo[2])));
-    vf theta_i = vf_atan2(wi[1], planar_i), theta_o = vf_atan2(wo[1], planar_o);
+    mjc_inclinations n = inclinations_of_vectors(wi, wo);
     vf sin_td;
-    g.theta_h = vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o));
-    g.cos_theta_i = vf_div(planar_i, vf_sqrt(vf_fma(wi[1], wi[1], vf_mul(planar_i, planar_i))));
-    vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &g.cos_theta_d);
+    g.theta_h = vf_mul(vf_set1(0.5f), vf_add(n.theta_i, n.theta_o));
+    g.cos_theta_i = n.cos_theta_i;
+    vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(n.theta_o, n.theta_i)), &sin_td, &g.cos_theta_d);
     g.sin2_theta_d = vf_mul(sin_td, sin_td);
     /* phi = phi_o - phi_i and cos(phi_i + phi_o) from the planar components */
     g.phi = vf_atan2(vf_fnma(wo[2], wi[0], vf_mul(wo[0], wi[2])), vf_fma(wo[0], wi[0], vf_mul(wo[2], wi[2])));
-    vf planar2 = vf_mul(planar_i, planar_o);
+    vf planar2 = vf_mul(n.planar_i, n.planar_o);
     vf cos_sum = vf_div(vf_fnma(wi[0], wo[0], vf_mul(wi[2], wo[2])), vf_max(planar2, vf_set1(1e-30f)));
     g.cos_phi_sum = vf_select(vf_gt(planar2, vf_set1(1e-30f)), cos_sum, vf_set1(1.0f));
     marschner_f(m, &g, out);

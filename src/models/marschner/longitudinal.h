@@ -38,14 +38,28 @@ HB_INLINE vf longitudinal_marschner_angles(const hb_gaussian_lobe *lobe, vf thet
     return longitudinal_marschner(lobe, theta_h, vf_cos(theta_i), vf_cos(theta_d));
 }
 
+/* From unit vectors: the inclinations theta_i, theta_o (atan2 of the tangent component over the
+ * planar one) and cos(theta_i), and the planar lengths for the azimuths. */
+typedef struct mjc_inclinations {
+    vf theta_i, theta_o, cos_theta_i, planar_i, planar_o;
+} mjc_inclinations;
+
+HB_INLINE mjc_inclinations inclinations_of_vectors(const vf wi[3], const vf wo[3])
+{
+    mjc_inclinations n;
+    n.planar_i = vf_sqrt(vf_fma(wi[0], wi[0], vf_mul(wi[2], wi[2])));
+    n.planar_o = vf_sqrt(vf_fma(wo[0], wo[0], vf_mul(wo[2], wo[2])));
+    n.theta_i = vf_atan2(wi[1], n.planar_i);
+    n.theta_o = vf_atan2(wo[1], n.planar_o);
+    n.cos_theta_i = vf_div(n.planar_i, vf_sqrt(vf_fma(wi[1], wi[1], vf_mul(n.planar_i, n.planar_i))));
+    return n;
+}
+
 HB_INLINE vf longitudinal_marschner_vectors(const hb_gaussian_lobe *lobe, const vf wi[3], const vf wo[3])
 {
-    vf planar_i = vf_sqrt(vf_fma(wi[0], wi[0], vf_mul(wi[2], wi[2])));
-    vf planar_o = vf_sqrt(vf_fma(wo[0], wo[0], vf_mul(wo[2], wo[2])));
-    vf theta_i = vf_atan2(wi[1], planar_i), theta_o = vf_atan2(wo[1], planar_o);
-    vf inv_norm_i = vf_rcp(vf_sqrt(vf_fma(wi[1], wi[1], vf_mul(planar_i, planar_i))));
-    return longitudinal_marschner(lobe, vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o)), vf_mul(planar_i, inv_norm_i),
-                                  vf_cos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i))));
+    mjc_inclinations n = inclinations_of_vectors(wi, wo);
+    return longitudinal_marschner(lobe, vf_mul(vf_set1(0.5f), vf_add(n.theta_i, n.theta_o)), n.cos_theta_i,
+                                  vf_cos(vf_mul(vf_set1(0.5f), vf_sub(n.theta_o, n.theta_i))));
 }
 
 #endif
