@@ -133,6 +133,19 @@ typedef enum hb_r_fresnel {
     HB_R_FRESNEL_HALF_ANGLE /* eq. 12: at half the angle between w_i and w_o (the paper) */
 } hb_r_fresnel;
 
+/* HHH22 shadowing-masking at the microsurface (eq. 12's G). */
+typedef enum hb_shadowing {
+    HB_SHADOWING_SMITH, /* separable Smith G = G1(w_i) G1(w_o), each relative to the mesonormal (the default) */
+    HB_SHADOWING_NONE   /* G = 1: what HHH22 App. A integrates in closed form */
+} hb_shadowing;
+
+/* How HHH22's R lobe integrates over the azimuth phi_m of the macro/mesonormal (eq. 12). */
+typedef enum hb_r_integration {
+    HB_R_INTEGRATION_AUTO,     /* analytic where it is exact (GGX, no shadowing, circular), else numeric */
+    HB_R_INTEGRATION_ANALYTIC, /* App. A, eq. 43 (44 for alpha = 0): GGX, no shadowing, circular only */
+    HB_R_INTEGRATION_NUMERIC   /* composite Simpson over the visible window (r_panels, r_step) */
+} hb_r_integration;
+
 typedef struct hb_options {
     size_t struct_size; /* sizeof(hb_options), set by hb_options_default */
     hb_model model;     /* default HB_MODEL_DEON */
@@ -147,7 +160,18 @@ typedef struct hb_options {
                                  0 = from quality and beta_n, else 1..HB_MAX_NODES */
     double detector_tolerance; /* dFH11 D_p truncation error bound; 0 = from quality */
     hb_r_fresnel r_fresnel;    /* default HB_R_FRESNEL_OFFSET */
+    hb_shadowing shadowing;    /* HHH22, default HB_SHADOWING_SMITH */
+    hb_r_integration r_integration; /* HHH22 R lobe, default HB_R_INTEGRATION_AUTO */
+    /* HHH22 numeric R lobe. r_step = 0: Simpson with r_panels panels (0 = from quality) in a
+     * variable that follows the NDF's peak, so the count is the same for every roughness (README,
+     * "Huang"). r_step > 0: the paper's rule, uniform steps of at most r_step * roughness in phi_m
+     * (HHH22 sec. 3.4.2 uses 0.7); every sample then pays for the widest window, 2 ceil(pi / (2 r_step
+     * roughness)) panels, so the cost is fixed by the plan and grows as 1 / roughness. */
+    int r_panels;
+    double r_step;
 } hb_options;
+
+#define HB_MAX_R_PANELS 16384
 
 #define HB_MAX_NODES 256
 #define HB_MAX_DETECTOR_TERMS 16

@@ -48,6 +48,8 @@ hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb
         spread_channels(n, out);
     } else if (plan->options.model == HB_MODEL_MARSCHNER) {
         k->marschner_angles(&plan->marschner, n, in, out, &invalid);
+    } else if (plan->options.model == HB_MODEL_HUANG) {
+        k->huang_angles(&plan->huang, n, in, out, &invalid);
     } else {
         k->deon_angles[plan->options.i0](&plan->deon, n, in, out, &invalid);
     }
@@ -74,6 +76,8 @@ hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_r
         spread_channels(n, out);
     } else if (plan->options.model == HB_MODEL_MARSCHNER) {
         k->marschner_vectors(&plan->marschner, n, in, out, &invalid);
+    } else if (plan->options.model == HB_MODEL_HUANG) {
+        k->huang_vectors(&plan->huang, n, in, out, &invalid);
     } else {
         k->deon_vectors[plan->options.i0](&plan->deon, n, in, out, &invalid);
     }

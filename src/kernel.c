@@ -7,6 +7,7 @@
 #include "math/vmath.h"
 #include "models/deon/azimuthal.h"
 #include "models/marschner/azimuthal.h"
+#include "models/huang/r_lobe.h"
 #include "kernels.h"
 
 #if defined(HB_TARGET_SCALAR)
@@ -179,6 +180,18 @@ static void marschner_vectors_kernel(const hb_marschner *mjc, size_t n, hb_vecto
     HB_BATCH(load_vectors, 6, in, n, invalid, (marschner_vectors(mjc, a, a + 3, f), store_rgb(out, i, lanes, valid, f)));
 }
 
+static void huang_angles_kernel(const hb_huang *h, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    vf f[3];
+    HB_BATCH(load_angles, 4, in, n, invalid, (huang_angles(h, a[0], a[1], a[2], a[3], f), store_rgb(out, i, lanes, valid, f)));
+}
+
+static void huang_vectors_kernel(const hb_huang *h, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    vf f[3];
+    HB_BATCH(load_vectors, 6, in, n, invalid, (huang_vectors(h, a, a + 3, f), store_rgb(out, i, lanes, valid, f)));
+}
+
 HB_KERNEL_VARIANTS(abramowitz, HB_I0_ABRAMOWITZ)
 HB_KERNEL_VARIANTS(paper, HB_I0_PAPER)
 #undef HB_KERNEL_VARIANTS
@@ -260,6 +273,8 @@ const hb_kernels HB_TABLE = {
     .marschner_longitudinal_vectors = marschner_longitudinal_vectors,
     .marschner_angles = marschner_angles_kernel,
     .marschner_vectors = marschner_vectors_kernel,
+    .huang_angles = huang_angles_kernel,
+    .huang_vectors = huang_vectors_kernel,
     .cubic_map = cubic_map,
     .math_map = math_map,
     .detector_map = detector_map,

@@ -40,6 +40,26 @@ typedef struct hb_marschner {
     float inv_caustic_fade, caustic_limit, glint_scale;
 } hb_marschner;
 
+/* Everything the HHH22 kernel reads, fixed at plan creation (README, "Huang"). The flags are
+ * the same for every sample of a batch, so branching on them never depends on the data. */
+typedef struct hb_huang {
+    unsigned lobes;      /* bit R */
+    int beckmann;        /* NDF: 0 GGX (eq. 41), 1 Beckmann */
+    int shadowing;       /* separable Smith G1(w_i) G1(w_o) against the mesonormal */
+    int analytic;        /* R: App. A, eq. 43 (GGX, no G, circular); else Simpson */
+    int step_rule;       /* R Simpson: 1 the paper's uniform steps in phi_m, 0 the peak-following variable */
+    int panels;          /* R Simpson panels (even); for the step rule the most any window needs */
+    int elliptical;      /* eqs. 26-28 */
+    int tilted;          /* tau != 0: the mesonormal adds visibility conditions (eq. 40) */
+    float step;          /* step rule: the largest phi_m step, r_step * roughness */
+    float roughness, roughness2; /* r and r^2 */
+    float c_rough;       /* C = sqrt(1 - r^2) of App. A */
+    float one_minus_c;   /* 1 - C = r^2 / (1 + C) */
+    float cos_tilt, sin_tilt; /* the mesonormal's inclination tau (sec. 3.2, eq. 39) */
+    float eta, inv_eta2;
+    float e2, b2;        /* eccentricity^2 and the squared minor semi-axis b^2 = 1 - e^2 */
+} hb_huang;
+
 /* dFH11's Gaussian detector D_p (eq. 11), a wrapped Gaussian (a Jacobi theta function),
  * truncated at plan creation to the cheaper of its two series for the tolerance. */
 typedef struct hb_detector {
@@ -93,6 +113,11 @@ typedef void (*hb_deon_angles_fn)(const hb_deon *deon, size_t n, hb_angles_soa i
 typedef void (*hb_deon_vectors_fn)(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                                    size_t *invalid);
 
+typedef void (*hb_huang_angles_fn)(const hb_huang *huang, size_t n, hb_angles_soa in, hb_rgb_soa out,
+                                   size_t *invalid);
+typedef void (*hb_huang_vectors_fn)(const hb_huang *huang, size_t n, hb_vectors_soa in, hb_rgb_soa out,
+                                    size_t *invalid);
+
 typedef struct hb_kernels {
     hb_isa isa;
     int width; /* float lanes */
@@ -104,6 +129,8 @@ typedef struct hb_kernels {
     hb_gaussian_vectors_fn marschner_longitudinal_vectors;
     hb_marschner_angles_fn marschner_angles;
     hb_marschner_vectors_fn marschner_vectors;
+    hb_huang_angles_fn huang_angles;
+    hb_huang_vectors_fn huang_vectors;
     /* the real roots of gamma^3 + P gamma + Q = 0 the kernels find, for tests: roots[3 * i + k],
      * NaN where root k does not exist */
     void (*cubic_map)(size_t n, const float *P, const float *Q, float *roots);

@@ -138,8 +138,6 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
                     o->struct_size, sizeof *o);
     if (o->model != HB_MODEL_DEON && o->model != HB_MODEL_MARSCHNER && o->model != HB_MODEL_HUANG)
         return fail(error, HB_ERR_PARAM, "model = %d is not a model", (int)o->model);
-    if (o->model == HB_MODEL_HUANG)
-        return fail(error, HB_ERR_UNSUPPORTED, "the huang model is not implemented yet");
     if (o->model == HB_MODEL_MARSCHNER && o->term == HB_TERM_FULL && o->lobes != HB_LOBES_DEFAULT &&
         (o->lobes & ~7u))
         return fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the marschner model has R, TT and TRT only", o->lobes);
@@ -168,6 +166,43 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
                     o->detector_tolerance);
     if ((unsigned)o->isa >= HB_ISA_COUNT)
         return fail(error, HB_ERR_PARAM, "isa = %d is not an instruction set", (int)o->isa);
+    if (o->shadowing != HB_SHADOWING_SMITH && o->shadowing != HB_SHADOWING_NONE)
+        return fail(error, HB_ERR_PARAM, "shadowing = %d is not a shadowing variant", (int)o->shadowing);
+    if ((unsigned)o->r_integration > HB_R_INTEGRATION_NUMERIC)
+        return fail(error, HB_ERR_PARAM, "r_integration = %d is not an integration method", (int)o->r_integration);
+    if (o->r_panels < 0 || o->r_panels > HB_MAX_R_PANELS || o->r_panels % 2)
+        return fail(error, HB_ERR_PARAM, "r_panels = %d must be 0 (from quality) or even, in [2, %d]", o->r_panels,
+                    HB_MAX_R_PANELS);
+    if (!(o->r_step == 0.0 || in_range(o->r_step, 1e-3, 10.0)))
+        return fail(error, HB_ERR_PARAM, "r_step = %g must be 0 (peak-following panels) or in [0.001, 10]",
+                    o->r_step);
+    if (o->r_step > 0.0 && o->r_panels > 0)
+        return fail(error, HB_ERR_PARAM, "r_step and r_panels exclude each other: the step fixes the panels");
+    return HB_OK;
+}
+
+/* HHH22 so far: the R lobe, whose closed form (App. A) covers GGX without G on circular fibres. */
+static hb_status validate_huang(const hb_material *m, const hb_options *o, hb_error *error)
+{
+    if (o->term != HB_TERM_FULL)
+        return fail(error, HB_ERR_UNSUPPORTED, "the huang model is not separable: it has no longitudinal term");
+    if (o->lobes != 1u << HB_LOBE_R)
+        return fail(error, HB_ERR_UNSUPPORTED,
+                    "huang: only the R lobe is implemented so far (TT and TRT are not); ask for lobes R");
+    if (o->r_integration == HB_R_INTEGRATION_ANALYTIC) {
+        if (m->ndf != HB_NDF_GGX)
+            return fail(error, HB_ERR_UNSUPPORTED, "the analytic R integral (HHH22 App. A) exists for GGX only");
+        if (o->shadowing != HB_SHADOWING_NONE)
+            return fail(error, HB_ERR_UNSUPPORTED,
+                        "the analytic R integral (HHH22 App. A) has no shadowing term: ask for no shadowing");
+        if (m->eccentricity > 0.0)
+            return fail(error, HB_ERR_UNSUPPORTED, "the analytic R integral (HHH22 App. A) is for circular fibres");
+        if (o->r_step > 0.0 || o->r_panels > 0)
+            return fail(error, HB_ERR_PARAM, "r_step and r_panels set the numeric R integral, not the analytic one");
+    }
+    if (o->r_step > 0.0 && ceil(M_PI / (o->r_step * m->roughness)) > HB_MAX_R_PANELS)
+        return fail(error, HB_ERR_PARAM, "r_step = %g at roughness %g needs %.0f panels, more than %d", o->r_step,
+                    m->roughness, 2.0 * ceil(M_PI / (2.0 * o->r_step * m->roughness)), HB_MAX_R_PANELS);
     return HB_OK;
 }
 
@@ -377,6 +412,44 @@ static void derive_marschner(hb_plan *plan)
     k->glint_scale = (float)m->glint_scale;
 }
 
+/* HHH22 R lobe: Simpson panels in the peak-following variable per quality (README, "Huang":
+ * measured against the reference over roughness 0.02..0.6, tilts and directions). */
+static const int huang_r_panels[] = {
+    [HB_QUALITY_FAST] = 16, [HB_QUALITY_BALANCED] = 32, [HB_QUALITY_HIGH] = 64, [HB_QUALITY_REFERENCE] = 64,
+};
+
+/* The mesonormal's inclination tau = -alpha, so that, as in dFH11 and MJC03, alpha > 0 moves the R
+ * highlight toward the root (theta_o = -theta_i - 2 alpha at phi = 0); lobe_alpha[R] sets tau itself. */
+static void derive_huang(hb_plan *plan)
+{
+    const hb_material *m = &plan->material;
+    const hb_options *o = &plan->options;
+    hb_huang *h = &plan->huang;
+    double r = m->roughness, c = sqrt(1.0 - r * r);
+    plan->huang_tilt = (m->lobe_alpha_override & 1u) ? m->lobe_alpha[HB_LOBE_R] : -m->alpha;
+    h->lobes = o->lobes;
+    h->beckmann = m->ndf == HB_NDF_BECKMANN;
+    h->shadowing = o->shadowing == HB_SHADOWING_SMITH;
+    h->elliptical = m->eccentricity > 0.0;
+    h->analytic = o->r_integration == HB_R_INTEGRATION_ANALYTIC ||
+                  (o->r_integration == HB_R_INTEGRATION_AUTO && !h->beckmann && !h->shadowing && !h->elliptical);
+    h->step_rule = o->r_step > 0.0;
+    h->step = (float)(o->r_step * r);
+    h->panels = h->step_rule ? 2 * (int)ceil(M_PI / (2.0 * o->r_step * r))
+                : o->r_panels > 0 ? o->r_panels : huang_r_panels[o->quality];
+    h->tilted = plan->huang_tilt != 0.0;
+    h->roughness = (float)r;
+    h->roughness2 = (float)(r * r);
+    h->c_rough = (float)c;
+    h->one_minus_c = (float)(r * r / (1.0 + c));
+    h->cos_tilt = (float)cos(plan->huang_tilt);
+    h->sin_tilt = (float)sin(plan->huang_tilt);
+    h->eta = (float)m->eta;
+    h->inv_eta2 = (float)(1.0 / (m->eta * m->eta));
+    h->e2 = (float)(m->eccentricity * m->eccentricity);
+    h->b2 = (float)(1.0 - m->eccentricity * m->eccentricity);
+}
+
 hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **out, hb_error *error)
 {
     if (error) {
@@ -391,6 +464,8 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
     hb_status st = validate_material(material, error);
     if (st == HB_OK)
         st = validate_options(options, error);
+    if (st == HB_OK && options->model == HB_MODEL_HUANG)
+        st = validate_huang(material, options, error);
     hb_isa isa = HB_ISA_SCALAR;
     if (st == HB_OK && options->quality != HB_QUALITY_REFERENCE)
         st = resolve_isa(options->isa, &isa, error);
@@ -405,6 +480,7 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
     plan->kernels = options->quality == HB_QUALITY_REFERENCE ? NULL : hb_kernels_for(isa);
     derive_deon(plan);
     derive_marschner(plan);
+    derive_huang(plan);
     *out = plan;
     return HB_OK;
 }

@@ -18,6 +18,8 @@ struct hb_plan {
     double eta_star_mean, eta_star_swing;        /* MJC03 eta*(phi_h) = mean + swing cos(2 phi_h) */
     double eta_star_min;                         /* MJC03: the smallest eta* of the fibre (eta if circular) */
     hb_marschner marschner;                      /* float constants of the SIMD kernels */
+    double huang_tilt;                           /* HHH22 mesonormal inclination tau (eq. 39) */
+    hb_huang huang;                              /* float constants of the SIMD kernels */
 };
 
 #endif

@@ -20,6 +20,10 @@ const char cli_model_options_help[] =
     "  --detector-tolerance X         dFH11: truncation error of the Gaussian detector (default: from quality)\n"
     "  --absorption corrected|paper   path length 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t)\n"
     "  --r-fresnel offset|half-angle  dFH11 R lobe Fresnel: eq. 14 per offset (default, exact energy), or eq. 12 (paper)\n"
+    "  --no-shadowing                 huang: G = 1 (default: separable Smith G1(w_i) G1(w_o))\n"
+    "  --r-integration auto|analytic|numeric  huang R lobe: App. A closed form (GGX, no G, circular) or Simpson\n"
+    "  --r-panels N                   huang: Simpson panels in the peak-following variable (default: from quality)\n"
+    "  --r-step X                     huang: the paper's rule instead, steps of X * roughness in phi_m (HHH22: 0.7)\n"
     "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
     "Material options:\n"
     "  --eta X  --sigma-a R,G,B  --eumelanin X  --pheomelanin X\n"
@@ -119,19 +123,24 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     static const char *const numeric[] = { "--eta", "--eumelanin", "--pheomelanin", "--beta-m", "--beta-n",
                                            "--alpha", "--roughness", "--eccentricity", "--detector-tolerance",
                                            "--glint-scale", "--caustic-width", "--caustic-fade", "--caustic-limit",
-                                           NULL };
+                                           "--r-step", NULL };
     static const char *const with_value[] = { "--model", "--term", "--lobes", "--quality", "--isa", "--i0",
                                               "--ndf", "--sigma-a", "--pmax", "--quadrature", "--absorption",
-                                              "--r-fresnel", NULL };
+                                              "--r-fresnel", "--r-integration", "--r-panels", NULL };
     static const char *const per_lobe[] = { "--lobe-beta-m", "--lobe-beta-n", "--lobe-alpha", NULL };
     static const char *const absorptions[] = { "corrected", "paper", NULL };
     static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
+    static const char *const r_integrations[] = { "auto", "analytic", "numeric", NULL };
     static const char *const models[] = { "marschner", "deon", "huang", NULL };
     static const char *const terms[] = { "full", "longitudinal", NULL };
     static const char *const qualities[] = { "fast", "balanced", "high", "reference", NULL };
     static const char *const i0s[] = { "abramowitz", "paper", NULL };
     static const char *const ndfs[] = { "ggx", "beckmann", NULL };
 
+    if (strcmp(argv[*i], "--no-shadowing") == 0) {
+        args->options.shadowing = HB_SHADOWING_NONE;
+        return 1;
+    }
     char name[64];
     const char *arg = argv[*i], *value = NULL, *eq = strchr(arg, '=');
     size_t len = eq ? (size_t)(eq - arg) : strlen(arg);
@@ -161,7 +170,8 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         }
         double *const fields[] = { &m->eta, &m->eumelanin, &m->pheomelanin, &m->beta_m, &m->beta_n,
                                    &m->alpha, &m->roughness, &m->eccentricity, &o->detector_tolerance,
-                                   &m->glint_scale, &m->caustic_width, &m->caustic_fade, &m->caustic_limit };
+                                   &m->glint_scale, &m->caustic_width, &m->caustic_fade, &m->caustic_limit,
+                                   &o->r_step };
         *fields[num] = x;
         return 1;
     }
@@ -211,6 +221,11 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         if ((k = pick(value, absorptions)) >= 0) o->absorption = (hb_absorption)k; else expected = "corrected or paper";
     } else if (strcmp(name, "--r-fresnel") == 0) {
         if ((k = pick(value, r_fresnels)) >= 0) o->r_fresnel = (hb_r_fresnel)k; else expected = "offset or half-angle";
+    } else if (strcmp(name, "--r-integration") == 0) {
+        if ((k = pick(value, r_integrations)) >= 0) o->r_integration = (hb_r_integration)k;
+        else expected = "auto, analytic or numeric";
+    } else if (strcmp(name, "--r-panels") == 0) {
+        if (!parse_int(value, 2, HB_MAX_R_PANELS, &o->r_panels) || o->r_panels % 2) expected = "an even panel count";
     } else if (strcmp(name, "--pmax") == 0) {
         if (!parse_int(value, 0, HB_MAX_LOBES - 1, &o->pmax)) expected = "an order from 0 to 7";
     } else if (strcmp(name, "--quadrature") == 0) {

@@ -74,6 +74,10 @@ static int theta_valid(float theta) { return fabsf(theta) <= 1.57079637f; } /* f
 /* The plan's term at one direction pair, in double; writes three channels. */
 static void eval_ref(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
 {
+    if (plan->options.model == HB_MODEL_HUANG) {
+        hb_ref_huang(plan, theta_i, phi_i, theta_o, phi_o, f);
+        return;
+    }
     if (plan->options.model == HB_MODEL_MARSCHNER) {
         if (plan->options.term == HB_TERM_LONGITUDINAL)
             f[0] = f[1] = f[2] = hb_ref_marschner_longitudinal(plan->marschner_beta[HB_LOBE_R],

@@ -43,6 +43,22 @@ double hb_ref_detector(double beta, double x);
 /* dFH11 f = sum_p M_p N_p (eqs. 7, 10-14) for the plan's lobes, N_p converged to 1e-10. */
 void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
 
+/* HHH22 microsurface: D(w_h, w_m) at cos_m = w_h . w_m (eq. 41 for GGX, Beckmann) and
+ * Smith's Lambda for a direction at cos_w to the mesonormal (Heitz 2014). */
+double hb_ref_huang_ndf(hb_ndf ndf, double roughness, double cos_m);
+double hb_ref_huang_lambda(hb_ndf ndf, double roughness, double cos_w);
+/* The R lobe's integral of D G rho over the visible window (eq. 12; eq. 28 over gamma for elliptical
+ * fibres), by adaptive Gauss-Legendre to 1e-12 relative; G = 1 unless shadowing. */
+double hb_ref_huang_r_integral(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                               int shadowing);
+/* The same without G for GGX and a circular fibre from App. A, eq. 43 as printed. */
+double hb_ref_huang_r_integral_analytic(const hb_plan *plan, double theta_i, double phi_i, double theta_o,
+                                        double phi_o);
+/* HHH22 f = S_R cos(theta_i) (eqs. 12, 28) with the plan's NDF, shadowing and fibre, integrated
+ * numerically; cos(theta_o) floored at HB_REF_HUANG_COS_FLOOR as in the kernels. */
+#define HB_REF_HUANG_COS_FLOOR 1e-8
+void hb_ref_huang(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
+
 /* Reference batch evaluation of a plan's term: writes f and returns the invalid count. */
 size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out);
 size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out);

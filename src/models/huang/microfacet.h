@@ -1,0 +1,64 @@
+/* HHH22 microsurface over the SIMD vocabulary: the normal distributions and Smith's
+ * shadowing-masking. Angles to the mesonormal arrive as x = cos and 1 - x computed
+ * without cancellation by the caller, so the peak of a narrow NDF keeps its precision. */
+#ifndef HB_HUANG_MICROFACET_H
+#define HB_HUANG_MICROFACET_H
+
+#include "../../math/vmath.h"
+#include "../../kernels.h"
+
+#define HB_INV_PI_F 0.318309886f
+#define HB_INV_SQRT_PI_F 0.564189584f
+
+/* D(w_h, w_m) given one_minus_x = 1 - x, x = w_h . w_m: GGX (HHH22 eq. 41) written as
+ * r^2 / (pi ((1 - x^2) + r^2 x^2)^2), Beckmann exp(-tan^2 / r^2) / (pi r^2 x^4). Callers only ask
+ * inside the visible window, where x >= 0 (both directions see w_m, so their sum does); at its ends
+ * x = 0 up to rounding, and both forms are even in x, so there is no cut-off to misplace. */
+HB_INLINE vf ndf_huang(const hb_huang *h, vf one_minus_x)
+{
+    vf x = vf_sub(vf_set1(1.0f), one_minus_x);
+    vf sin2 = vf_mul(one_minus_x, vf_add(vf_set1(1.0f), x));
+    vf x2 = vf_mul(x, x), r2 = vf_set1(h->roughness2), d;
+    if (h->beckmann) {
+        vf x4 = vf_max(vf_mul(x2, x2), vf_set1(1e-30f));
+        vf tan2 = vf_div(sin2, vf_max(x2, vf_set1(1e-30f)));
+        d = vf_div(vf_exp_flush(vf_max(vf_div(vf_neg(tan2), r2), vf_set1(-100.0f))),
+                   vf_mul(vf_mul(vf_set1(HB_PI_F), r2), x4));
+    } else {
+        vf den = vf_fma(r2, x2, sin2);
+        d = vf_div(vf_mul(r2, vf_set1(HB_INV_PI_F)), vf_mul(den, den));
+    }
+    return d;
+}
+
+/* Smith's G1 = 1 / (1 + Lambda) for a direction at cos c >= 0 to the mesonormal (Heitz 2014),
+ * as G1 = d / (d + y) with Lambda = y / d, so c -> 0 gives 0 without dividing by zero.
+ * GGX: Lambda = (sqrt(1 + r^2 tan^2) - 1) / 2, y = r^2 (1 - c^2), d = 2 c (sqrt(c^2 + y) + c).
+ * Beckmann: Lambda = (e^(-a^2) / (a sqrt(pi)) - erfc(a)) / 2, a = c / (r sqrt(1 - c^2)),
+ * y = e^(-a^2) (1/sqrt(pi) - a erfcx(a)), d = 2a, erfcx by A&S 7.1.26 (|error| < 1.5e-7 e^(a^2),
+ * which leaves Lambda within 7.5e-8). */
+HB_INLINE vf smith_g1_huang(const hb_huang *h, vf c)
+{
+    c = vf_clamp(c, 0.0f, 1.0f);
+    vf sin2 = vf_fnma(c, c, vf_set1(1.0f)), y, d;
+    if (h->beckmann) {
+        vf a = vf_div(c, vf_mul(vf_set1(h->roughness), vf_sqrt(vf_max(sin2, vf_set1(1e-30f)))));
+        a = vf_min(a, vf_set1(1e4f));
+        vf t = vf_rcp(vf_fma(vf_set1(0.3275911f), a, vf_set1(1.0f)));
+        vf erfcx = vf_fma(vf_set1(1.061405429f), t, vf_set1(-1.453152027f));
+        erfcx = vf_fma(erfcx, t, vf_set1(1.421413741f));
+        erfcx = vf_fma(erfcx, t, vf_set1(-0.284496736f));
+        erfcx = vf_fma(erfcx, t, vf_set1(0.254829592f));
+        erfcx = vf_mul(erfcx, t);
+        vf tail = vf_max(vf_fnma(a, erfcx, vf_set1(HB_INV_SQRT_PI_F)), vf_set1(0.0f));
+        y = vf_mul(vf_exp_flush(vf_max(vf_neg(vf_mul(a, a)), vf_set1(-100.0f))), tail);
+        d = vf_add(a, a);
+    } else {
+        y = vf_mul(vf_set1(h->roughness2), sin2);
+        vf s = vf_sqrt(vf_fma(c, c, y));
+        d = vf_mul(vf_add(c, c), vf_add(s, c));
+    }
+    return vf_div(d, vf_max(vf_add(d, y), vf_set1(1e-30f)));
+}
+
+#endif
