@@ -268,7 +268,7 @@ static void microsurface_identities(hb_test_ctx *t)
 }
 
 /* Issue 5, item 3: the forward-scattering focus of sec. 4.1.1 (without tilt the R lobe at theta_o =
- * -theta_i brightens toward |phi| -> pi: without G to within a fraction of the roughness of pi, as the
+ * -theta_i brightens toward |phi| -> pi: without G to within about two roughnesses of pi, as the
  * visible window (width pi - |phi|) narrows onto the microfacets facing w_h, and falls to 0 as the
  * window closes; with G until both directions graze the few normals left, the last 0.3 rad; with tilt phi = +-pi is unreachable at oblique theta_i, eq. 40), and the fibre's
  * orientation: a circular fibre depends on phi only, an elliptical one (e = 0.8) on phi_i and
@@ -296,7 +296,7 @@ static void focus_and_orientation(hb_test_ctx *t)
     hb_eval_angles(p0, M, (hb_angles_soa){ ti, pi, to, phi }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
     hb_eval_angles(p1, M, (hb_angles_soa){ ti, pi, to, phi }, (hb_rgb_soa){ g[0], g[1], g[2] }, NULL);
     hb_eval_angles(p3, M, (hb_angles_soa){ ti, pi, to, phi }, (hb_rgb_soa){ h[0], h[1], h[2] }, NULL);
-    for (int k = 1; k < M - 1; k++) /* at pi itself the window closes: f = 0 there */
+    for (int k = 1; k < 4; k++) /* up to 3.0; closer to pi the window closes and f falls to 0 */
         CHECK(t, f[0][k] > f[0][k - 1], "alpha 0 without G: f(phi %g) = %g is not above f(phi %g) = %g", phi[k],
               f[0][k], phi[k - 1], f[0][k - 1]);
     CHECK(t, h[0][2] > 3.0f * h[0][0], "alpha 0 with G: f(2.8) = %g is not 3x f(2.0) = %g", h[0][2], h[0][0]);
