@@ -127,32 +127,60 @@ typedef struct config {
     hb_quality quality;
     int quadrature_order;
     hb_i0 i0;
+    hb_shadowing shadowing;         /* HHH22 */
+    hb_r_integration r_integration; /* HHH22 */
+    double r_step;                  /* HHH22: the paper's Simpson rule */
 } config;
 
 /* What each row measures: dFH11's M_p alone and its full model (R..TRRT + residual, RGB) per
  * quality; MJC03's longitudinal term and its full model (R + TT + TRT, RGB: one closed-form
- * kernel for every quality). */
+ * kernel for every quality); HHH22's R lobe (GGX 0.1): App. A's closed form without G, Simpson
+ * with Smith G in the peak-following variable per quality, and the paper's rule (steps of 0.7
+ * roughness in phi_m). */
 static const config configs[] = {
-    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ },
-    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER },
-    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ },
-    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ },
-    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ },
-    { "deon", "full", "nodes35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ },
+    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "deon", "full", "nodes35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
     { "marschner", "longitudinal", "gaussian", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0,
-      HB_I0_ABRAMOWITZ },
-    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ },
+      HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "huang", "R", "analytic", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0 },
+    { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "huang", "R", "G-paper-step", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7 },
 };
+
+/* The options of a configuration (quality and ISA left to the caller where they differ). */
+static void options_of(const config *c, hb_options *o)
+{
+    hb_options_default(o);
+    o->model = c->model_enum;
+    o->term = c->term_enum;
+    o->quality = c->quality;
+    o->quadrature_order = c->quadrature_order;
+    o->i0 = c->i0;
+    o->shadowing = c->shadowing;
+    o->r_integration = c->r_integration;
+    o->r_step = c->r_step;
+    if (c->model_enum == HB_MODEL_HUANG)
+        o->lobes = 1u << HB_LOBE_R;
+}
 #define N_CONFIGS (sizeof configs / sizeof configs[0])
 
 /* The double reference of the plan's term for the first NREF samples (it is slow). */
 static void reference_of(const hb_material *m, const config *c)
 {
     hb_options o;
-    hb_options_default(&o);
-    o.model = c->model_enum;
-    o.term = c->term_enum;
+    options_of(c, &o);
     o.quality = HB_QUALITY_REFERENCE;
+    o.r_integration = HB_R_INTEGRATION_AUTO;
+    o.r_step = 0.0;
     hb_plan *plan;
     hb_plan_create(m, &o, &plan, NULL);
     hb_eval_angles(plan, NREF, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
@@ -174,12 +202,7 @@ static int run_once(const char *name)
         m.sigma_a[0] = 0.1, m.sigma_a[1] = 0.25, m.sigma_a[2] = 0.6;
         make_inputs(m.beta_m * m.beta_m);
         hb_options o;
-        hb_options_default(&o);
-        o.model = configs[ci].model_enum;
-        o.term = configs[ci].term_enum;
-        o.quality = configs[ci].quality;
-        o.quadrature_order = configs[ci].quadrature_order;
-        o.i0 = configs[ci].i0;
+        options_of(&configs[ci], &o);
         hb_plan *plan;
         hb_error err;
         if (hb_plan_create(&m, &o, &plan, &err) != HB_OK) {
@@ -234,12 +257,7 @@ int main(int argc, char **argv)
             if (!hb_isa_available((hb_isa)isa))
                 continue;
             hb_options o;
-            hb_options_default(&o);
-            o.model = c->model_enum;
-            o.term = c->term_enum;
-            o.quality = c->quality;
-            o.quadrature_order = c->quadrature_order;
-            o.i0 = c->i0;
+            options_of(c, &o);
             o.isa = (hb_isa)isa;
             row r = { c->model, c->term, c->variant, HB_ISA_SCALAR, 0, 0, 0 };
             if (time_plan(&m, &o, &r))
@@ -262,8 +280,9 @@ int main(int argc, char **argv)
     }
     /* per model: a CSV of every row and an SVG of the full model's error against time */
     static const char *const models[][2] = { { "deon", "d'Eon 2011 full model" },
-                                             { "marschner", "Marschner 2003 full model" } };
-    for (int mi = 0; mi < 2 && results_dir; mi++) {
+                                             { "marschner", "Marschner 2003 full model" },
+                                             { "huang", "Huang 2022 R lobe" } };
+    for (int mi = 0; mi < 3 && results_dir; mi++) {
         static bench_point points[N_CONFIGS * HB_ISA_COUNT], full[N_CONFIGS * HB_ISA_COUNT];
         static char labels[N_CONFIGS * HB_ISA_COUNT][48];
         int npoints = 0, nfull = 0;
@@ -273,7 +292,7 @@ int main(int argc, char **argv)
             snprintf(labels[npoints], sizeof labels[0], "%s/%s", rows[k].term, rows[k].variant);
             points[npoints] = (bench_point){ labels[npoints], hb_isa_name(rows[k].isa), rows[k].min_ns,
                                              rows[k].max_rel_err };
-            if (!strcmp(rows[k].term, "full")) /* M_p alone is another quantity */
+            if (strcmp(rows[k].term, "longitudinal")) /* M_p alone is another quantity */
                 full[nfull++] = points[npoints];
             npoints++;
         }

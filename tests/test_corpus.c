@@ -49,6 +49,8 @@ static int load_corpus(hb_test_ctx *t, corpus_row *rows, int cap)
     return n;
 }
 
+/* HHH22 rows use beta_m as the microfacet roughness (capped at its range, 1) and the R lobe;
+ * term LONGITUDINAL stands for its closed form (GGX without G), FULL for Simpson with Smith G. */
 static int eval_row(const corpus_row *r, hb_model model, hb_term term, hb_quality quality, hb_isa isa, float f[3])
 {
     hb_material m;
@@ -59,6 +61,12 @@ static int eval_row(const corpus_row *r, hb_model model, hb_term term, hb_qualit
     m.sigma_a[0] = m.sigma_a[1] = m.sigma_a[2] = r->sigma_a;
     m.beta_m = r->beta_m, m.beta_n = r->beta_n, m.alpha = r->alpha;
     o.model = model, o.term = term, o.quality = quality, o.isa = isa;
+    if (model == HB_MODEL_HUANG) {
+        m.roughness = fmin(r->beta_m, 1.0);
+        o.lobes = 1u << HB_LOBE_R;
+        o.term = HB_TERM_FULL;
+        o.shadowing = term == HB_TERM_LONGITUDINAL ? HB_SHADOWING_NONE : HB_SHADOWING_SMITH;
+    }
     hb_plan *plan;
     if (hb_plan_create(&m, &o, &plan, NULL) != HB_OK)
         return -1;
@@ -79,6 +87,8 @@ static void test_hard_case_corpus(hb_test_ctx *t)
         { HB_MODEL_DEON, HB_TERM_LONGITUDINAL, "deon longitudinal" },
         { HB_MODEL_MARSCHNER, HB_TERM_FULL, "marschner" },
         { HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, "marschner longitudinal" },
+        { HB_MODEL_HUANG, HB_TERM_FULL, "huang R" },
+        { HB_MODEL_HUANG, HB_TERM_LONGITUDINAL, "huang R analytic" },
     };
     for (size_t k = 0; k < sizeof terms / sizeof terms[0]; k++)
         for (int q = HB_QUALITY_FAST; q <= HB_QUALITY_HIGH; q++) {
