@@ -127,8 +127,18 @@ static void test_eval_errors(hb_test_ctx *t)
     CHECK(t, r.status == 2 && strstr(r.err, "--eta"), "non-numeric value: %d %s", r.status, r.err);
     run_tool(t, "eval --term longitudinal --beta-m", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "needs a value"), "missing value: %d %s", r.status, r.err);
-    run_tool(t, "eval --model huang", "", &r);
-    CHECK(t, r.status == 2 && strstr(r.err, "not implemented"), "unimplemented model: %d %s", r.status, r.err);
+    run_tool(t, "eval --model huang --lobes R,TT", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "only the R lobe"), "unimplemented lobes: %d %s", r.status, r.err);
+    run_tool(t, "eval --model huang --lobes R --r-integration analytic", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "no shadowing"), "analytic with G: %d %s", r.status, r.err);
+    run_tool(t, "eval --model huang --lobes R --r-panels 7", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "even"), "odd panel count: %d %s", r.status, r.err);
+    /* every HHH22 switch of the issue, and the reference */
+    run_tool(t, "eval --model huang --lobes R --ndf beckmann --roughness 0.2 --alpha 0.05 --eccentricity 0.5 "
+                "--no-shadowing --r-integration numeric --r-step 0.7", "0.3,0,-0.35,0.2\n", &r);
+    CHECK(t, r.status == 0 && strchr(r.out, ','), "huang switches: %d %s %s", r.status, r.out, r.err);
+    run_tool(t, "eval --model huang --lobes R --quality reference", "0.3,0,-0.35,0.2\n", &r);
+    CHECK(t, r.status == 0 && atof(r.out) > 0.0, "huang reference: %d %s %s", r.status, r.out, r.err);
     run_tool(t, "eval --term longitudinal --isa avx9", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "--isa"), "unknown isa: %d %s", r.status, r.err);
 }
