@@ -140,29 +140,29 @@ HB_INLINE huang_r_geometry huang_r_geometry_of(const hb_huang *h, const huang_di
  * (q likewise with A -> -A). Differences of the arctangents between delta_lo and delta_hi are one
  * atan2 (so there is no branch of tan(delta / 2) to cross), and differences of sin(delta) / p are
  * written over a common denominator from half-angle products. */
+/* For u = a - A cos(delta) = near cos^2(delta/2) + far sin^2(delta/2) (near = a - A, far = a + A):
+ * the integral of 1/u over the window, 2 / sqrt(near far) times one atan2, and the difference of
+ * sin(delta) / u between its ends, over a common denominator. */
+HB_INLINE void reciprocal_terms(const huang_window_ends *e, vf near, vf far, vf *integral, vf *sin_over)
+{
+    vf root = vf_sqrt(vf_mul(near, far));
+    vf arc = vf_atan2(vf_mul(root, e->sin_width), vf_fma(near, e->cc, vf_mul(far, e->ss)));
+    *integral = vf_div(vf_add(arc, arc), root);
+    vf at_hi = vf_fma(near, vf_mul(e->cos_hi, e->cos_hi), vf_mul(far, vf_mul(e->sin_hi, e->sin_hi)));
+    vf at_lo = vf_fma(near, vf_mul(e->cos_lo, e->cos_lo), vf_mul(far, vf_mul(e->sin_lo, e->sin_lo)));
+    *sin_over = vf_div(vf_mul(vf_add(e->sin_width, e->sin_width), vf_fnma(far, e->ss, vf_mul(near, e->cc))),
+                       vf_mul(at_hi, at_lo));
+}
+
 HB_INLINE vf r_integral_ggx_analytic(const hb_huang *h, const huang_r_geometry *g)
 {
-    vf one = vf_set1(1.0f), two = vf_set1(2.0f);
+    vf one = vf_set1(1.0f), int_p, sin_over_p, int_q, sin_over_q;
     huang_window_ends e = window_ends(g);
-    vf ch = e.cos_hi, sh = e.sin_hi, cl = e.cos_lo, sl = e.sin_lo, cc = e.cc, ss = e.ss, sin_half_width = e.sin_width;
     vf a_coef = vf_mul(g->cos_h_tilt, vf_set1(h->c_rough)), b_coef = vf_mul(g->sin_h_tilt, vf_set1(h->c_rough));
-    /* p terms */
-    vf pp = vf_mul(g->p_minus, g->p_plus), root_p = vf_sqrt(pp), inv_pp = vf_div(one, pp);
-    vf arc_p = vf_atan2(vf_mul(root_p, sin_half_width), vf_fma(g->p_minus, cc, vf_mul(g->p_plus, ss)));
-    vf int_p = vf_div(vf_add(arc_p, arc_p), root_p);
-    vf p_hi = vf_fma(g->p_minus, vf_mul(ch, ch), vf_mul(g->p_plus, vf_mul(sh, sh)));
-    vf p_lo = vf_fma(g->p_minus, vf_mul(cl, cl), vf_mul(g->p_plus, vf_mul(sl, sl)));
-    vf sin_over_p = vf_div(vf_mul(vf_mul(two, sin_half_width), vf_fnma(g->p_plus, ss, vf_mul(g->p_minus, cc))),
-                           vf_mul(p_hi, p_lo));
+    reciprocal_terms(&e, g->p_minus, g->p_plus, &int_p, &sin_over_p); /* p = (1 - B) - A cos(delta) */
+    reciprocal_terms(&e, g->q_plus, g->q_minus, &int_q, &sin_over_q); /* q = (1 + B) + A cos(delta) */
+    vf inv_pp = vf_div(one, vf_mul(g->p_minus, g->p_plus)), inv_qq = vf_div(one, vf_mul(g->q_minus, g->q_plus));
     vf sum_p = vf_fma(vf_fma(vf_sub(one, b_coef), inv_pp, one), int_p, vf_mul(vf_mul(a_coef, inv_pp), sin_over_p));
-    /* q terms */
-    vf qq = vf_mul(g->q_minus, g->q_plus), root_q = vf_sqrt(qq), inv_qq = vf_div(one, qq);
-    vf arc_q = vf_atan2(vf_mul(root_q, sin_half_width), vf_fma(g->q_plus, cc, vf_mul(g->q_minus, ss)));
-    vf int_q = vf_div(vf_add(arc_q, arc_q), root_q);
-    vf q_hi = vf_fma(g->q_plus, vf_mul(ch, ch), vf_mul(g->q_minus, vf_mul(sh, sh)));
-    vf q_lo = vf_fma(g->q_plus, vf_mul(cl, cl), vf_mul(g->q_minus, vf_mul(sl, sl)));
-    vf sin_over_q = vf_div(vf_mul(vf_mul(two, sin_half_width), vf_fnma(g->q_minus, ss, vf_mul(g->q_plus, cc))),
-                           vf_mul(q_hi, q_lo));
     vf sum_q = vf_fnma(vf_mul(a_coef, inv_qq), sin_over_q, vf_mul(vf_fma(vf_add(one, b_coef), inv_qq, one), int_q));
     return vf_mul(vf_set1(h->roughness2 * 0.25f * HB_INV_PI_F), vf_add(sum_p, sum_q));
 }
