@@ -219,6 +219,39 @@ hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb
 hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                           hb_eval_report *report);
 
+/* Importance sampling, for path tracers (README, "Sampling"). Given w_o (toward the viewer) and
+ * uniform random numbers, hb_sample_angles draws w_i (toward the light) with a density close
+ * to f(w_i, w_o), and returns w_i, its solid-angle pdf and the weight f / pdf per channel (so an
+ * estimate of L_o is the mean of weight * L_i). hb_pdf_angles returns the same pdf for given
+ * directions, for multiple importance sampling. Sampling reads hb_plan_sample_dimensions(plan)
+ * numbers per sample, u[0][k], u[1][k], ...; a plan without a sampler (the model or term has
+ * none yet) returns HB_ERR_UNSUPPORTED. Invalid samples (a direction as in hb_eval_angles, or a
+ * u outside [0, 1] or NaN) get theta_i = phi_i = 0, pdf 0 and weight 0 and are counted.
+ * The reverse use (w_o given w_i, for light tracing) is the same call with the two directions'
+ * roles swapped; it samples f(w_o, w_i), which equals f(w_i, w_o) where the model is reciprocal
+ * (dFH11 with alpha = 0; README). */
+#define HB_SAMPLE_DIMENSIONS 8 /* the most numbers any sampler reads */
+
+typedef struct hb_sample_in {
+    const float *theta_o, *phi_o;
+    const float *u[HB_SAMPLE_DIMENSIONS]; /* uniform in [0, 1); only the first hb_plan_sample_dimensions are read */
+} hb_sample_in;
+
+typedef struct hb_sample_out {
+    float *theta_i, *phi_i;
+    float *pdf;        /* per unit solid angle */
+    hb_rgb_soa weight; /* f(w_i, w_o) / pdf */
+} hb_sample_out;
+
+int hb_plan_sample_dimensions(const hb_plan *plan); /* 0 when the plan cannot sample */
+hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out,
+                           hb_eval_report *report);
+hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, hb_eval_report *report);
+
+/* Counter-based uniform numbers in [0, 1) (24 bits): u[d][k] for sample index first + k and
+ * dimension d < dimensions, a pure function of (seed, index, d), the same on every machine. */
+void hb_uniforms(unsigned long long seed, unsigned long long first, size_t n, int dimensions, float *const *u);
+
 /* White furnace: E(w_o) = integral over the sphere of f(w_i, w_o) dw_i per channel, by
  * quadrature fine enough for the plan's roughness (SPEC.md section 2). A lossless fibre with
  * every order gives E = 1 up to the model's approximations. For HB_TERM_LONGITUDINAL the

@@ -5,7 +5,7 @@
 
 #include "simd/simd.h"
 #include "math/vmath.h"
-#include "models/deon/azimuthal.h"
+#include "models/deon/sample.h"
 #include "models/marschner/azimuthal.h"
 #include "models/huang/r_lobe.h"
 #include "kernels.h"
@@ -95,12 +95,44 @@ HB_INLINE vm load_vectors(hb_vectors_soa in, size_t i, size_t lanes, vf a[6])
     return valid;
 }
 
+/* Loads lane block i of a sampling batch: theta_o, phi_o, then `dims` uniform numbers. Valid
+ * lanes have a valid direction and every u in [0, 1]; the others get (0, 0) and u = 1/2. */
+HB_INLINE vm load_sample(hb_sample_in in, int dims, size_t i, size_t lanes, vf *a)
+{
+    const float *src[2 + HB_SAMPLE_DIMENSIONS] = { in.theta_o, in.phi_o };
+    for (int k = 0; k < dims; k++)
+        src[2 + k] = in.u[k];
+    load_block(src, 2 + dims, i, lanes, 0.0f, a);
+    vm valid = angle_pair_valid(a[0], a[1]);
+    for (int k = 2; k < 2 + dims; k++)
+        valid = vm_and(valid, vm_and(vf_ge(a[k], vf_set1(0.0f)), vf_le(a[k], vf_set1(1.0f))));
+    for (int k = 0; k < 2 + dims; k++)
+        a[k] = vf_select(valid, a[k], vf_set1(k < 2 ? 0.0f : 0.5f));
+    return valid;
+}
+
+#define HB_DEON_SAMPLE_DIMENSIONS 5
+HB_INLINE vm load_deon_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
+{
+    return load_sample(in, HB_DEON_SAMPLE_DIMENSIONS, i, lanes, a);
+}
+
 /* Invalid lanes get 0 in every plane. */
 HB_INLINE void store_rgb(hb_rgb_soa out, size_t i, size_t lanes, vm valid, const vf f[3])
 {
     float *planes[3] = { out.r, out.g, out.b };
     for (int c = 0; c < 3; c++)
         store_block(planes[c], i, lanes, vf_select(valid, f[c], vf_set1(0.0f)));
+}
+
+/* A sampled direction, its pdf and weight; invalid lanes get 0 everywhere. */
+HB_INLINE void store_sample(hb_sample_out out, size_t i, size_t lanes, vm valid, vf theta_i, vf phi_i, vf pdf,
+                            const vf weight[3])
+{
+    store_block(out.theta_i, i, lanes, vf_select(valid, theta_i, vf_set1(0.0f)));
+    store_block(out.phi_i, i, lanes, vf_select(valid, phi_i, vf_set1(0.0f)));
+    store_block(out.pdf, i, lanes, vf_select(valid, pdf, vf_set1(0.0f)));
+    store_rgb(out.weight, i, lanes, valid, weight);
 }
 
 /* The loop every entry point shares: blocks of W lanes (a padded tail last), `compute`
@@ -141,6 +173,21 @@ HB_INLINE void store_rgb(hb_rgb_soa out, size_t i, size_t lanes, vm valid, const
         vf f[3];                                                                                          \
         HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
                  (deon_angles(deon, a[0], a[1], a[2], a[3], i0, f), store_rgb(out, i, lanes, valid, f))); \
+    }                                                                                                     \
+    static void deon_sample_##suffix(const hb_deon *deon, size_t n, hb_sample_in in, hb_sample_out out,   \
+                                     size_t *invalid)                                                    \
+    {                                                                                                     \
+        vf theta_i, phi_i, pdf, weight[3];                                                                \
+        HB_BATCH(load_deon_sample, 2 + HB_DEON_SAMPLE_DIMENSIONS, in, n, invalid,                         \
+                 (deon_sample(deon, a[0], a[1], a + 2, i0, &theta_i, &phi_i, &pdf, weight),                \
+                  store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));                      \
+    }                                                                                                     \
+    static void deon_pdf_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, float *pdf,            \
+                                  size_t *invalid)                                                       \
+    {                                                                                                     \
+        HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
+                 store_block(pdf, i, lanes,                                                               \
+                             vf_select(valid, deon_pdf_angles(deon, a[0], a[1], a[2], a[3], i0), vf_set1(0.0f)))); \
     }                                                                                                     \
     static void deon_vectors_##suffix(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,   \
                                       size_t *invalid)                                                   \
@@ -269,6 +316,8 @@ const hb_kernels HB_TABLE = {
     .longitudinal_vectors = { longitudinal_vectors_abramowitz, longitudinal_vectors_paper },
     .deon_angles = { deon_angles_abramowitz, deon_angles_paper },
     .deon_vectors = { deon_vectors_abramowitz, deon_vectors_paper },
+    .deon_sample = { deon_sample_abramowitz, deon_sample_paper },
+    .deon_pdf = { deon_pdf_abramowitz, deon_pdf_paper },
     .marschner_longitudinal_angles = marschner_longitudinal_angles,
     .marschner_longitudinal_vectors = marschner_longitudinal_vectors,
     .marschner_angles = marschner_angles_kernel,

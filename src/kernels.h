@@ -70,6 +70,8 @@ typedef struct hb_detector {
     float coeff[HB_MAX_DETECTOR_TERMS + 1]; /* Fourier series: coeff[0] = 1/(2 pi), coeff[n] = e^(-n^2 beta^2/2) / pi */
 } hb_detector;
 
+#define HB_LOBE_CHOICE_STEPS 32
+
 /* Everything the dFH11 kernel reads, fixed at plan creation. */
 typedef struct hb_deon {
     unsigned lobes; /* bits p <= pmax, and HB_LOBE_RESIDUAL */
@@ -87,6 +89,14 @@ typedef struct hb_deon {
     /* lobes whose M_p is the same function (same v and shift) share one evaluation: m_group[p]
      * is the first included lobe with p's constants, and M_p is evaluated for it alone */
     int m_group[HB_MAX_LOBES + 1];
+    /* sampling (README, "Sampling"): a node is picked with probability weight_j / sum(weight), by
+     * its cumulative node_cdf; node_half_probability[j] is half that probability */
+    float node_cdf[HB_MAX_NODES], node_half_probability[HB_MAX_NODES];
+    float beta_n[HB_MAX_LOBES]; /* the detector's standard deviation per lobe */
+    /* the lobe-choice weights c_p(theta_o) of the longitudinal mixture, per M_p group (zero for
+     * lobes that are not group leaders), tabulated at |theta_o| = k pi / (2 HB_LOBE_CHOICE_STEPS) */
+    float lobe_choice[HB_MAX_LOBES + 1][HB_LOBE_CHOICE_STEPS + 2];
+    float exp_minus_two_inv_v[HB_MAX_LOBES + 1]; /* e^(-2/v) per lobe, for sampling M_p */
 } hb_deon;
 
 /* Functions of src/math/vmath.h exported for the accuracy tests. */
@@ -112,6 +122,9 @@ typedef void (*hb_deon_angles_fn)(const hb_deon *deon, size_t n, hb_angles_soa i
                                   size_t *invalid);
 typedef void (*hb_deon_vectors_fn)(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                                    size_t *invalid);
+typedef void (*hb_deon_sample_fn)(const hb_deon *deon, size_t n, hb_sample_in in, hb_sample_out out,
+                                  size_t *invalid);
+typedef void (*hb_deon_pdf_fn)(const hb_deon *deon, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
 
 typedef void (*hb_huang_angles_fn)(const hb_huang *huang, size_t n, hb_angles_soa in, hb_rgb_soa out,
                                    size_t *invalid);
@@ -125,6 +138,8 @@ typedef struct hb_kernels {
     hb_longitudinal_vectors_fn longitudinal_vectors[2]; /* indexed by hb_i0 */
     hb_deon_angles_fn deon_angles[2];                   /* indexed by hb_i0 */
     hb_deon_vectors_fn deon_vectors[2];
+    hb_deon_sample_fn deon_sample[2];                   /* indexed by hb_i0 */
+    hb_deon_pdf_fn deon_pdf[2];
     hb_gaussian_angles_fn marschner_longitudinal_angles;
     hb_gaussian_vectors_fn marschner_longitudinal_vectors;
     hb_marschner_angles_fn marschner_angles;

@@ -481,6 +481,8 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
     derive_deon(plan);
     derive_marschner(plan);
     derive_huang(plan);
+    if (options->model == HB_MODEL_DEON)
+        hb_plan_derive_sampling(plan);
     *out = plan;
     return HB_OK;
 }

@@ -22,4 +22,7 @@ struct hb_plan {
     hb_huang huang;                              /* float constants of the SIMD kernels */
 };
 
+/* The sampler's constants (src/sample_plan.c). */
+void hb_plan_derive_sampling(hb_plan *plan);
+
 #endif

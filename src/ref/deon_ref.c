@@ -185,48 +185,58 @@ double hb_ref_detector(double beta, double x)
 
 /* The geometry dFH11's azimuthal part needs. */
 typedef struct deon_geometry {
-    double phi, sin2_theta_d, cos_theta_d, cos_half_io; /* cos of half the angle between w_i and w_o */
+    double phi, sin2_theta_d, cos_half_io; /* cos of half the angle between w_i and w_o */
 } deon_geometry;
 
+void hb_ref_deon_node(const hb_plan *plan, double sin2_theta_d, double gamma_i, double A[HB_MAX_LOBES + 1][3],
+                      double Phi[HB_MAX_LOBES])
+{
+    const hb_deon *d = &plan->deon;
+    double eta = plan->material.eta, cos_theta_d = sqrt(1.0 - sin2_theta_d);
+    double inv_eta_prime = cos_theta_d / sqrt(eta * eta - sin2_theta_d); /* 1/eta' (sec. 5) */
+    double cos_theta_t = sqrt(1.0 - sin2_theta_d / (eta * eta));
+    double sin_gamma_t = sin(gamma_i) * inv_eta_prime, gamma_t = asin(sin_gamma_t);
+    double cos_gamma_t = sqrt(1.0 - sin_gamma_t * sin_gamma_t);
+    double f = hb_ref_fresnel(eta, cos_theta_d * cos(gamma_i)); /* eq. 14 */
+    double T[3];
+    for (int c = 0; c < 3; c++) {
+        double mu = plan->sigma_a[c] / cos_theta_t; /* mu_a' = mu_a / cos(theta_t) */
+        T[c] = d->absorption_paper ? exp(-2.0 * mu * (1.0 + cos(2.0 * gamma_t))) : exp(-2.0 * mu * cos_gamma_t);
+    }
+    for (int p = 0; p <= d->pmax; p++) {
+        Phi[p] = 2.0 * p * gamma_t - 2.0 * gamma_i + p * M_PI; /* eq. 8 */
+        for (int c = 0; c < 3; c++)
+            A[p][c] = p > 0 ? (1 - f) * (1 - f) * pow(f, p - 1) * pow(T[c], p) /* eq. 13 */
+                            : d->r_fresnel_offset ? f : 1.0;                   /* eq. 14, or eq. 12 later */
+    }
+    for (int c = 0; c < 3; c++) /* every order above pmax */
+        A[HB_LOBE_RESIDUAL][c] = (1 - f) * (1 - f) * pow(f, d->pmax) * pow(T[c], d->pmax + 1) / (1.0 - f * T[c]);
+}
+
 /* eqs. 10, 12-14 for every order of the plan at one geometry, with n_panels panels of a
- * 16-point Gauss-Legendre rule over gamma_i in [0, pi/2]. N[HB_LOBE_RESIDUAL] is the residual. */
+ * 16-point Gauss-Legendre rule over gamma_i in [0, pi/2]. N[HB_LOBE_RESIDUAL] is the residual,
+ * spread uniformly in phi. */
 static void azimuthal_ref(const hb_plan *plan, const deon_geometry *g, int n_panels,
                           double N[HB_MAX_LOBES + 1][3])
 {
     enum { RULE = 16 };
     double x[RULE], w[RULE];
     const hb_deon *d = &plan->deon;
-    double eta = plan->material.eta;
-    double inv_eta_prime = g->cos_theta_d / sqrt(eta * eta - g->sin2_theta_d); /* 1/eta' (sec. 5) */
-    double cos_theta_t = sqrt(1.0 - g->sin2_theta_d / (eta * eta));
-    double fresnel_r = hb_ref_fresnel(eta, g->cos_half_io); /* eq. 12 */
+    double fresnel_r = d->r_fresnel_offset ? 1.0 : hb_ref_fresnel(plan->material.eta, g->cos_half_io); /* eq. 12 */
     memset(N, 0, sizeof(double) * (HB_MAX_LOBES + 1) * 3);
     for (int panel = 0; panel < n_panels; panel++) {
         hb_gauss_legendre(RULE, M_PI_2 * panel / n_panels, M_PI_2 * (panel + 1) / n_panels, x, w);
         for (int j = 0; j < RULE; j++) {
-            double gamma_i = x[j], h = sin(gamma_i), weight = 0.5 * w[j] * cos(gamma_i);
-            double sin_gamma_t = h * inv_eta_prime, gamma_t = asin(sin_gamma_t);
-            double cos_gamma_t = sqrt(1.0 - sin_gamma_t * sin_gamma_t);
-            double f = hb_ref_fresnel(eta, g->cos_theta_d * cos(gamma_i)); /* eq. 14 */
-            double T[3];
-            for (int c = 0; c < 3; c++) {
-                double mu = plan->sigma_a[c] / cos_theta_t; /* mu_a' = mu_a / cos(theta_t) */
-                T[c] = d->absorption_paper ? exp(-2.0 * mu * (1.0 + cos(2.0 * gamma_t))) : exp(-2.0 * mu * cos_gamma_t);
-            }
+            double weight = 0.5 * w[j] * cos(x[j]), A[HB_MAX_LOBES + 1][3], Phi[HB_MAX_LOBES];
+            hb_ref_deon_node(plan, g->sin2_theta_d, x[j], A, Phi);
             for (int p = 0; p <= d->pmax; p++) {
-                double Phi = 2.0 * p * gamma_t - 2.0 * gamma_i + p * M_PI; /* eq. 8 */
                 double beta = plan->beta_n[p];
-                double detect = hb_ref_detector(beta, g->phi - Phi) + hb_ref_detector(beta, -g->phi - Phi);
-                for (int c = 0; c < 3; c++) {
-                    double A = p > 0 ? (1 - f) * (1 - f) * pow(f, p - 1) * pow(T[c], p) /* eq. 13 */
-                                     : d->r_fresnel_offset ? f : fresnel_r;             /* eq. 14 or 12 */
-                    N[p][c] += weight * A * detect;
-                }
+                double detect = hb_ref_detector(beta, g->phi - Phi[p]) + hb_ref_detector(beta, -g->phi - Phi[p]);
+                for (int c = 0; c < 3; c++)
+                    N[p][c] += weight * A[p][c] * detect * (p == 0 ? fresnel_r : 1.0);
             }
-            for (int c = 0; c < 3; c++) { /* every order above pmax, spread uniformly in phi */
-                double A = (1 - f) * (1 - f) * pow(f, d->pmax) * pow(T[c], d->pmax + 1) / (1.0 - f * T[c]);
-                N[HB_LOBE_RESIDUAL][c] += weight * A * 2.0 / (2.0 * M_PI);
-            }
+            for (int c = 0; c < 3; c++)
+                N[HB_LOBE_RESIDUAL][c] += weight * A[HB_LOBE_RESIDUAL][c] / M_PI;
         }
     }
 }
@@ -236,7 +246,7 @@ void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta
     double phi = remainder(phi_o - phi_i, 2.0 * M_PI);
     double theta_d = 0.5 * (theta_o - theta_i);
     double dot = cos(theta_i) * cos(theta_o) * cos(phi) + sin(theta_i) * sin(theta_o);
-    deon_geometry g = { phi, sin(theta_d) * sin(theta_d), cos(theta_d), sqrt(fmax(0.0, 0.5 * (1.0 + dot))) };
+    deon_geometry g = { phi, sin(theta_d) * sin(theta_d), sqrt(fmax(0.0, 0.5 * (1.0 + dot))) };
     /* panels: start where a panel is narrower than the narrowest detector, double until converged */
     double beta_min = plan->beta_n[0];
     for (int p = 1; p <= plan->deon.pmax; p++)

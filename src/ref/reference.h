@@ -40,8 +40,20 @@ double hb_ref_detector_direct(double beta, double x, int terms);
 double hb_ref_detector_fourier(double beta, double x, int terms);
 double hb_ref_detector(double beta, double x);
 
+/* dFH11 attenuation A(p, h) (eqs. 12-14, RGB; A[R] = 1 under eq. 12's half-angle Fresnel, which the
+ * caller applies) and exit azimuth Phi(p, h) (eq. 8) at h = sin(gamma_i) for every order up to
+ * pmax; A[HB_LOBE_RESIDUAL] is the sum over the orders above pmax. */
+void hb_ref_deon_node(const hb_plan *plan, double sin2_theta_d, double gamma_i, double A[HB_MAX_LOBES + 1][3],
+                      double Phi[HB_MAX_LOBES]);
+
 /* dFH11 f = sum_p M_p N_p (eqs. 7, 10-14) for the plan's lobes, N_p converged to 1e-10. */
 void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
+
+/* dFH11 sampling (README, "Sampling"): the kernels' procedure in double, from five uniform
+ * numbers, and its solid-angle pdf. */
+void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const double u[5], double *theta_i,
+                        double *phi_i);
+double hb_ref_deon_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o);
 
 /* HHH22 microsurface: D(w_h, w_m) at cos_m = w_h . w_m (eq. 41 for GGX, Beckmann) and
  * Smith's Lambda for a direction at cos_w to the mesonormal (Heitz 2014). */

@@ -45,6 +45,11 @@ HB_INLINE vf detector_pair(const hb_detector *d, vf phi, vf Phi, const vf *cos_n
     return vf_mul(sum, vf_set1(d->gauss_norm));
 }
 
+HB_INLINE vf channel_mean(const vf rgb[3])
+{
+    return vf_mul(vf_add(vf_add(rgb[0], rgb[1]), rgb[2]), vf_set1(1.0f / 3.0f));
+}
+
 /* Per-sample geometry the azimuthal part needs. */
 typedef struct deon_geometry {
     vf phi;          /* phi_o - phi_i in [-pi, pi] */
@@ -54,61 +59,119 @@ typedef struct deon_geometry {
     vf cos_half_io;  /* cos of half the angle between w_i and w_o */
 } deon_geometry;
 
+/* What every node of the h quadrature needs from a sample: eta' (sec. 5) and mu_a' (sec. 6). */
+typedef struct deon_medium {
+    vf cos_theta_d;
+    vf inv_eta_prime; /* 1 / eta' = cos(theta_d) / sqrt(eta^2 - sin^2(theta_d)) */
+    vf mu[3];         /* mu_a' = mu_a / cos(theta_t), per channel */
+} deon_medium;
+
+HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_medium *m)
+{
+    m->cos_theta_d = g->cos_theta_d;
+    m->inv_eta_prime = vf_div(g->cos_theta_d, vf_sqrt(vf_sub(vf_set1(d->eta * d->eta), g->sin2_theta_d))); /* sec. 5 */
+    vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(d->inv_eta2), vf_set1(1.0f)));
+    for (int c = 0; c < 3; c++)
+        m->mu[c] = vf_div(vf_set1(d->sigma_a[c]), cos_theta_t);
+}
+
+/* Attenuation A(p, h) (eqs. 12-14, RGB) and exit azimuth Phi(p, h) (eq. 8) of every lobe of the
+ * plan at one offset h = sin(gamma_i). A[HB_LOBE_RESIDUAL] = sum_{p > pmax} A(p, h). Without
+ * the offset Fresnel option, A[R] = 1 and eq. 12's factor is applied by the caller. */
+typedef struct deon_node {
+    vf A[HB_MAX_LOBES + 1][3];
+    vf Phi[HB_MAX_LOBES];
+} deon_node;
+
+HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf gamma_i, vf cos_gamma_i,
+                               deon_node *node)
+{
+    vf sin_gamma_t = vf_mul(h, m->inv_eta_prime);
+    vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
+    vf gamma_t = vf_asin(sin_gamma_t);
+    vf f = fresnel_dielectric(vf_mul(m->cos_theta_d, cos_gamma_i), d->eta, d->inv_eta2); /* eq. 14 */
+    /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (SPEC.md 4) */
+    vf path = d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
+                                  : vf_add(cos_gamma_t, cos_gamma_t);
+    vf T[3], T_power[3];
+    for (int c = 0; c < 3; c++)
+        T_power[c] = T[c] = vf_exp_flush(vf_neg(vf_mul(m->mu[c], path)));
+    if (d->lobes & 1u) {
+        node->Phi[0] = vf_mul(vf_set1(-2.0f), gamma_i); /* eq. 8, p = 0 */
+        node->A[0][0] = node->A[0][1] = node->A[0][2] = d->r_fresnel_offset ? f : vf_set1(1.0f);
+    }
+    vf A = vf_mul(vf_sub(vf_set1(1.0f), f), vf_sub(vf_set1(1.0f), f)); /* (1 - f)^2 f^(p-1), eq. 13 */
+    for (int p = 1; p <= d->pmax; p++) {
+        if (d->lobes >> p & 1u) {
+            node->Phi[p] = vf_fma(vf_set1(2.0f * (float)p), gamma_t,
+                                  vf_fnma(vf_set1(2.0f), gamma_i, vf_set1((float)p * 3.14159265f))); /* eq. 8 */
+            for (int c = 0; c < 3; c++)
+                node->A[p][c] = vf_mul(A, T_power[c]);
+        }
+        A = vf_mul(A, f);
+        for (int c = 0; c < 3; c++)
+            T_power[c] = vf_mul(T_power[c], T[c]);
+    }
+    if (d->lobes >> HB_LOBE_RESIDUAL & 1u) { /* sum_{p > pmax} A(p, h) = A(pmax+1, h) / (1 - f T) */
+        for (int c = 0; c < 3; c++) {
+            vf geometric = vf_max(vf_fnma(f, T[c], vf_set1(1.0f)), vf_set1(1e-30f));
+            node->A[HB_LOBE_RESIDUAL][c] = vf_div(vf_mul(A, T_power[c]), geometric);
+        }
+    }
+}
+
+/* The residual lobe's pair of detectors: uniform in phi, 2 / (2 pi). */
+#define HB_RESIDUAL_DETECTOR_PAIR 0.318309886f
+
+/* For the sampling density (README, "Sampling"): M_p at the sample per lobe (NULL when only f is
+ * wanted) and the accumulated sum over nodes of P(node) sum_p m_p D_p / (2 sum_p m_p), where
+ * m_p = M_p times A(p, h) averaged over the channels. */
+typedef struct deon_pdf_terms {
+    const vf *M;
+    vf sum;
+} deon_pdf_terms;
+
 /* N_p of eq. 10 for every lobe of the plan, by the plan's Gauss-Legendre rule in gamma_i:
  * N_p = sum_j weight_j A(p, h_j) [D_p(phi - Phi(p, h_j)) + D_p(-phi - Phi(p, h_j))].
  * N[HB_LOBE_RESIDUAL] holds all orders above pmax, spread uniformly in phi. */
-HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3])
+HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3],
+                              deon_pdf_terms *pdf)
 {
-    vf inv_eta_prime = vf_div(g->cos_theta_d, vf_sqrt(vf_sub(vf_set1(d->eta * d->eta), g->sin2_theta_d))); /* sec. 5 */
-    vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(d->inv_eta2), vf_set1(1.0f)));
-    vf mu[3]; /* mu_a' = mu_a / cos(theta_t) (sec. 6) */
-    for (int c = 0; c < 3; c++)
-        mu[c] = vf_div(vf_set1(d->sigma_a[c]), cos_theta_t);
+    deon_medium medium;
+    deon_medium_of(d, g, &medium);
     vf cos_n_phi[HB_MAX_DETECTOR_TERMS + 1];
     cos_multiples(g->cos_phi, d->fourier_terms, cos_n_phi);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
         N[p][0] = N[p][1] = N[p][2] = vf_set1(0.0f);
+    if (pdf)
+        pdf->sum = vf_set1(0.0f);
 
     for (int j = 0; j < d->nodes; j++) {
         vf weight = vf_set1(d->weight[j]);
-        vf sin_gamma_t = vf_mul(vf_set1(d->h[j]), inv_eta_prime);
-        vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
-        vf gamma_t = vf_asin(sin_gamma_t);
-        vf f = fresnel_dielectric(vf_mul(g->cos_theta_d, vf_set1(d->cos_gamma_i[j])), d->eta, d->inv_eta2); /* eq. 14 */
-        /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (SPEC.md 4) */
-        vf path = d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
-                                      : vf_add(cos_gamma_t, cos_gamma_t);
-        vf T[3], T_power[3];
-        for (int c = 0; c < 3; c++)
-            T_power[c] = T[c] = vf_exp_flush(vf_neg(vf_mul(mu[c], path)));
-        if (d->lobes & 1u) { /* R: eq. 12 does not depend on h and is applied after the loop */
-            vf Phi = vf_set1(-2.0f * d->gamma_i[j]); /* eq. 8, p = 0 */
-            vf w0 = d->r_fresnel_offset ? vf_mul(weight, f) : weight;
-            N[0][0] = vf_fma(w0, detector_pair(&d->detector[0], g->phi, Phi, cos_n_phi), N[0][0]);
-        }
-        vf A = vf_mul(vf_sub(vf_set1(1.0f), f), vf_sub(vf_set1(1.0f), f)); /* (1 - f)^2 f^(p-1), eq. 13 */
-        for (int p = 1; p <= d->pmax; p++) {
-            if (d->lobes >> p & 1u) {
-                vf Phi = vf_fma(vf_set1(2.0f * (float)p), gamma_t,
-                                vf_set1((float)p * 3.14159265f - 2.0f * d->gamma_i[j])); /* eq. 8 */
-                vf wd = vf_mul(vf_mul(weight, A), detector_pair(&d->detector[p], g->phi, Phi, cos_n_phi));
-                for (int c = 0; c < 3; c++)
-                    N[p][c] = vf_fma(wd, T_power[c], N[p][c]);
-            }
-            A = vf_mul(A, f);
+        deon_node node;
+        deon_node_lobes(d, &medium, vf_set1(d->h[j]), vf_set1(d->gamma_i[j]), vf_set1(d->cos_gamma_i[j]), &node);
+        vf mass = vf_set1(0.0f), detected = vf_set1(0.0f);
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+            if (!(d->lobes >> p & 1u) || (p > d->pmax && p != HB_LOBE_RESIDUAL))
+                continue;
+            vf pair = p == HB_LOBE_RESIDUAL ? vf_set1(HB_RESIDUAL_DETECTOR_PAIR)
+                                            : detector_pair(&d->detector[p], g->phi, node.Phi[p], cos_n_phi);
+            vf wd = vf_mul(weight, pair);
             for (int c = 0; c < 3; c++)
-                T_power[c] = vf_mul(T_power[c], T[c]);
-        }
-        if (d->lobes >> HB_LOBE_RESIDUAL & 1u) { /* sum_{p > pmax} A(p, h) = A(pmax+1, h) / (1 - f T) */
-            vf wr = vf_mul(vf_mul(weight, A), vf_set1((float)(1.0 / 3.14159265358979)));
-            for (int c = 0; c < 3; c++) {
-                vf geometric = vf_max(vf_fnma(f, T[c], vf_set1(1.0f)), vf_set1(1e-30f));
-                N[HB_LOBE_RESIDUAL][c] = vf_fma(vf_div(wr, geometric), T_power[c], N[HB_LOBE_RESIDUAL][c]);
+                N[p][c] = vf_fma(wd, node.A[p][c], N[p][c]);
+            if (pdf) {
+                vf m = vf_mul(pdf->M[d->m_group[p]], channel_mean(node.A[p]));
+                mass = vf_add(mass, m);
+                detected = vf_fma(m, pair, detected);
             }
         }
+        if (pdf) /* (P(node) / 2) detected / mass, 0 where no lobe carries mass */
+            pdf->sum = vf_fma(vf_set1(d->node_half_probability[j]),
+                              vf_div(detected, vf_max(mass, vf_set1(1e-37f))), pdf->sum);
     }
     vf fresnel_r = d->r_fresnel_offset ? vf_set1(1.0f) : fresnel_dielectric(g->cos_half_io, d->eta, d->inv_eta2); /* eq. 12 */
-    N[0][0] = N[0][1] = N[0][2] = vf_mul(N[0][0], fresnel_r);
+    for (int c = 0; c < 3; c++)
+        N[0][c] = vf_mul(N[0][c], fresnel_r);
 }
 
 /* f = sum_p M_p N_p over the plan's lobes, with lobes of equal M_p summed first so each
@@ -134,22 +197,28 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
         }                                                                               \
     } while (0)
 
+/* deon_geometry from angles. */
+HB_INLINE void deon_geometry_angles(vf theta_i, vf phi_i, vf theta_o, vf phi_o, deon_geometry *g)
+{
+    vf si, ci, so, co, sin_phi, sin_td, cos_td;
+    g->phi = wrap_angle(vf_sub(phi_o, phi_i));
+    vf_sincos(theta_i, &si, &ci);
+    vf_sincos(theta_o, &so, &co);
+    vf_sincos(g->phi, &sin_phi, &g->cos_phi);
+    vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &cos_td);
+    g->sin2_theta_d = vf_mul(sin_td, sin_td);
+    g->cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
+    vf dot = vf_fma(vf_mul(ci, co), g->cos_phi, vf_mul(si, so));
+    g->cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
+}
+
 /* f from angles. */
 HB_INLINE void deon_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, vf phi_o, hb_i0 i0, vf out[3])
 {
     deon_geometry g;
-    vf si, ci, so, co, sin_phi, sin_td, cos_td;
-    g.phi = wrap_angle(vf_sub(phi_o, phi_i));
-    vf_sincos(theta_i, &si, &ci);
-    vf_sincos(theta_o, &so, &co);
-    vf_sincos(g.phi, &sin_phi, &g.cos_phi);
-    vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &cos_td);
-    g.sin2_theta_d = vf_mul(sin_td, sin_td);
-    g.cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
-    vf dot = vf_fma(vf_mul(ci, co), g.cos_phi, vf_mul(si, so));
-    g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
+    deon_geometry_angles(theta_i, phi_i, theta_o, phi_o, &g);
     vf N[HB_MAX_LOBES + 1][3];
-    azimuthal_deon(d, &g, N);
+    azimuthal_deon(d, &g, N, NULL);
 #define HB_M_ANGLES(lobe) longitudinal_deon_angles((lobe), theta_i, theta_o, i0)
     HB_DEON_SUM(d, N, out, HB_M_ANGLES);
 #undef HB_M_ANGLES
@@ -175,7 +244,7 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     vf dot = vf_mul(vf_mul(inv_i, inv_o), vf_fma(wi[0], wo[0], vf_fma(wi[1], wo[1], vf_mul(wi[2], wo[2]))));
     g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
     vf N[HB_MAX_LOBES + 1][3];
-    azimuthal_deon(d, &g, N);
+    azimuthal_deon(d, &g, N, NULL);
 #define HB_M_VECTORS(lobe) longitudinal_deon_vectors((lobe), wi, wo, i0)
     HB_DEON_SUM(d, N, out, HB_M_VECTORS);
 #undef HB_M_VECTORS

@@ -1,0 +1,191 @@
+/* dFH11 importance sampling and its pdf over the SIMD vocabulary (README, "Sampling").
+ *
+ * Given w_o and five uniform numbers:
+ *  1. u0 picks an M_p group g with probability c_g(theta_o) (the plan's table), u1 and u2 draw
+ *     theta_i from that M_p exactly: eq. 7 is a von Mises-Fisher distribution of concentration
+ *     1/v about the mirror direction averaged over a circle, so theta_i is the inclination of a
+ *     vMF sample, 1 - cos(psi) = -v log(u1 + (1 - u1) e^(-2/v)) at azimuth 2 pi u2 about it;
+ *  2. u3 picks a quadrature node j with probability weight_j / sum(weight), and, rescaled, a lobe p
+ *     with probability proportional to m_p = M_p(theta_i) A(p, h_j) (channel mean), and a side;
+ *  3. u4 draws phi from lobe p's Gaussian detector about +-Phi(p, h_j) (a Gaussian, wrapped), or
+ *     uniformly for the residual.
+ * Its density per solid angle, which hb_pdf_angles returns, is
+ *     pdf = (sum_g c_g M_g(theta_i)) sum_j P(j) sum_p m_pj (D_p(phi - Phi_pj) + D_p(-phi - Phi_pj)) / (2 sum_p m_pj),
+ * the same node rule as eval, so for a lossless fibre whose lobes share one M_p it equals f / E
+ * exactly and every weight f / pdf is the furnace value E(w_o). */
+#ifndef HB_DEON_SAMPLE_H
+#define HB_DEON_SAMPLE_H
+
+#include "azimuthal.h"
+
+HB_INLINE int deon_group_leader(const hb_deon *d, int p)
+{
+    return (d->lobes >> p & 1u) && (p <= d->pmax || p == HB_LOBE_RESIDUAL) && d->m_group[p] == p;
+}
+
+/* c_g(theta_o) by linear interpolation of the plan's table in |theta_o|; returns their sum. */
+HB_INLINE vf deon_lobe_choice_at(const hb_deon *d, vf theta_o, vf c[HB_MAX_LOBES + 1])
+{
+    vf x = vf_mul(vf_min(vf_abs(theta_o), vf_set1(HB_PIO2_F)), vf_set1((float)HB_LOBE_CHOICE_STEPS / HB_PIO2_F));
+    vf k = vf_min(vf_floor(x), vf_set1((float)HB_LOBE_CHOICE_STEPS));
+    vf t = vf_sub(x, k);
+    vi index = vi_from_vf(k);
+    vf total = vf_set1(0.0f);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        if (!deon_group_leader(d, p))
+            continue;
+        vf lo = vf_gather(d->lobe_choice[p], index), hi = vf_gather(d->lobe_choice[p] + 1, index);
+        c[p] = vf_fma(t, vf_sub(hi, lo), lo);
+        total = vf_add(total, c[p]);
+    }
+    return total;
+}
+
+/* M_g(theta_i, theta_o) for every group leader g. */
+HB_INLINE void deon_longitudinal_groups(const hb_deon *d, vf theta_i, vf theta_o, hb_i0 i0, vf M[HB_MAX_LOBES + 1])
+{
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        M[p] = deon_group_leader(d, p) ? longitudinal_deon_angles(&d->longitudinal[p], theta_i, theta_o, i0)
+                                       : vf_set1(0.0f);
+}
+
+/* Step 1: theta_i from the mixture sum_g c_g M_g (c normalised by their sum). */
+HB_INLINE vf deon_sample_theta(const hb_deon *d, const vf c[HB_MAX_LOBES + 1], vf c_total, vf theta_o,
+                               const vf u[3])
+{
+    vf target = vf_mul(u[0], c_total), cumulative = vf_set1(0.0f);
+    vf v = vf_set1(0.0f), e2 = v, cos_shift = v, sin_shift = v;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        if (!deon_group_leader(d, p))
+            continue;
+        const hb_longitudinal *l = &d->longitudinal[p];
+        vm take = vf_ge(target, cumulative); /* true at the first group: target >= 0 */
+        v = vf_select(take, vf_set1((float)(1.0 / l->inv_v)), v);
+        e2 = vf_select(take, vf_set1(d->exp_minus_two_inv_v[p]), e2);
+        cos_shift = vf_select(take, vf_set1((float)l->cos_shift), cos_shift);
+        sin_shift = vf_select(take, vf_set1((float)l->sin_shift), sin_shift);
+        cumulative = vf_add(cumulative, c[p]);
+    }
+    vf so, co;
+    vf_sincos(theta_o, &so, &co);
+    vf sin_o = vf_fnma(co, sin_shift, vf_mul(so, cos_shift));      /* sin(theta_o - shift) */
+    vf cos_o = vf_abs(vf_fma(co, cos_shift, vf_mul(so, sin_shift))); /* |cos(theta_o - shift)| */
+    /* the vMF polar angle about the mirror direction (inverse CDF, stable for v -> 0) */
+    vf inner = vf_fma(vf_sub(vf_set1(1.0f), u[1]), e2, u[1]);
+    vf one_minus_cos_psi = vf_min(vf_mul(vf_neg(v), vf_log(inner)), vf_set1(2.0f));
+    vf sin_psi = vf_sqrt(vf_max(vf_mul(one_minus_cos_psi, vf_sub(vf_set1(2.0f), one_minus_cos_psi)), vf_set1(0.0f)));
+    vf cos_azimuth = vf_cos(vf_mul(u[2], vf_set1(HB_TWO_PI_F)));
+    vf sin_i = vf_fma(vf_mul(sin_psi, cos_azimuth), cos_o,
+                      vf_mul(vf_sub(one_minus_cos_psi, vf_set1(1.0f)), sin_o)); /* mirror: theta = -(theta_o - shift) */
+    return vf_asin(vf_clamp(sin_i, -1.0f, 1.0f));
+}
+
+/* Steps 2 and 3: phi = phi_o - phi_i given theta_i. */
+HB_INLINE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf theta_i, vf theta_o, const vf u[2])
+{
+    /* the node, by the plan's cumulative weights, and u[0] rescaled within it */
+    vf lo = vf_set1(0.0f), hi = vf_set1(d->node_cdf[0]);
+    vf h = vf_set1(d->h[0]), gamma_i = vf_set1(d->gamma_i[0]), cos_gamma_i = vf_set1(d->cos_gamma_i[0]);
+    for (int j = 1; j < d->nodes; j++) {
+        vm past = vf_ge(u[0], vf_set1(d->node_cdf[j - 1]));
+        lo = vf_select(past, vf_set1(d->node_cdf[j - 1]), lo);
+        hi = vf_select(past, vf_set1(d->node_cdf[j]), hi);
+        h = vf_select(past, vf_set1(d->h[j]), h);
+        gamma_i = vf_select(past, vf_set1(d->gamma_i[j]), gamma_i);
+        cos_gamma_i = vf_select(past, vf_set1(d->cos_gamma_i[j]), cos_gamma_i);
+    }
+    vf within = vf_clamp(vf_div(vf_sub(u[0], lo), vf_sub(hi, lo)), 0.0f, 0.99999994f);
+    /* the lobe, in proportion to m_p = M_p A(p, h) */
+    deon_geometry g;
+    vf sin_td, cos_td;
+    vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &cos_td);
+    g.sin2_theta_d = vf_mul(sin_td, sin_td);
+    g.cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
+    deon_medium medium;
+    deon_medium_of(d, &g, &medium);
+    deon_node node;
+    deon_node_lobes(d, &medium, h, gamma_i, cos_gamma_i, &node);
+    vf mass[HB_MAX_LOBES + 1], total = vf_set1(0.0f);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        if (!(d->lobes >> p & 1u) || (p > d->pmax && p != HB_LOBE_RESIDUAL))
+            continue;
+        mass[p] = vf_mul(M[d->m_group[p]], channel_mean(node.A[p]));
+        total = vf_add(total, mass[p]);
+    }
+    vf target = vf_mul(within, total), below = vf_set1(0.0f), cumulative = vf_set1(0.0f);
+    vf chosen_mass = vf_set1(1.0f), Phi = vf_set1(0.0f), beta = vf_set1(0.0f);
+    vm residual = vf_lt(total, vf_set1(0.0f)); /* false */
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        if (!(d->lobes >> p & 1u) || (p > d->pmax && p != HB_LOBE_RESIDUAL))
+            continue;
+        vm take = vf_ge(target, cumulative);
+        below = vf_select(take, cumulative, below);
+        chosen_mass = vf_select(take, mass[p], chosen_mass);
+        if (p == HB_LOBE_RESIDUAL) {
+            residual = take;
+        } else {
+            Phi = vf_select(take, node.Phi[p], Phi);
+            beta = vf_select(take, vf_set1(d->beta_n[p]), beta);
+            residual = vm_andnot(residual, take);
+        }
+        cumulative = vf_add(cumulative, mass[p]);
+    }
+    vm negative_side = vf_lt(vf_div(vf_sub(target, below), vf_max(chosen_mass, vf_set1(1e-37f))), vf_set1(0.5f));
+    /* phi about the lobe's exit azimuth, on the chosen side: D_p(phi - Phi) or D_p(-phi - Phi) */
+    vf spread = vf_select(residual, vf_mul(vf_fnma(vf_set1(-2.0f), u[1], vf_set1(-1.0f)), vf_set1(HB_PI_F)),
+                          vf_fma(beta, vf_normal_quantile(u[1]), Phi));
+    return wrap_angle(vf_select(negative_side, vf_neg(spread), spread));
+}
+
+/* f (RGB) and the sampling pdf at given angles; M: each group's M_p at these angles. */
+HB_INLINE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o,
+                        vf out[3])
+{
+    vf N[HB_MAX_LOBES + 1][3];
+    deon_pdf_terms terms = { M, vf_set1(0.0f) };
+    azimuthal_deon(d, g, N, &terms);
+    vf c[HB_MAX_LOBES + 1];
+    vf c_total = deon_lobe_choice_at(d, theta_o, c);
+    vf mixture = vf_set1(0.0f);
+    out[0] = out[1] = out[2] = vf_set1(0.0f);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        if (!(d->lobes >> p & 1u) || (p > d->pmax && p != HB_LOBE_RESIDUAL))
+            continue;
+        vf m = M[d->m_group[p]];
+        for (int k = 0; k < 3; k++)
+            out[k] = vf_fma(m, N[p][k], out[k]);
+        if (d->m_group[p] == p)
+            mixture = vf_fma(c[p], m, mixture);
+    }
+    return vf_mul(vf_div(mixture, c_total), terms.sum);
+}
+
+/* The pdf alone, from angles. */
+HB_INLINE vf deon_pdf_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, vf phi_o, hb_i0 i0)
+{
+    vf M[HB_MAX_LOBES + 1], f[3];
+    deon_longitudinal_groups(d, theta_i, theta_o, i0, M);
+    deon_geometry g;
+    deon_geometry_angles(theta_i, phi_i, theta_o, phi_o, &g);
+    return deon_f_pdf(d, M, &g, theta_o, f);
+}
+
+/* One sample: theta_i, phi_i, the pdf and the weight f / pdf (0 where the pdf is 0). */
+HB_INLINE void deon_sample(const hb_deon *d, vf theta_o, vf phi_o, const vf u[5], hb_i0 i0, vf *theta_i, vf *phi_i,
+                           vf *pdf, vf weight[3])
+{
+    vf c[HB_MAX_LOBES + 1], M[HB_MAX_LOBES + 1], f[3];
+    vf c_total = deon_lobe_choice_at(d, theta_o, c);
+    *theta_i = deon_sample_theta(d, c, c_total, theta_o, u);
+    deon_longitudinal_groups(d, *theta_i, theta_o, i0, M);
+    *phi_i = wrap_angle(vf_sub(phi_o, deon_sample_phi(d, M, *theta_i, theta_o, u + 3)));
+    deon_geometry g;
+    deon_geometry_angles(*theta_i, *phi_i, theta_o, phi_o, &g);
+    *pdf = deon_f_pdf(d, M, &g, theta_o, f);
+    vm positive = vf_gt(*pdf, vf_set1(0.0f));
+    vf inv_pdf = vf_div(vf_set1(1.0f), vf_select(positive, *pdf, vf_set1(1.0f)));
+    for (int k = 0; k < 3; k++)
+        weight[k] = vf_select(positive, vf_mul(f[k], inv_pdf), vf_set1(0.0f));
+}
+
+#endif

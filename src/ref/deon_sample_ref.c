@@ -1,0 +1,140 @@
+/* dFH11 sampling and pdf in double precision (the procedure of src/models/deon/sample.h with
+ * libm, the converged detector and the reference M_p; README, "Sampling"). The plan's tables
+ * (node and lobe-choice weights) define the procedure and are shared. Internal. */
+#include <math.h>
+
+#include "../plan.h"
+#include "reference.h"
+
+static int lobe_on(const hb_deon *d, int p)
+{
+    return (d->lobes >> p & 1u) && (p <= d->pmax || p == HB_LOBE_RESIDUAL);
+}
+
+static int group_leader(const hb_deon *d, int p) { return lobe_on(d, p) && d->m_group[p] == p; }
+
+/* c_g(theta_o) from the plan's table, as the kernels interpolate it; returns their sum. */
+static double lobe_choice(const hb_deon *d, double theta_o, double c[HB_MAX_LOBES + 1])
+{
+    double x = fmin(fabs(theta_o), M_PI_2) * HB_LOBE_CHOICE_STEPS / M_PI_2;
+    int k = (int)fmin(floor(x), HB_LOBE_CHOICE_STEPS);
+    double t = x - k, total = 0.0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        c[p] = group_leader(d, p) ? d->lobe_choice[p][k] + t * (d->lobe_choice[p][k + 1] - d->lobe_choice[p][k]) : 0.0;
+        total += c[p];
+    }
+    return total;
+}
+
+static void longitudinal_groups(const hb_plan *plan, double theta_i, double theta_o, double M[HB_MAX_LOBES + 1])
+{
+    const hb_deon *d = &plan->deon;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        M[p] = group_leader(d, p) ? hb_ref_deon_longitudinal(plan->v[p], theta_i, theta_o - d->longitudinal[p].shift,
+                                                             plan->options.i0)
+                                  : 0.0;
+}
+
+/* m_p = M_p A(p, h_j) (channel mean) at node j; returns their sum. */
+static double lobe_masses(const hb_plan *plan, const double M[HB_MAX_LOBES + 1], double sin2_theta_d, int j,
+                          double mass[HB_MAX_LOBES + 1], double Phi[HB_MAX_LOBES])
+{
+    const hb_deon *d = &plan->deon;
+    double A[HB_MAX_LOBES + 1][3], total = 0.0;
+    hb_ref_deon_node(plan, sin2_theta_d, d->gamma_i[j], A, Phi);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        mass[p] = lobe_on(d, p) ? M[d->m_group[p]] * (A[p][0] + A[p][1] + A[p][2]) / 3.0 : 0.0;
+        total += mass[p];
+    }
+    return total;
+}
+
+double hb_ref_deon_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o)
+{
+    const hb_deon *d = &plan->deon;
+    double phi = remainder(phi_o - phi_i, 2.0 * M_PI), sin_td = sin(0.5 * (theta_o - theta_i));
+    double M[HB_MAX_LOBES + 1], c[HB_MAX_LOBES + 1];
+    longitudinal_groups(plan, theta_i, theta_o, M);
+    double c_total = lobe_choice(d, theta_o, c), mixture = 0.0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        mixture += c[p] * M[p];
+    double weight_total = 0.0, sum = 0.0;
+    for (int j = 0; j < d->nodes; j++)
+        weight_total += d->weight[j];
+    for (int j = 0; j < d->nodes; j++) {
+        double mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES], detected = 0.0;
+        double total = lobe_masses(plan, M, sin_td * sin_td, j, mass, Phi);
+        if (total <= 0.0)
+            continue;
+        for (int p = 0; p <= d->pmax; p++)
+            if (mass[p] > 0.0)
+                detected += mass[p] * (hb_ref_detector(plan->beta_n[p], phi - Phi[p]) +
+                                       hb_ref_detector(plan->beta_n[p], -phi - Phi[p]));
+        detected += mass[HB_LOBE_RESIDUAL] / M_PI;
+        sum += 0.5 * d->weight[j] / weight_total * detected / total;
+    }
+    return mixture / c_total * sum;
+}
+
+/* The standard normal quantile, by bisection on erfc to double precision. */
+static double normal_quantile(double u)
+{
+    double lo = -40.0, hi = 40.0;
+    for (int k = 0; k < 200 && hi - lo > 1e-15; k++) {
+        double mid = 0.5 * (lo + hi);
+        if (0.5 * erfc(-mid / M_SQRT2) < u)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const double u[5], double *theta_i,
+                        double *phi_i)
+{
+    const hb_deon *d = &plan->deon;
+    /* 1. theta_i from the longitudinal mixture */
+    double c[HB_MAX_LOBES + 1];
+    double target = u[0] * lobe_choice(d, theta_o, c), cumulative = 0.0;
+    int g = -1;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        if (group_leader(d, p)) {
+            if (g < 0 || target >= cumulative)
+                g = p;
+            cumulative += c[p];
+        }
+    double v = plan->v[g], shift = d->longitudinal[g].shift;
+    double sin_o = sin(theta_o - shift), cos_o = fabs(cos(theta_o - shift));
+    double one_minus_cos_psi = fmin(-v * log(u[1] + (1.0 - u[1]) * exp(-2.0 / v)), 2.0); /* vMF about the mirror */
+    double sin_psi = sqrt(fmax(one_minus_cos_psi * (2.0 - one_minus_cos_psi), 0.0));
+    double sin_i = (one_minus_cos_psi - 1.0) * sin_o + sin_psi * cos(2.0 * M_PI * u[2]) * cos_o;
+    *theta_i = asin(fmax(-1.0, fmin(1.0, sin_i)));
+    /* 2. the node, then the lobe in proportion to M_p A(p, h), then the side */
+    int j = 0;
+    while (j < d->nodes - 1 && u[3] >= d->node_cdf[j])
+        j++;
+    double lo = j > 0 ? d->node_cdf[j - 1] : 0.0, within = (u[3] - lo) / (d->node_cdf[j] - lo);
+    double M[HB_MAX_LOBES + 1], mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES];
+    longitudinal_groups(plan, *theta_i, theta_o, M);
+    double sin_td = sin(0.5 * (theta_o - *theta_i));
+    double total = lobe_masses(plan, M, sin_td * sin_td, j, mass, Phi);
+    target = within * total;
+    cumulative = 0.0;
+    int lobe = -1;
+    double below = 0.0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        if (lobe_on(d, p)) {
+            if (lobe < 0 || target >= cumulative) {
+                lobe = p;
+                below = cumulative;
+            }
+            cumulative += mass[p];
+        }
+    int negative_side = (target - below) / fmax(mass[lobe], 1e-300) < 0.5;
+    /* 3. phi about the exit azimuth */
+    double spread = lobe == HB_LOBE_RESIDUAL ? M_PI * (2.0 * u[4] - 1.0)
+                                             : Phi[lobe] + plan->beta_n[lobe] * normal_quantile(u[4]);
+    double phi = remainder(negative_side ? -spread : spread, 2.0 * M_PI);
+    *phi_i = remainder(phi_o - phi, 2.0 * M_PI);
+}

@@ -1,0 +1,119 @@
+/* Public sampling entry points (README, "Sampling"): argument checks, then the plan's kernel
+ * or, for HB_QUALITY_REFERENCE, the double-precision procedure. No allocation. */
+#include <math.h>
+
+#include "plan.h"
+#include "ref/reference.h"
+
+#define HB_DEON_DIMENSIONS 5
+
+int hb_plan_sample_dimensions(const hb_plan *plan)
+{
+    if (!plan || plan->options.term != HB_TERM_FULL)
+        return 0;
+    if (plan->options.model == HB_MODEL_DEON && plan->options.r_fresnel == HB_R_FRESNEL_OFFSET)
+        return HB_DEON_DIMENSIONS;
+    return 0;
+}
+
+static int angles_valid(float theta, float phi)
+{
+    return fabsf(theta) <= 1.57079637f && fabsf(phi) <= HB_PHI_LIMIT; /* false for NaN */
+}
+
+/* The reference path, one sample at a time. */
+static size_t sample_ref(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out)
+{
+    size_t invalid = 0;
+    for (size_t k = 0; k < n; k++) {
+        double u[HB_DEON_DIMENSIONS], theta_i = 0.0, phi_i = 0.0, f[3] = { 0.0, 0.0, 0.0 }, pdf = 0.0;
+        int ok = angles_valid(in.theta_o[k], in.phi_o[k]);
+        for (int d = 0; d < HB_DEON_DIMENSIONS; d++) {
+            u[d] = in.u[d][k];
+            ok = ok && u[d] >= 0.0 && u[d] <= 1.0;
+        }
+        if (ok) {
+            hb_ref_deon_sample(plan, in.theta_o[k], in.phi_o[k], u, &theta_i, &phi_i);
+            float ti = (float)theta_i, pi = (float)phi_i; /* f and pdf where the caller will see the sample */
+            theta_i = ti;
+            phi_i = pi;
+            pdf = hb_ref_deon_pdf(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k]);
+            hb_ref_deon(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k], f);
+        } else {
+            invalid++;
+        }
+        out.theta_i[k] = (float)theta_i;
+        out.phi_i[k] = (float)phi_i;
+        out.pdf[k] = (float)pdf;
+        float *weight[3] = { out.weight.r, out.weight.g, out.weight.b };
+        for (int c = 0; c < 3; c++)
+            weight[c][k] = pdf > 0.0 ? (float)(f[c] / pdf) : 0.0f;
+    }
+    return invalid;
+}
+
+hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, hb_eval_report *report)
+{
+    if (!plan)
+        return HB_ERR_NULL;
+    int dims = hb_plan_sample_dimensions(plan);
+    if (dims == 0)
+        return HB_ERR_UNSUPPORTED;
+    if (n) {
+        if (!in.theta_o || !in.phi_o || !out.theta_i || !out.phi_i || !out.pdf || !out.weight.r || !out.weight.g ||
+            !out.weight.b)
+            return HB_ERR_NULL;
+        for (int d = 0; d < dims; d++)
+            if (!in.u[d])
+                return HB_ERR_NULL;
+    }
+    size_t invalid = 0;
+    if (!plan->kernels)
+        invalid = sample_ref(plan, n, in, out);
+    else
+        plan->kernels->deon_sample[plan->options.i0](&plan->deon, n, in, out, &invalid);
+    if (report)
+        report->invalid = invalid;
+    return HB_OK;
+}
+
+hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, hb_eval_report *report)
+{
+    if (!plan)
+        return HB_ERR_NULL;
+    if (hb_plan_sample_dimensions(plan) == 0)
+        return HB_ERR_UNSUPPORTED;
+    if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o || !pdf))
+        return HB_ERR_NULL;
+    size_t invalid = 0;
+    if (!plan->kernels) {
+        for (size_t k = 0; k < n; k++) {
+            int ok = angles_valid(in.theta_i[k], in.phi_i[k]) && angles_valid(in.theta_o[k], in.phi_o[k]);
+            pdf[k] = ok ? (float)hb_ref_deon_pdf(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k]) : 0.0f;
+            invalid += !ok;
+        }
+    } else {
+        plan->kernels->deon_pdf[plan->options.i0](&plan->deon, n, in, pdf, &invalid);
+    }
+    if (report)
+        report->invalid = invalid;
+    return HB_OK;
+}
+
+/* SplitMix64's finaliser (Steele, Lea and Flood 2014): a bijective 64-bit mix. */
+static unsigned long long mix64(unsigned long long x)
+{
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+void hb_uniforms(unsigned long long seed, unsigned long long first, size_t n, int dimensions, float *const *u)
+{
+    unsigned long long key = mix64(seed + 0x9e3779b97f4a7c15ull);
+    for (int d = 0; d < dimensions; d++)
+        for (size_t k = 0; k < n; k++) {
+            unsigned long long index = (first + k) * HB_SAMPLE_DIMENSIONS + (unsigned long long)d;
+            u[d][k] = (float)(mix64(key ^ mix64(index)) >> 40) * 0x1p-24f;
+        }
+}
