@@ -65,5 +65,6 @@ extern const hb_test hb_tests_api[];
 extern const hb_test hb_tests_cli[];
 extern const hb_test hb_tests_images[];
 extern const hb_test hb_tests_corpus[];
+extern const hb_test hb_tests_sample[];
 
 #endif
