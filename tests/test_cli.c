@@ -258,11 +258,73 @@ static void test_marschner_commands(hb_test_ctx *t)
           "marschner furnace: %s", r.out);
 }
 
+/* hairbsdf sample and pdf: rows that are the library's samples, a summary whose mean weight is
+ * the white-furnace energy, a pdf column that matches the sampled pdf, and refusals. */
+static void test_sample_commands(hb_test_ctx *t)
+{
+    run_result r;
+    if (!run_tool(t, "sample --theta-o 0.5 --phi-o 0.2 --count 3 --seed 9 --beta-m 0.2", "", &r))
+        return;
+    CHECK(t, r.status == 0, "sample exit %d: %s", r.status, r.err);
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.beta_m = 0.2;
+    hb_plan *plan = NULL;
+    CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "plan");
+    float to[3] = { 0.5f, 0.5f, 0.5f }, po[3] = { 0.2f, 0.2f, 0.2f }, u[5][3], ti[3], pi[3], pdf[3], w[3][3];
+    float *streams[5] = { u[0], u[1], u[2], u[3], u[4] };
+    hb_uniforms(9, 0, 3, 5, streams);
+    hb_sample_angles(plan, 3, (hb_sample_in){ to, po, { u[0], u[1], u[2], u[3], u[4] } },
+                     (hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, NULL);
+    char want[1024] = "theta_i,phi_i,pdf,w_r,w_g,w_b\n", row[256];
+    for (int k = 0; k < 3; k++) {
+        snprintf(row, sizeof row, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", ti[k], pi[k], pdf[k], w[0][k], w[1][k], w[2][k]);
+        strcat(want, row);
+    }
+    CHECK(t, strcmp(r.out, want) == 0, "sample printed\n%s\nwant\n%s", r.out, want);
+
+    char input[128];
+    snprintf(input, sizeof input, "theta_i,phi_i,theta_o,phi_o\n%.9g,%.9g,0.5,0.2\n", ti[1], pi[1]);
+    if (!run_tool(t, "pdf --beta-m 0.2", input, &r))
+        return;
+    CHECK(t, r.status == 0 && fabs(atof(r.out) - pdf[1]) <= 1e-6 * pdf[1], "pdf printed '%s', sampled %.9g (%s)",
+          r.out, pdf[1], r.err);
+    hb_plan_destroy(plan);
+
+    if (!run_tool(t, "sample --theta-o -0.7 --count 20000 --summary --sigma-a 0.3,0.6,1.2", "", &r))
+        return;
+    double mean[3], se[3], e[3];
+    unsigned long long count = 0;
+    const char *line = strchr(r.out, '\n');
+    CHECK(t, line && sscanf(line + 1, "%llu,%lf,%lf,%lf,%lf,%lf,%lf", &count, &mean[0], &mean[1], &mean[2], &se[0], &se[1],
+                            &se[2]) == 7, "summary '%s'", r.out);
+    m.beta_m = 0.1;
+    m.sigma_a[0] = 0.3, m.sigma_a[1] = 0.6, m.sigma_a[2] = 1.2;
+    CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "plan");
+    hb_furnace(plan, -0.7, e);
+    hb_plan_destroy(plan);
+    for (int c = 0; c < 3; c++)
+        CHECK(t, count == 20000 && fabs(mean[c] - e[c]) <= 4.0 * se[c] + 1e-4, "channel %d: mean weight %.5f +- %.1e, E %.5f",
+              c, mean[c], se[c], e[c]);
+
+    static const char *const refused[] = { "sample --model marschner --theta-o 0.1", "sample --count 10",
+                                           "sample --theta-o 2", "sample --theta-o 0.1 --count 0",
+                                           "sample --theta-o 0.1 --seed -3", "pdf --model huang --lobes R" };
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        if (!run_tool(t, refused[k], "0,0,0,0\n", &r))
+            return;
+        CHECK(t, r.status == 2 && r.err[0], "'%s': exit %d, stderr '%s'", refused[k], r.status, r.err);
+    }
+}
+
 const hb_test hb_tests_cli[] = {
     { "cli_deon_commands", test_deon_commands, 0 },
     { "cli_marschner_commands", test_marschner_commands, 0 },
     { "cli_eval_matches_library", test_eval_matches_library, 0 },
     { "cli_eval_errors", test_eval_errors, 0 },
     { "cli_help", test_help, 0 },
+    { "cli_sample_commands", test_sample_commands, 0 },
     { NULL, NULL, 0 },
 };

@@ -21,7 +21,8 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
 /* The help text of the model options. */
 extern const char cli_model_options_help[];
 
-int cmd_eval(int argc, char **argv);
+int cmd_eval(int argc, char **argv, int pdf); /* pdf: hairbsdf pdf */
+int cmd_sample(int argc, char **argv);
 int cmd_furnace(int argc, char **argv);
 int cmd_dump(int argc, char **argv);
 

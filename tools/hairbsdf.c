@@ -10,6 +10,8 @@ static void usage(FILE *to)
             "usage: hairbsdf <command> [options]\n"
             "Commands:\n"
             "  eval      evaluate f for CSV rows theta_i,phi_i,theta_o,phi_o on stdin\n"
+            "  sample    importance-sample w_i given w_o: directions, pdfs and weights f/pdf\n"
+            "  pdf       the sampling pdf for CSV rows theta_i,phi_i,theta_o,phi_o on stdin\n"
             "  furnace   white-furnace energy against theta_o, in total or by lobe\n"
             "  dump      a lat-long image of f over all w_o for one w_i (PFM or PNG)\n"
             "  isa       list the instruction sets, which this CPU has, and which auto picks\n"
@@ -39,7 +41,11 @@ int main(int argc, char **argv)
         return 0;
     }
     if (strcmp(cmd, "eval") == 0)
-        return cmd_eval(argc - 1, argv + 1);
+        return cmd_eval(argc - 1, argv + 1, 0);
+    if (strcmp(cmd, "pdf") == 0)
+        return cmd_eval(argc - 1, argv + 1, 1);
+    if (strcmp(cmd, "sample") == 0)
+        return cmd_sample(argc - 1, argv + 1);
     if (strcmp(cmd, "dump") == 0)
         return cmd_dump(argc - 1, argv + 1);
     if (strcmp(cmd, "furnace") == 0)
