@@ -14,6 +14,9 @@
 
 enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
 
+/* What a row times: hb_eval_angles, hb_sample_angles or hb_pdf_angles. */
+typedef enum bench_op { OP_EVAL, OP_SAMPLE, OP_PDF } bench_op;
+
 typedef struct row {
     const char *model, *term, *variant;
     hb_isa isa;
@@ -35,6 +38,25 @@ static int compare_double(const void *a, const void *b)
 
 static float theta_i[BATCH], phi_i[BATCH], theta_o[BATCH], phi_o[BATCH];
 static float out[3][BATCH], ref[3][BATCH];
+static float uniforms[HB_SAMPLE_DIMENSIONS][BATCH], sampled_theta[BATCH], sampled_phi[BATCH], sampled_pdf[BATCH];
+
+/* One call of the configuration's operation on the batch. For sampling, out holds the weights;
+ * for the pdf, out[0..2] all hold the pdf. */
+static void run_op(const hb_plan *plan, bench_op op)
+{
+    hb_angles_soa in = { theta_i, phi_i, theta_o, phi_o };
+    if (op == OP_EVAL) {
+        hb_eval_angles(plan, BATCH, in, (hb_rgb_soa){ out[0], out[1], out[2] }, NULL);
+    } else if (op == OP_SAMPLE) {
+        hb_sample_in sample_in = { theta_o, phi_o, { uniforms[0], uniforms[1], uniforms[2], uniforms[3], uniforms[4], uniforms[5], uniforms[6], uniforms[7] } };
+        hb_sample_angles(plan, BATCH, sample_in,
+                         (hb_sample_out){ sampled_theta, sampled_phi, sampled_pdf, { out[0], out[1], out[2] } }, NULL);
+    } else {
+        hb_pdf_angles(plan, BATCH, in, out[0], NULL);
+        memcpy(out[1], out[0], sizeof out[0]);
+        memcpy(out[2], out[0], sizeof out[0]);
+    }
+}
 
 /* Directions spread over the sphere, half of them near the specular cone where M_p is large. */
 static void make_inputs(double v)
@@ -49,7 +71,7 @@ static void make_inputs(double v)
     }
 }
 
-static int time_plan(const hb_material *m, const hb_options *o, row *r)
+static int time_plan(const hb_material *m, const hb_options *o, bench_op op, row *r)
 {
     hb_plan *plan = NULL;
     hb_error err;
@@ -57,17 +79,27 @@ static int time_plan(const hb_material *m, const hb_options *o, row *r)
         fprintf(stderr, "bench: %s\n", err.message);
         return 0;
     }
-    hb_angles_soa in = { theta_i, phi_i, theta_o, phi_o };
-    hb_rgb_soa rgb = { out[0], out[1], out[2] };
     int repeats = o->term == HB_TERM_FULL ? REPEATS / 10 : REPEATS;
     double t[REPEATS];
-    hb_eval_angles(plan, BATCH, in, rgb, NULL); /* warm up */
+    run_op(plan, op); /* warm up */
     for (int k = 0; k < repeats; k++) {
         double t0 = now_ns();
-        hb_eval_angles(plan, BATCH, in, rgb, NULL);
+        run_op(plan, op);
         t[k] = (now_ns() - t0) / BATCH;
     }
     qsort(t, (size_t)repeats, sizeof t[0], compare_double);
+    if (op == OP_SAMPLE) { /* the weight's error: f_ref / pdf at the sampled directions */
+        hb_options ro = *o;
+        ro.quality = HB_QUALITY_REFERENCE;
+        hb_plan *reference;
+        hb_plan_create(m, &ro, &reference, NULL);
+        hb_eval_angles(reference, NREF, (hb_angles_soa){ sampled_theta, sampled_phi, theta_o, phi_o },
+                       (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+        hb_plan_destroy(reference);
+        for (int c = 0; c < 3; c++)
+            for (int k = 0; k < NREF; k++)
+                ref[c][k] = sampled_pdf[k] > 0.0f ? ref[c][k] / sampled_pdf[k] : 0.0f;
+    }
     r->min_ns = t[0];
     r->median_ns = t[repeats / 2];
     r->isa = hb_plan_isa(plan);
@@ -130,30 +162,37 @@ typedef struct config {
     hb_shadowing shadowing;         /* HHH22 */
     hb_r_integration r_integration; /* HHH22 */
     double r_step;                  /* HHH22: the paper's Simpson rule */
+    bench_op op;
 } config;
 
 /* What each row measures: dFH11's M_p alone and its full model (R..TRRT + residual, RGB) per
  * quality; MJC03's longitudinal term and its full model (R + TT + TRT, RGB: one closed-form
  * kernel for every quality); HHH22's R lobe (GGX 0.1): App. A's closed form without G, Simpson
  * with Smith G in the peak-following variable per quality, and the paper's rule (steps of 0.7
- * roughness in phi_m). */
+ * roughness in phi_m); dFH11 sampling (direction, pdf and weight; its error is the weight's against
+ * f_ref / pdf at the sampled directions) and its pdf alone (against the reference quality's pdf,
+ * whose procedure has the high-quality node set). */
 static const config configs[] = {
-    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
-    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
-    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
-    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
-    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
-    { "deon", "full", "nodes35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+    { "deon", "full", "nodes35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
     { "marschner", "longitudinal", "gaussian", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0,
-      HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
-    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+      HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
     { "huang", "R", "analytic", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0 },
-    { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
-    { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
-    { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0 },
+      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL },
+    { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+    { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+    { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
     { "huang", "R", "G-paper-step", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7, OP_EVAL },
+    { "deon", "sample", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE },
+    { "deon", "pdf", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF },
 };
 
 /* The options of a configuration (quality and ISA left to the caller where they differ). */
@@ -183,8 +222,15 @@ static void reference_of(const hb_material *m, const config *c)
     o.r_step = 0.0;
     hb_plan *plan;
     hb_plan_create(m, &o, &plan, NULL);
-    hb_eval_angles(plan, NREF, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
-                   (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+    /* (a sampling row's reference is made per ISA at its sampled directions, in time_plan) */
+    if (c->op == OP_PDF) {
+        hb_pdf_angles(plan, NREF, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o }, ref[0], NULL);
+        memcpy(ref[1], ref[0], sizeof ref[0]);
+        memcpy(ref[2], ref[0], sizeof ref[0]);
+    } else if (c->op == OP_EVAL) {
+        hb_eval_angles(plan, NREF, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
+                       (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+    }
     hb_plan_destroy(plan);
 }
 
@@ -209,8 +255,11 @@ static int run_once(const char *name)
             fprintf(stderr, "bench: %s\n", err.message);
             return 2;
         }
-        hb_eval_angles(plan, BATCH, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
-                       (hb_rgb_soa){ out[0], out[1], out[2] }, NULL);
+        float *streams[HB_SAMPLE_DIMENSIONS];
+        for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+            streams[d] = uniforms[d];
+        hb_uniforms(1, 0, BATCH, HB_SAMPLE_DIMENSIONS, streams);
+        run_op(plan, configs[ci].op);
         hb_plan_destroy(plan);
         return 0;
     }
@@ -247,6 +296,10 @@ int main(int argc, char **argv)
     hb_material_default(&m);
     m.sigma_a[0] = 0.1, m.sigma_a[1] = 0.25, m.sigma_a[2] = 0.6; /* blond */
     make_inputs(m.beta_m * m.beta_m);
+    float *streams[HB_SAMPLE_DIMENSIONS];
+    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+        streams[d] = uniforms[d];
+    hb_uniforms(1, 0, BATCH, HB_SAMPLE_DIMENSIONS, streams);
 
     static row rows[N_CONFIGS * HB_ISA_COUNT + N_CONFIGS];
     int nrows = 0;
@@ -260,7 +313,7 @@ int main(int argc, char **argv)
             options_of(c, &o);
             o.isa = (hb_isa)isa;
             row r = { c->model, c->term, c->variant, HB_ISA_SCALAR, 0, 0, 0 };
-            if (time_plan(&m, &o, &r))
+            if (time_plan(&m, &o, c->op, &r))
                 rows[nrows++] = r;
         }
     }
@@ -292,7 +345,7 @@ int main(int argc, char **argv)
             snprintf(labels[npoints], sizeof labels[0], "%s/%s", rows[k].term, rows[k].variant);
             points[npoints] = (bench_point){ labels[npoints], hb_isa_name(rows[k].isa), rows[k].min_ns,
                                              rows[k].max_rel_err };
-            if (strcmp(rows[k].term, "longitudinal")) /* M_p alone is another quantity */
+            if (!strcmp(rows[k].term, "full") || !strcmp(rows[k].term, "R")) /* M_p alone, sampling: other quantities */
                 full[nfull++] = points[npoints];
             npoints++;
         }
