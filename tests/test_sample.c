@@ -248,7 +248,8 @@ static void test_sample_chi_square(hb_test_ctx *t)
     }
 }
 
-/* Item 5 on every ISA: the same uniform numbers give the double reference's direction (up to
+/* Item 5 on every ISA, hard cases included (v = 1e-4 with beta_n 0.02 at grazing theta_o, huge
+ * absorption): the same uniform numbers give the double reference's direction (up to
  * the few samples whose discrete choice, of lobe, node or side, flips on float rounding), the
  * pdf at a sampled direction agrees with the double procedure's pdf there, hb_pdf_angles
  * returns the sampled pdf bit for bit, and weights are f / pdf. */
@@ -256,7 +257,7 @@ static void test_sample_reference(hb_test_ctx *t)
 {
     static const struct { double beta_m, beta_n, alpha, sigma_a, theta_o; } cases[] = {
         { 0.3, 0.3, 0.035, 0.0, 0.5 }, { 0.1, 0.2, 0.035, 0.5, -1.2 }, { 0.02, 0.05, 0.0, 0.1, 0.3 },
-        { 0.9, 1.5, -0.1, 3.0, 1.5 },
+        { 0.9, 1.5, -0.1, 3.0, 1.5 }, { 0.01, 0.02, 0.035, 0.0, 1.5707963 }, { 0.01, 0.3, 0.0, 1e3, -0.3 },
     };
     size_t n = t->emulated ? 100 : 400;
     double worst_direction = 0.0, worst_pdf = 0.0, worst_weight = 0.0;
