@@ -1,5 +1,6 @@
 /* libFuzzer: arbitrary bytes as material, options and directions. Plan creation either refuses
- * with a message or succeeds, and every valid sample's f must be finite and >= 0. */
+ * with a message or succeeds, and every valid sample's f must be finite and >= 0; where the plan
+ * samples, sampled directions are in range and pdfs and weights finite and >= 0. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -74,6 +75,30 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             for (size_t k = 0; k < n; k++)
                 if (!(isfinite(f[c][k]) && f[c][k] >= 0.0f))
                     abort();
+    }
+    if (hb_plan_sample_dimensions(plan) > 0) { /* u from the first two streams (some outside [0, 1]) */
+        float u[3][MAX_SAMPLES], ti[MAX_SAMPLES], pi[MAX_SAMPLES], pdf[MAX_SAMPLES];
+        for (size_t k = 0; k < n; k++) {
+            u[0][k] = a[0][k] - floorf(a[0][k]);
+            u[1][k] = a[1][k] - floorf(a[1][k]);
+            u[2][k] = a[0][k] * 0.25f;
+        }
+        hb_eval_report rep;
+        hb_sample_in in = { a[2], a[3], { u[0], u[1], u[2], a[0], a[1] } };
+        hb_sample_angles(plan, n, in, (hb_sample_out){ ti, pi, pdf, { f[0], f[1], f[2] } }, &rep);
+        if (rep.invalid > n)
+            abort();
+        for (size_t k = 0; k < n; k++) {
+            if (!(fabsf(ti[k]) <= 1.5707964f && fabsf(pi[k]) <= 3.1415927f && isfinite(pdf[k]) && pdf[k] >= 0.0f))
+                abort();
+            for (int c = 0; c < 3; c++)
+                if (!(isfinite(f[c][k]) && f[c][k] >= 0.0f))
+                    abort();
+        }
+        hb_pdf_angles(plan, n, (hb_angles_soa){ a[0], a[1], a[2], a[3] }, pdf, &rep);
+        for (size_t k = 0; k < n; k++)
+            if (!(isfinite(pdf[k]) && pdf[k] >= 0.0f))
+                abort();
     }
     hb_plan_destroy(plan);
     return 0;
