@@ -99,6 +99,14 @@ typedef struct hb_deon {
     float exp_minus_two_inv_v[HB_MAX_LOBES + 1]; /* e^(-2/v) per lobe, for sampling M_p */
 } hb_deon;
 
+/* Whether lobe p (an order up to pmax, or the residual) is in the plan's dFH11 sum, and whether it
+ * is the first lobe of its M_p group (the one whose M_p is evaluated). */
+static inline int hb_deon_lobe_on(const hb_deon *d, int p)
+{
+    return (d->lobes >> p & 1u) && (p <= d->pmax || p == HB_LOBE_RESIDUAL);
+}
+static inline int hb_deon_group_leader(const hb_deon *d, int p) { return hb_deon_lobe_on(d, p) && d->m_group[p] == p; }
+
 /* Functions of src/math/vmath.h exported for the accuracy tests. */
 typedef enum hb_math_fn {
     HB_FN_EXP, HB_FN_EXP_FLUSH, HB_FN_LOG, HB_FN_LOG1P, HB_FN_SIN, HB_FN_COS, HB_FN_ASIN, HB_FN_ACOS,

@@ -4,12 +4,6 @@
 #include "plan.h"
 #include "ref/reference.h"
 
-/* Whether lobe p contributes to the plan's dFH11 sum. */
-static int deon_lobe_on(const hb_deon *d, int p)
-{
-    return (d->lobes >> p & 1u) && (p <= d->pmax || p == HB_LOBE_RESIDUAL);
-}
-
 /* c_g(theta_o): the share of each M_p group in the longitudinal mixture theta_i is drawn from,
  * the lobes' energy sum_j 2 w_j A(p, h_j) (channel mean) at theta_d = theta_o, where the
  * specular theta_i = -theta_o puts it. 1% is spread evenly over the groups, so that every lobe
@@ -18,7 +12,7 @@ static void deon_lobe_choice(const hb_plan *plan, hb_deon *d)
 {
     int groups = 0;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        groups += deon_lobe_on(d, p) && d->m_group[p] == p;
+        groups += hb_deon_group_leader(d, p);
     for (int k = 0; k <= HB_LOBE_CHOICE_STEPS; k++) {
         double theta = M_PI_2 * k / HB_LOBE_CHOICE_STEPS, s = sin(theta);
         double energy[HB_MAX_LOBES + 1] = { 0 }, total = 0.0;
@@ -26,7 +20,7 @@ static void deon_lobe_choice(const hb_plan *plan, hb_deon *d)
             double A[HB_MAX_LOBES + 1][3], Phi[HB_MAX_LOBES];
             hb_ref_deon_node(plan, s * s, d->gamma_i[j], A, Phi);
             for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-                if (deon_lobe_on(d, p)) {
+                if (hb_deon_lobe_on(d, p)) {
                     double e = 2.0 * d->weight[j] * (A[p][0] + A[p][1] + A[p][2]) / 3.0;
                     energy[d->m_group[p]] += e;
                     total += e;
@@ -34,7 +28,7 @@ static void deon_lobe_choice(const hb_plan *plan, hb_deon *d)
         }
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
             double c = 0.0;
-            if (deon_lobe_on(d, p) && d->m_group[p] == p)
+            if (hb_deon_group_leader(d, p))
                 c = total > 0.0 ? 0.99 * energy[p] / total + 0.01 / groups : 1.0 / groups;
             d->lobe_choice[p][k] = (float)c;
             if (k == HB_LOBE_CHOICE_STEPS)

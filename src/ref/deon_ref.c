@@ -267,7 +267,7 @@ void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta
     }
     f[0] = f[1] = f[2] = 0.0;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!(plan->deon.lobes >> p & 1u) || (p > plan->deon.pmax && p != HB_LOBE_RESIDUAL))
+        if (!hb_deon_lobe_on(&plan->deon, p))
             continue;
         double M = hb_ref_deon_longitudinal(plan->v[p], theta_i, theta_o - plan->deon.longitudinal[p].shift,
                                             plan->options.i0);

@@ -6,13 +6,6 @@
 #include "../plan.h"
 #include "reference.h"
 
-static int lobe_on(const hb_deon *d, int p)
-{
-    return (d->lobes >> p & 1u) && (p <= d->pmax || p == HB_LOBE_RESIDUAL);
-}
-
-static int group_leader(const hb_deon *d, int p) { return lobe_on(d, p) && d->m_group[p] == p; }
-
 /* c_g(theta_o) from the plan's table, as the kernels interpolate it; returns their sum. */
 static double lobe_choice(const hb_deon *d, double theta_o, double c[HB_MAX_LOBES + 1])
 {
@@ -20,7 +13,7 @@ static double lobe_choice(const hb_deon *d, double theta_o, double c[HB_MAX_LOBE
     int k = (int)fmin(floor(x), HB_LOBE_CHOICE_STEPS);
     double t = x - k, total = 0.0;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        c[p] = group_leader(d, p) ? d->lobe_choice[p][k] + t * (d->lobe_choice[p][k + 1] - d->lobe_choice[p][k]) : 0.0;
+        c[p] = hb_deon_group_leader(d, p) ? d->lobe_choice[p][k] + t * (d->lobe_choice[p][k + 1] - d->lobe_choice[p][k]) : 0.0;
         total += c[p];
     }
     return total;
@@ -30,7 +23,7 @@ static void longitudinal_groups(const hb_plan *plan, double theta_i, double thet
 {
     const hb_deon *d = &plan->deon;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        M[p] = group_leader(d, p) ? hb_ref_deon_longitudinal(plan->v[p], theta_i, theta_o - d->longitudinal[p].shift,
+        M[p] = hb_deon_group_leader(d, p) ? hb_ref_deon_longitudinal(plan->v[p], theta_i, theta_o - d->longitudinal[p].shift,
                                                              plan->options.i0)
                                   : 0.0;
 }
@@ -43,7 +36,7 @@ static double lobe_masses(const hb_plan *plan, const double M[HB_MAX_LOBES + 1],
     double A[HB_MAX_LOBES + 1][3], total = 0.0;
     hb_ref_deon_node(plan, sin2_theta_d, d->gamma_i[j], A, Phi);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        mass[p] = lobe_on(d, p) ? M[d->m_group[p]] * (A[p][0] + A[p][1] + A[p][2]) / 3.0 : 0.0;
+        mass[p] = hb_deon_lobe_on(d, p) ? M[d->m_group[p]] * (A[p][0] + A[p][1] + A[p][2]) / 3.0 : 0.0;
         total += mass[p];
     }
     return total;
@@ -99,7 +92,7 @@ void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const
     double target = u[0] * lobe_choice(d, theta_o, c), cumulative = 0.0;
     int g = -1;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        if (group_leader(d, p)) {
+        if (hb_deon_group_leader(d, p)) {
             if (g < 0 || target >= cumulative)
                 g = p;
             cumulative += c[p];
@@ -124,7 +117,7 @@ void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const
     int lobe = -1;
     double below = 0.0;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        if (lobe_on(d, p)) {
+        if (hb_deon_lobe_on(d, p)) {
             if (lobe < 0 || target >= cumulative) {
                 lobe = p;
                 below = cumulative;

@@ -152,7 +152,7 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
         deon_node_lobes(d, &medium, vf_set1(d->h[j]), vf_set1(d->gamma_i[j]), vf_set1(d->cos_gamma_i[j]), &node);
         vf mass = vf_set1(0.0f), detected = vf_set1(0.0f);
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-            if (!(d->lobes >> p & 1u) || (p > d->pmax && p != HB_LOBE_RESIDUAL))
+            if (!hb_deon_lobe_on(d, p))
                 continue;
             vf pair = p == HB_LOBE_RESIDUAL ? vf_set1(HB_RESIDUAL_DETECTOR_PAIR)
                                             : detector_pair(&d->detector[p], g->phi, node.Phi[p], cos_n_phi);
@@ -182,14 +182,13 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
         (out)[0] = (out)[1] = (out)[2] = vf_set1(0.0f);                                 \
         for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                \
             int g_ = (d)->m_group[p_];                                                  \
-            if (g_ == p_ || !((d)->lobes >> p_ & 1u) || (p_ > (d)->pmax && p_ != HB_LOBE_RESIDUAL)) \
+            if (g_ == p_ || !hb_deon_lobe_on((d), p_))                                  \
                 continue;                                                               \
             for (int c_ = 0; c_ < 3; c_++)                                              \
                 (N)[g_][c_] = vf_add((N)[g_][c_], (N)[p_][c_]);                         \
         }                                                                               \
         for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                \
-            if ((d)->m_group[p_] != p_ || !((d)->lobes >> p_ & 1u) ||                   \
-                (p_ > (d)->pmax && p_ != HB_LOBE_RESIDUAL))                             \
+            if (!hb_deon_group_leader((d), p_))                                         \
                 continue;                                                               \
             vf m_ = longitudinal_of_lobe(&(d)->longitudinal[p_]);                       \
             for (int c_ = 0; c_ < 3; c_++)                                              \

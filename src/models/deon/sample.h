@@ -18,11 +18,6 @@
 
 #include "azimuthal.h"
 
-HB_INLINE int deon_group_leader(const hb_deon *d, int p)
-{
-    return (d->lobes >> p & 1u) && (p <= d->pmax || p == HB_LOBE_RESIDUAL) && d->m_group[p] == p;
-}
-
 /* c_g(theta_o) by linear interpolation of the plan's table in |theta_o|; returns their sum. */
 HB_INLINE vf deon_lobe_choice_at(const hb_deon *d, vf theta_o, vf c[HB_MAX_LOBES + 1])
 {
@@ -32,7 +27,7 @@ HB_INLINE vf deon_lobe_choice_at(const hb_deon *d, vf theta_o, vf c[HB_MAX_LOBES
     vi index = vi_from_vf(k);
     vf total = vf_set1(0.0f);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!deon_group_leader(d, p))
+        if (!hb_deon_group_leader(d, p))
             continue;
         vf lo = vf_gather(d->lobe_choice[p], index), hi = vf_gather(d->lobe_choice[p] + 1, index);
         c[p] = vf_fma(t, vf_sub(hi, lo), lo);
@@ -45,7 +40,7 @@ HB_INLINE vf deon_lobe_choice_at(const hb_deon *d, vf theta_o, vf c[HB_MAX_LOBES
 HB_INLINE void deon_longitudinal_groups(const hb_deon *d, vf theta_i, vf theta_o, hb_i0 i0, vf M[HB_MAX_LOBES + 1])
 {
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        M[p] = deon_group_leader(d, p) ? longitudinal_deon_angles(&d->longitudinal[p], theta_i, theta_o, i0)
+        M[p] = hb_deon_group_leader(d, p) ? longitudinal_deon_angles(&d->longitudinal[p], theta_i, theta_o, i0)
                                        : vf_set1(0.0f);
 }
 
@@ -56,7 +51,7 @@ HB_INLINE vf deon_sample_theta(const hb_deon *d, const vf c[HB_MAX_LOBES + 1], v
     vf target = vf_mul(u[0], c_total), cumulative = vf_set1(0.0f);
     vf v = vf_set1(0.0f), e2 = v, cos_shift = v, sin_shift = v;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!deon_group_leader(d, p))
+        if (!hb_deon_group_leader(d, p))
             continue;
         const hb_longitudinal *l = &d->longitudinal[p];
         vm take = vf_ge(target, cumulative); /* true at the first group: target >= 0 */
@@ -107,7 +102,7 @@ HB_INLINE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf 
     deon_node_lobes(d, &medium, h, gamma_i, cos_gamma_i, &node);
     vf mass[HB_MAX_LOBES + 1], total = vf_set1(0.0f);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!(d->lobes >> p & 1u) || (p > d->pmax && p != HB_LOBE_RESIDUAL))
+        if (!hb_deon_lobe_on(d, p))
             continue;
         mass[p] = vf_mul(M[d->m_group[p]], channel_mean(node.A[p]));
         total = vf_add(total, mass[p]);
@@ -116,7 +111,7 @@ HB_INLINE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf 
     vf chosen_mass = vf_set1(1.0f), Phi = vf_set1(0.0f), beta = vf_set1(0.0f);
     vm residual = vf_lt(total, vf_set1(0.0f)); /* false */
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!(d->lobes >> p & 1u) || (p > d->pmax && p != HB_LOBE_RESIDUAL))
+        if (!hb_deon_lobe_on(d, p))
             continue;
         vm take = vf_ge(target, cumulative);
         below = vf_select(take, cumulative, below);
@@ -149,7 +144,7 @@ HB_INLINE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const de
     vf mixture = vf_set1(0.0f);
     out[0] = out[1] = out[2] = vf_set1(0.0f);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!(d->lobes >> p & 1u) || (p > d->pmax && p != HB_LOBE_RESIDUAL))
+        if (!hb_deon_lobe_on(d, p))
             continue;
         vf m = M[d->m_group[p]];
         for (int k = 0; k < 3; k++)
