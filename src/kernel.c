@@ -7,7 +7,7 @@
 #include "math/vmath.h"
 #include "models/deon/sample.h"
 #include "models/marschner/azimuthal.h"
-#include "models/huang/r_lobe.h"
+#include "models/huang/sample.h"
 #include "kernels.h"
 
 #if defined(HB_TARGET_SCALAR)
@@ -115,6 +115,12 @@ HB_INLINE vm load_sample(hb_sample_in in, int dims, size_t i, size_t lanes, vf *
 HB_INLINE vm load_deon_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
 {
     return load_sample(in, HB_DEON_SAMPLE_DIMENSIONS, i, lanes, a);
+}
+
+#define HB_HUANG_SAMPLE_DIMENSIONS 3
+HB_INLINE vm load_huang_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
+{
+    return load_sample(in, HB_HUANG_SAMPLE_DIMENSIONS, i, lanes, a);
 }
 
 /* Invalid lanes get 0 in every plane. */
@@ -239,6 +245,21 @@ static void huang_vectors_kernel(const hb_huang *h, size_t n, hb_vectors_soa in,
     HB_BATCH(load_vectors, 6, in, n, invalid, (huang_vectors(h, a, a + 3, f), store_rgb(out, i, lanes, valid, f)));
 }
 
+static void huang_sample_kernel(const hb_huang *h, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+{
+    vf theta_i, phi_i, pdf, weight[3];
+    HB_BATCH(load_huang_sample, 2 + HB_HUANG_SAMPLE_DIMENSIONS, in, n, invalid,
+             (huang_sample(h, a[0], a[1], a + 2, &theta_i, &phi_i, &pdf, weight),
+              store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
+}
+
+static void huang_pdf_kernel(const hb_huang *h, size_t n, hb_angles_soa in, float *pdf, size_t *invalid)
+{
+    HB_BATCH(load_angles, 4, in, n, invalid,
+             store_block(pdf, i, lanes,
+                         vf_select(valid, huang_pdf_angles(h, a[0], a[1], a[2], a[3]), vf_set1(0.0f))));
+}
+
 HB_KERNEL_VARIANTS(abramowitz, HB_I0_ABRAMOWITZ)
 HB_KERNEL_VARIANTS(paper, HB_I0_PAPER)
 #undef HB_KERNEL_VARIANTS
@@ -324,6 +345,8 @@ const hb_kernels HB_TABLE = {
     .marschner_vectors = marschner_vectors_kernel,
     .huang_angles = huang_angles_kernel,
     .huang_vectors = huang_vectors_kernel,
+    .huang_sample = huang_sample_kernel,
+    .huang_pdf = huang_pdf_kernel,
     .cubic_map = cubic_map,
     .math_map = math_map,
     .detector_map = detector_map,

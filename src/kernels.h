@@ -49,6 +49,7 @@ typedef struct hb_huang {
     int analytic;        /* R: App. A, eq. 43 (GGX, no G, circular); else Simpson */
     int step_rule;       /* R Simpson: 1 the paper's uniform steps in phi_m, 0 the peak-following variable */
     int panels;          /* R Simpson panels (even); for the step rule the most any window needs */
+    int pdf_panels;      /* sampling pdf: Simpson panels in the peak-following variable (a multiple of 4) */
     int elliptical;      /* eqs. 26-28 */
     int tilted;          /* tau != 0: the mesonormal adds visibility conditions (eq. 40) */
     float step;          /* step rule: the largest phi_m step, r_step * roughness */
@@ -57,7 +58,7 @@ typedef struct hb_huang {
     float one_minus_c;   /* 1 - C = r^2 / (1 + C) */
     float cos_tilt, sin_tilt; /* the mesonormal's inclination tau (sec. 3.2, eq. 39) */
     float eta, inv_eta2;
-    float e2, b2;        /* eccentricity^2 and the squared minor semi-axis b^2 = 1 - e^2 */
+    float e2, b, b2;     /* eccentricity^2, the minor semi-axis b = sqrt(1 - e^2) and b^2 */
 } hb_huang;
 
 /* dFH11's Gaussian detector D_p (eq. 11), a wrapped Gaussian (a Jacobi theta function),
@@ -138,6 +139,9 @@ typedef void (*hb_huang_angles_fn)(const hb_huang *huang, size_t n, hb_angles_so
                                    size_t *invalid);
 typedef void (*hb_huang_vectors_fn)(const hb_huang *huang, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                                     size_t *invalid);
+typedef void (*hb_huang_sample_fn)(const hb_huang *huang, size_t n, hb_sample_in in, hb_sample_out out,
+                                   size_t *invalid);
+typedef void (*hb_huang_pdf_fn)(const hb_huang *huang, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
 
 typedef struct hb_kernels {
     hb_isa isa;
@@ -154,6 +158,8 @@ typedef struct hb_kernels {
     hb_marschner_vectors_fn marschner_vectors;
     hb_huang_angles_fn huang_angles;
     hb_huang_vectors_fn huang_vectors;
+    hb_huang_sample_fn huang_sample;
+    hb_huang_pdf_fn huang_pdf;
     /* the real roots of gamma^3 + P gamma + Q = 0 the kernels find, for tests: roots[3 * i + k],
      * NaN where root k does not exist */
     void (*cubic_map)(size_t n, const float *P, const float *Q, float *roots);

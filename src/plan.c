@@ -437,6 +437,7 @@ static void derive_huang(hb_plan *plan)
     h->step = (float)(o->r_step * r);
     h->panels = h->step_rule ? 2 * (int)ceil(M_PI / (2.0 * o->r_step * r))
                 : o->r_panels > 0 ? o->r_panels : huang_r_panels[o->quality];
+    h->pdf_panels = huang_r_panels[o->quality];
     h->tilted = plan->huang_tilt != 0.0;
     h->roughness = (float)r;
     h->roughness2 = (float)(r * r);
@@ -447,6 +448,7 @@ static void derive_huang(hb_plan *plan)
     h->eta = (float)m->eta;
     h->inv_eta2 = (float)(1.0 / (m->eta * m->eta));
     h->e2 = (float)(m->eccentricity * m->eccentricity);
+    h->b = (float)sqrt(1.0 - m->eccentricity * m->eccentricity);
     h->b2 = (float)(1.0 - m->eccentricity * m->eccentricity);
 }
 

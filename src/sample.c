@@ -6,6 +6,8 @@
 #include "ref/reference.h"
 
 #define HB_DEON_DIMENSIONS 5
+#define HB_HUANG_DIMENSIONS 3
+#define HB_MOST_DIMENSIONS HB_DEON_DIMENSIONS
 
 int hb_plan_sample_dimensions(const hb_plan *plan)
 {
@@ -13,6 +15,8 @@ int hb_plan_sample_dimensions(const hb_plan *plan)
         return 0;
     if (plan->options.model == HB_MODEL_DEON && plan->options.r_fresnel == HB_R_FRESNEL_OFFSET)
         return HB_DEON_DIMENSIONS;
+    if (plan->options.model == HB_MODEL_HUANG)
+        return HB_HUANG_DIMENSIONS;
     return 0;
 }
 
@@ -21,24 +25,40 @@ static int angles_valid(float theta, float phi)
     return fabsf(theta) <= 1.57079637f && fabsf(phi) <= HB_PHI_LIMIT; /* false for NaN */
 }
 
+/* The double procedures of the plan's model. */
+static void ref_sample(const hb_plan *plan, double theta_o, double phi_o, const double *u, double *theta_i,
+                       double *phi_i)
+{
+    if (plan->options.model == HB_MODEL_HUANG)
+        hb_ref_huang_sample(plan, theta_o, phi_o, u, theta_i, phi_i);
+    else
+        hb_ref_deon_sample(plan, theta_o, phi_o, u, theta_i, phi_i);
+}
+
+static double ref_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o)
+{
+    return plan->options.model == HB_MODEL_HUANG ? hb_ref_huang_pdf(plan, theta_i, phi_i, theta_o, phi_o)
+                                                 : hb_ref_deon_pdf(plan, theta_i, phi_i, theta_o, phi_o);
+}
+
 /* The reference path, one sample at a time. */
-static size_t sample_ref(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out)
+static size_t sample_ref(const hb_plan *plan, int dims, size_t n, hb_sample_in in, hb_sample_out out)
 {
     size_t invalid = 0;
     for (size_t k = 0; k < n; k++) {
-        double u[HB_DEON_DIMENSIONS], theta_i = 0.0, phi_i = 0.0, f[3] = { 0.0, 0.0, 0.0 }, pdf = 0.0;
+        double u[HB_MOST_DIMENSIONS], theta_i = 0.0, phi_i = 0.0, f[3] = { 0.0, 0.0, 0.0 }, pdf = 0.0;
         int ok = angles_valid(in.theta_o[k], in.phi_o[k]);
-        for (int d = 0; d < HB_DEON_DIMENSIONS; d++) {
+        for (int d = 0; d < dims; d++) {
             u[d] = in.u[d][k];
             ok = ok && u[d] >= 0.0 && u[d] <= 1.0;
         }
         if (ok) {
-            hb_ref_deon_sample(plan, in.theta_o[k], in.phi_o[k], u, &theta_i, &phi_i);
+            ref_sample(plan, in.theta_o[k], in.phi_o[k], u, &theta_i, &phi_i);
             float ti = (float)theta_i, pi = (float)phi_i; /* f and pdf where the caller will see the sample */
             theta_i = ti;
             phi_i = pi;
-            pdf = hb_ref_deon_pdf(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k]);
-            hb_ref_deon(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k], f);
+            pdf = ref_pdf(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k]);
+            hb_ref_eval_pair(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k], f);
         } else {
             invalid++;
         }
@@ -69,7 +89,9 @@ hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sa
     }
     size_t invalid = 0;
     if (!plan->kernels)
-        invalid = sample_ref(plan, n, in, out);
+        invalid = sample_ref(plan, dims, n, in, out);
+    else if (plan->options.model == HB_MODEL_HUANG)
+        plan->kernels->huang_sample(&plan->huang, n, in, out, &invalid);
     else
         plan->kernels->deon_sample[plan->options.i0](&plan->deon, n, in, out, &invalid);
     if (report)
@@ -89,9 +111,11 @@ hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *
     if (!plan->kernels) {
         for (size_t k = 0; k < n; k++) {
             int ok = angles_valid(in.theta_i[k], in.phi_i[k]) && angles_valid(in.theta_o[k], in.phi_o[k]);
-            pdf[k] = ok ? (float)hb_ref_deon_pdf(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k]) : 0.0f;
+            pdf[k] = ok ? (float)ref_pdf(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k]) : 0.0f;
             invalid += !ok;
         }
+    } else if (plan->options.model == HB_MODEL_HUANG) {
+        plan->kernels->huang_pdf(&plan->huang, n, in, pdf, &invalid);
     } else {
         plan->kernels->deon_pdf[plan->options.i0](&plan->deon, n, in, pdf, &invalid);
     }

@@ -4,36 +4,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "test.h"
+#include "sampling.h"
 #include "plan.h"
 #include "ref/reference.h"
 
-enum { MAX_SAMPLES = 200000 };
+#define MAX_SAMPLES HB_TEST_MAX_SAMPLES
 
-/* One batch of samples for a fixed w_o, in static storage (too large for the stack). */
-static struct {
-    float to[MAX_SAMPLES], po[MAX_SAMPLES], u[HB_SAMPLE_DIMENSIONS][MAX_SAMPLES];
-    float ti[MAX_SAMPLES], pi[MAX_SAMPLES], pdf[MAX_SAMPLES], w[3][MAX_SAMPLES];
-    float f[3][MAX_SAMPLES], pdf2[MAX_SAMPLES];
-} s;
-
-static void sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double theta_o, double phi_o,
-                         unsigned long long seed)
-{
-    float *u[HB_SAMPLE_DIMENSIONS];
-    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
-        u[d] = s.u[d];
-    hb_uniforms(seed, 0, n, hb_plan_sample_dimensions(plan), u);
-    for (size_t k = 0; k < n; k++) {
-        s.to[k] = (float)theta_o;
-        s.po[k] = (float)phi_o;
-    }
-    hb_sample_in in = { s.to, s.po, { s.u[0], s.u[1], s.u[2], s.u[3], s.u[4], s.u[5], s.u[6], s.u[7] } };
-    hb_sample_out out = { s.ti, s.pi, s.pdf, { s.w[0], s.w[1], s.w[2] } };
-    hb_eval_report report;
-    CHECK(t, hb_sample_angles(plan, n, in, out, &report) == HB_OK, "hb_sample_angles failed");
-    CHECK(t, report.invalid == 0, "%zu samples reported invalid", report.invalid);
-}
+static hb_sample_buffers *const buf = &hb_samples;
 
 static hb_plan *deon_plan(hb_test_ctx *t, double beta_m, double beta_n, double alpha, double sigma_a,
                           hb_quality quality, hb_isa isa)
@@ -53,8 +30,6 @@ static hb_plan *deon_plan(hb_test_ctx *t, double beta_m, double beta_n, double a
     CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "plan: %s", err.message);
     return plan;
 }
-
-static unsigned long long next_seed(hb_test_ctx *t) { return (unsigned long long)(hb_test_uniform(t) * 0x1p53); }
 
 /* Items 1 and 2: for sigma_a = 0 the mean weight is the albedo E(w_o), and with lobes sharing
  * one M_p (alpha = 0) every single weight is E(w_o), within 1e-3 (measured: 3e-7). With the
@@ -78,11 +53,11 @@ static void test_sample_furnace(hb_test_ctx *t)
                 for (int k = 0; k < 3; k++) {
                     double energy[3], mean = 0.0;
                     hb_furnace(plan, thetas[k], energy);
-                    sample_batch(t, plan, n, thetas[k], 0.3, next_seed(t));
+                    hb_test_sample_batch(t, plan, n, thetas[k], 0.3, hb_test_next_seed(t));
                     for (size_t i = 0; i < n; i++) {
-                        mean += s.w[0][i];
+                        mean += buf->w[0][i];
                         if (!tilted)
-                            worst_single = fmax(worst_single, fabs(s.w[0][i] - energy[0]));
+                            worst_single = fmax(worst_single, fabs(buf->w[0][i] - energy[0]));
                     }
                     mean /= (double)n;
                     if (tilted)
@@ -116,27 +91,27 @@ static void test_sample_consistency(hb_test_ctx *t)
             return;
         for (int k = 0; k < 2; k++) {
             double sampled = 0.0, uniform = 0.0, uniform2 = 0.0;
-            sample_batch(t, plan, n_sampled, thetas[k], 0.0, next_seed(t));
+            hb_test_sample_batch(t, plan, n_sampled, thetas[k], 0.0, hb_test_next_seed(t));
             for (size_t i = 0; i < n_sampled; i++) {
-                double wz = cos(s.pi[i]) * cos(s.ti[i]);
-                sampled += s.w[0][i] * wz * wz;
+                double wz = cos(buf->pi[i]) * cos(buf->ti[i]);
+                sampled += buf->w[0][i] * wz * wz;
             }
             sampled /= (double)n_sampled;
             /* uniform directions: sin(theta) = 2 u - 1, phi = 2 pi u' - pi; pdf 1 / (4 pi) */
             int reps = t->emulated ? 3 : 5;
             for (int rep = 0; rep < reps; rep++) {
-                float *u[2] = { s.u[0], s.u[1] };
-                hb_uniforms(next_seed(t), 0, n_uniform, 2, u);
+                float *u[2] = { buf->u[0], buf->u[1] };
+                hb_uniforms(hb_test_next_seed(t), 0, n_uniform, 2, u);
                 for (size_t i = 0; i < n_uniform; i++) {
-                    s.ti[i] = (float)asin(2.0 * s.u[0][i] - 1.0);
-                    s.pi[i] = (float)(2.0 * M_PI * s.u[1][i] - M_PI);
-                    s.to[i] = (float)thetas[k];
-                    s.po[i] = 0.0f;
+                    buf->ti[i] = (float)asin(2.0 * buf->u[0][i] - 1.0);
+                    buf->pi[i] = (float)(2.0 * M_PI * buf->u[1][i] - M_PI);
+                    buf->to[i] = (float)thetas[k];
+                    buf->po[i] = 0.0f;
                 }
-                hb_eval_angles(plan, n_uniform, (hb_angles_soa){ s.ti, s.pi, s.to, s.po },
-                               (hb_rgb_soa){ s.f[0], s.f[1], s.f[2] }, NULL);
+                hb_eval_angles(plan, n_uniform, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po },
+                               (hb_rgb_soa){ buf->f[0], buf->f[1], buf->f[2] }, NULL);
                 for (size_t i = 0; i < n_uniform; i++) {
-                    double wz = cos(s.pi[i]) * cos(s.ti[i]), x = 4.0 * M_PI * s.f[0][i] * wz * wz;
+                    double wz = cos(buf->pi[i]) * cos(buf->ti[i]), x = 4.0 * M_PI * buf->f[0][i] * wz * wz;
                     uniform += x;
                     uniform2 += x * x;
                 }
@@ -156,45 +131,7 @@ static void test_sample_consistency(hb_test_ctx *t)
     CHECK(t, worst <= 0.05, "estimates differ by %.3e", worst);
 }
 
-/* Cells of equal solid angle: sin(theta_i) in NT strips, phi_i in NP sectors. */
 enum { NT = 24, NP = 48, GL = 6 };
-
-/* Expected probability of every cell: Gauss-Legendre GL x GL of hb_pdf_angles over the cell
- * in (sin theta_i, phi_i), where dw = d(sin theta) d(phi). */
-static void cell_probabilities(const hb_plan *plan, double theta_o, double phi_o, double *prob)
-{
-    static const double x[GL] = { -0.9324695142031521, -0.6612093864662645, -0.2386191860831969,
-                                  0.2386191860831969, 0.6612093864662645, 0.9324695142031521 };
-    static const double w[GL] = { 0.1713244923791704, 0.3607615730481386, 0.4679139345726910,
-                                  0.4679139345726910, 0.3607615730481386, 0.1713244923791704 };
-    size_t n = 0;
-    for (int a = 0; a < NT; a++)
-        for (int b = 0; b < NP; b++)
-            for (int i = 0; i < GL; i++)
-                for (int j = 0; j < GL; j++, n++) {
-                    double sin_t = -1.0 + (a + 0.5 * (1.0 + x[i])) * 2.0 / NT;
-                    s.ti[n] = (float)asin(sin_t);
-                    s.pi[n] = (float)(-M_PI + (b + 0.5 * (1.0 + x[j])) * 2.0 * M_PI / NP);
-                    s.to[n] = (float)theta_o;
-                    s.po[n] = (float)phi_o;
-                }
-    hb_pdf_angles(plan, n, (hb_angles_soa){ s.ti, s.pi, s.to, s.po }, s.pdf2, NULL);
-    double area = (2.0 / NT) * (2.0 * M_PI / NP) / 4.0;
-    n = 0;
-    for (int c = 0; c < NT * NP; c++) {
-        prob[c] = 0.0;
-        for (int i = 0; i < GL; i++)
-            for (int j = 0; j < GL; j++, n++)
-                prob[c] += w[i] * w[j] * area * s.pdf2[n];
-    }
-}
-
-/* Upper tail of the chi-square distribution with k degrees of freedom (Wilson-Hilferty). */
-static double chi_square_tail(double x, double k)
-{
-    double z = (cbrt(x / k) - (1.0 - 2.0 / (9.0 * k))) / sqrt(2.0 / (9.0 * k));
-    return 0.5 * erfc(z / M_SQRT2);
-}
 
 /* Items 4 and 5: sampled directions follow the pdf (chi-square on NT x NP equal-area cells,
  * cells expecting fewer than 5 pooled, significance 1e-3), and the pdf integrates to 1. */
@@ -206,43 +143,18 @@ static void test_sample_chi_square(hb_test_ctx *t)
         { 0.15, 0.15, -0.05, 0.05, 1.45, 0.0 },
     };
     static double prob[NT * NP];
-    static unsigned count[NT * NP];
     size_t n = t->emulated ? 20000 : MAX_SAMPLES;
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         hb_plan *plan = deon_plan(t, cases[c].beta_m, cases[c].beta_n, cases[c].alpha, cases[c].sigma_a,
                                   HB_QUALITY_BALANCED, HB_ISA_AUTO);
         if (!plan)
             return;
-        cell_probabilities(plan, cases[c].theta_o, cases[c].phi_o, prob);
-        double integral = 0.0;
-        for (int k = 0; k < NT * NP; k++)
-            integral += prob[k];
-        unsigned long long seed = next_seed(t);
-        sample_batch(t, plan, n, cases[c].theta_o, cases[c].phi_o, seed);
-        memset(count, 0, sizeof count);
-        for (size_t i = 0; i < n; i++) {
-            int a = (int)floor((sin((double)s.ti[i]) + 1.0) * NT / 2.0), b = (int)floor((s.pi[i] + M_PI) * NP / (2.0 * M_PI));
-            a = a < 0 ? 0 : a >= NT ? NT - 1 : a;
-            b = b < 0 ? 0 : b >= NP ? NP - 1 : b;
-            count[a * NP + b]++;
-        }
-        double chi2 = 0.0, pooled_expected = 0.0, pooled_observed = 0.0;
-        int cells = 0;
-        for (int k = 0; k < NT * NP; k++) {
-            double expected = prob[k] / integral * (double)n;
-            if (expected < 5.0) {
-                pooled_expected += expected;
-                pooled_observed += count[k];
-                continue;
-            }
-            chi2 += (count[k] - expected) * (count[k] - expected) / expected;
-            cells++;
-        }
-        if (pooled_expected > 0.0) {
-            chi2 += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / fmax(pooled_expected, 5.0);
-            cells++;
-        }
-        double p_value = chi_square_tail(chi2, cells - 1);
+        double integral = hb_test_cell_probabilities(plan, cases[c].theta_o, cases[c].phi_o, NT, NP, GL, prob);
+        unsigned long long seed = hb_test_next_seed(t);
+        hb_test_sample_batch(t, plan, n, cases[c].theta_o, cases[c].phi_o, seed);
+        double chi2;
+        int cells;
+        double p_value = hb_test_chi_square(n, prob, integral, NT, NP, &chi2, &cells);
         hb_test_note(t, "case %zu (seed %llu): integral of pdf %.6f, chi2 %.1f over %d cells, p = %.3f", c, seed,
                      integral, chi2, cells, p_value);
         CHECK(t, fabs(integral - 1.0) <= 2e-3, "case %zu: pdf integrates to %.6f", c, integral);
@@ -270,33 +182,33 @@ static void test_sample_reference(hb_test_ctx *t)
                                   HB_QUALITY_HIGH, t->isa);
         if (!plan)
             return;
-        sample_batch(t, plan, n, cases[c].theta_o, 0.7, next_seed(t));
-        hb_pdf_angles(plan, n, (hb_angles_soa){ s.ti, s.pi, s.to, s.po }, s.pdf2, NULL);
+        hb_test_sample_batch(t, plan, n, cases[c].theta_o, 0.7, hb_test_next_seed(t));
+        hb_pdf_angles(plan, n, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, buf->pdf2, NULL);
         double peak = 0.0, ref_pdf[400];
         for (size_t i = 0; i < n; i++) {
-            ref_pdf[i] = hb_ref_deon_pdf(plan, s.ti[i], s.pi[i], s.to[i], s.po[i]);
+            ref_pdf[i] = hb_ref_deon_pdf(plan, buf->ti[i], buf->pi[i], buf->to[i], buf->po[i]);
             peak = fmax(peak, ref_pdf[i]);
         }
-        hb_eval_angles(plan, n, (hb_angles_soa){ s.ti, s.pi, s.to, s.po }, (hb_rgb_soa){ s.f[0], s.f[1], s.f[2] }, NULL);
+        hb_eval_angles(plan, n, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, (hb_rgb_soa){ buf->f[0], buf->f[1], buf->f[2] }, NULL);
         for (size_t i = 0; i < n; i++) {
             double u[5], ti, pi;
             for (int d = 0; d < 5; d++)
-                u[d] = s.u[d][i];
-            hb_ref_deon_sample(plan, s.to[i], s.po[i], u, &ti, &pi);
-            double dphi = fabs(remainder(pi - s.pi[i], 2.0 * M_PI)), d = fmax(fabs(ti - s.ti[i]), dphi);
+                u[d] = buf->u[d][i];
+            hb_ref_deon_sample(plan, buf->to[i], buf->po[i], u, &ti, &pi);
+            double dphi = fabs(remainder(pi - buf->pi[i], 2.0 * M_PI)), d = fmax(fabs(ti - buf->ti[i]), dphi);
             if (d > 1e-3)
                 flips++;
             else
                 worst_direction = fmax(worst_direction, d);
             total++;
-            worst_pdf = fmax(worst_pdf, fabs(s.pdf[i] - ref_pdf[i]) / fmax(ref_pdf[i], 1e-3 * peak));
-            CHECK(t, s.pdf2[i] == s.pdf[i], "case %zu sample %zu: hb_pdf_angles %.9g, sampled pdf %.9g", c, i,
-                  s.pdf2[i], s.pdf[i]);
-            if (s.pdf[i] > 0.0f)
+            worst_pdf = fmax(worst_pdf, fabs(buf->pdf[i] - ref_pdf[i]) / fmax(ref_pdf[i], 1e-3 * peak));
+            CHECK(t, buf->pdf2[i] == buf->pdf[i], "case %zu sample %zu: hb_pdf_angles %.9g, sampled pdf %.9g", c, i,
+                  buf->pdf2[i], buf->pdf[i]);
+            if (buf->pdf[i] > 0.0f)
                 for (int k = 0; k < 3; k++)
-                    worst_weight = fmax(worst_weight, fabs(s.w[k][i] - s.f[k][i] / s.pdf[i]) / fmax(s.w[k][i], 1e-30));
-            CHECK(t, isfinite(s.w[0][i]) && s.w[0][i] >= 0.0f && s.pdf[i] >= 0.0f, "case %zu sample %zu: weight %g pdf %g",
-                  c, i, s.w[0][i], s.pdf[i]);
+                    worst_weight = fmax(worst_weight, fabs(buf->w[k][i] - buf->f[k][i] / buf->pdf[i]) / fmax(buf->w[k][i], 1e-30));
+            CHECK(t, isfinite(buf->w[0][i]) && buf->w[0][i] >= 0.0f && buf->pdf[i] >= 0.0f, "case %zu sample %zu: weight %g pdf %g",
+                  c, i, buf->w[0][i], buf->pdf[i]);
         }
         hb_plan_destroy(plan);
     }
@@ -315,10 +227,10 @@ static void test_sample_reference_quality(hb_test_ctx *t)
     if (!plan)
         return;
     size_t n = t->emulated ? 50 : 300;
-    sample_batch(t, plan, n, 0.4, 0.0, next_seed(t));
+    hb_test_sample_batch(t, plan, n, 0.4, 0.0, hb_test_next_seed(t));
     double worst = 0.0;
     for (size_t i = 0; i < n; i++)
-        worst = fmax(worst, fabs(s.w[0][i] - 1.0));
+        worst = fmax(worst, fabs(buf->w[0][i] - 1.0));
     hb_test_note(t, "reference quality, lossless, alpha 0: every weight within %.1e of 1", worst);
     CHECK(t, worst <= 1e-3, "reference weights off 1 by %.2e", worst);
     hb_plan_destroy(plan);

@@ -72,7 +72,7 @@ double hb_ref_deon_longitudinal(double v, double theta_i, double theta_o, hb_i0 
 static int theta_valid(float theta) { return fabsf(theta) <= 1.57079637f; } /* false for NaN */
 
 /* The plan's term at one direction pair, in double; writes three channels. */
-static void eval_ref(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
+void hb_ref_eval_pair(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
 {
     if (plan->options.model == HB_MODEL_HUANG) {
         hb_ref_huang(plan, theta_i, phi_i, theta_o, phi_o, f);
@@ -109,7 +109,7 @@ size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rg
         double f[3] = { 0.0, 0.0, 0.0 };
         if (theta_valid(in.theta_i[k]) && theta_valid(in.theta_o[k]) && fabsf(in.phi_i[k]) <= HB_PHI_LIMIT &&
             fabsf(in.phi_o[k]) <= HB_PHI_LIMIT)
-            eval_ref(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k], f);
+            hb_ref_eval_pair(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k], f);
         else
             invalid++;
         store(out, k, f);
@@ -135,7 +135,7 @@ size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_
         double f[3] = { 0.0, 0.0, 0.0 }, ti, pi, to, po;
         if (direction(in.wi_x[k], in.wi_y[k], in.wi_z[k], &ti, &pi) &&
             direction(in.wo_x[k], in.wo_y[k], in.wo_z[k], &to, &po))
-            eval_ref(plan, ti, pi, to, po, f);
+            hb_ref_eval_pair(plan, ti, pi, to, po, f);
         else
             invalid++;
         store(out, k, f);

@@ -17,6 +17,8 @@ typedef struct ref_r_setup {
     double tilt, b;  /* mesonormal inclination tau; minor semi-axis */
     int shadowing;
     int in_gamma;    /* integrate over the ellipse parameter gamma (eq. 28) */
+    int pdf;         /* the sampling pdf's integrand (README, "Huang sampling") instead of eval's */
+    double phi_o;
     double gl_x[RULE], gl_w[RULE]; /* Gauss-Legendre on [-1, 1] */
 } ref_r_setup;
 
@@ -75,10 +77,16 @@ static double r_integrand(const ref_r_setup *s, double t)
     double macro[3] = { sin(phi_m), 0.0, cos(phi_m) };
     double meso[3] = { sin(phi_m) * cos(s->tilt), sin(s->tilt), cos(phi_m) * cos(s->tilt) }; /* eq. 39 */
     double mi = dot3(s->wi, meso), mo = dot3(s->wo, meso);
-    if (dot3(s->wi, macro) < 0.0 || dot3(s->wo, macro) < 0.0 || mi < 0.0 || mo < 0.0)
-        return 0.0;
     double cross[3] = { s->wh[1] * meso[2] - s->wh[2] * meso[1], s->wh[2] * meso[0] - s->wh[0] * meso[2],
                         s->wh[0] * meso[1] - s->wh[1] * meso[0] };
+    if (s->pdf) { /* density of phi_m cos(phi_m - phi_o) rho, times G1(w_o) D / (w_o . w_m) */
+        if (dot3(s->wo, macro) < 0.0 || mo <= 0.0)
+            return 0.0;
+        return ndf(m->ndf, m->roughness, dot3(s->wh, meso), dot3(cross, cross)) * weight * cos(phi_m - s->phi_o) *
+               smith_g1(m->ndf, m->roughness, mo) / mo;
+    }
+    if (dot3(s->wi, macro) < 0.0 || dot3(s->wo, macro) < 0.0 || mi < 0.0 || mo < 0.0)
+        return 0.0;
     double value = ndf(m->ndf, m->roughness, dot3(s->wh, meso), dot3(cross, cross)) * weight;
     if (s->shadowing)
         value *= smith_g1(m->ndf, m->roughness, mi) * smith_g1(m->ndf, m->roughness, mo);
@@ -160,6 +168,8 @@ static int setup(ref_r_setup *s, const hb_plan *plan, double theta_i, double phi
     s->tilt = plan->huang_tilt;
     s->b = sqrt(1.0 - plan->material.eccentricity * plan->material.eccentricity);
     s->shadowing = shadowing;
+    s->pdf = 0;
+    s->phi_o = phi_o;
     s->in_gamma = plan->material.eccentricity > 0.0;
     hb_gauss_legendre(RULE, -1.0, 1.0, s->gl_x, s->gl_w);
     unit_direction(theta_i, phi_i, s->wi);
@@ -231,6 +241,57 @@ double hb_ref_huang_r_integral_analytic(const hb_plan *plan, double theta_i, dou
     phi_h += 2.0 * M_PI * round((0.5 * (lo + hi) - phi_h) / (2.0 * M_PI));
     double A = cos(theta_h) * cos(s.tilt) * c, B = sin(theta_h) * sin(s.tilt) * c;
     return eq43(r, A, B, phi_h - hi) - eq43(r, A, B, phi_h - lo);
+}
+
+/* The mesonormal azimuths w_o sees, phi_o +- *half, and the projected offsets *lo, *hi of their
+ * ends across w_o's view: for the point (sin g, b cos g) with normal azimuth phi_m, its dot product
+ * with (cos phi_o, -sin phi_o). Returns 0 when w_o sees no mesonormal. */
+int hb_ref_huang_o_window(const hb_plan *plan, double theta_o, double phi_o, double *half, double *lo, double *hi)
+{
+    double b = sqrt(1.0 - plan->material.eccentricity * plan->material.eccentricity);
+    *half = half_width(theta_o, plan->huang_tilt);
+    if (*half < 0.0)
+        return 0;
+    double ends[2];
+    for (int k = 0; k < 2; k++) {
+        double phi_m = phi_o + (k ? *half : -*half), g = atan2(sin(phi_m), b * cos(phi_m));
+        ends[k] = sin(g) * cos(phi_o) - b * cos(g) * sin(phi_o);
+    }
+    *lo = ends[0];
+    *hi = ends[1];
+    return 1;
+}
+
+double hb_ref_huang_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o)
+{
+    ref_r_setup s;
+    double half, lo_offset, hi_offset;
+    if (!hb_ref_huang_o_window(plan, theta_o, phi_o, &half, &lo_offset, &hi_offset) ||
+        !setup(&s, plan, theta_i, phi_i, theta_o, phi_o, 0) || !(hi_offset > lo_offset))
+        return 0.0;
+    s.pdf = 1;
+    /* cuts: the window's ends, the NDF's peak phi_h and where w_h . w_m = 0, phi_h +- beta */
+    double lo = phi_o - half, hi = phi_o + half, mid = phi_o;
+    double phi_h = atan2(s.wh[0], s.wh[2]), theta_h = asin(fmax(-1.0, fmin(1.0, s.wh[1])));
+    phi_h += 2.0 * M_PI * round((mid - phi_h) / (2.0 * M_PI));
+    double cos_beta = -sin(theta_h) * sin(s.tilt) / fmax(cos(theta_h) * cos(s.tilt), 1e-300);
+    double beta = acos(fmax(-1.0, fmin(1.0, cos_beta)));
+    double cuts[8] = { lo, hi }, candidates[5] = { phi_h, phi_h - beta, phi_h + beta, phi_h - beta + 2.0 * M_PI,
+                                                   phi_h + beta - 2.0 * M_PI };
+    int ncuts = 2;
+    for (int k = 0; k < 5; k++)
+        if (candidates[k] > lo && candidates[k] < hi)
+            cuts[ncuts++] = candidates[k];
+    for (int a = 1; a < ncuts; a++) /* insertion sort */
+        for (int b = a; b > 0 && cuts[b] < cuts[b - 1]; b--) {
+            double t = cuts[b];
+            cuts[b] = cuts[b - 1];
+            cuts[b - 1] = t;
+        }
+    if (s.in_gamma)
+        for (int k = 0; k < ncuts; k++)
+            cuts[k] = gamma_of(s.b, cuts[k], gamma_of(s.b, mid, 0.0));
+    return adaptive(&s, cuts, ncuts) / (4.0 * (hi_offset - lo_offset));
 }
 
 void hb_ref_huang(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])

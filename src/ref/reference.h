@@ -71,6 +71,17 @@ double hb_ref_huang_r_integral_analytic(const hb_plan *plan, double theta_i, dou
 #define HB_REF_HUANG_COS_FLOOR 1e-8
 void hb_ref_huang(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
 
+/* HHH22 R lobe sampling (README, "Huang sampling"): the mesonormal azimuths w_o sees, phi_o +- *half,
+ * and the projected offsets of their ends across w_o's view (0 when w_o sees none); the kernels'
+ * procedure in double from three uniform numbers; its pdf by adaptive quadrature. */
+int hb_ref_huang_o_window(const hb_plan *plan, double theta_o, double phi_o, double *half, double *lo, double *hi);
+void hb_ref_huang_sample(const hb_plan *plan, double theta_o, double phi_o, const double u[3], double *theta_i,
+                         double *phi_i);
+double hb_ref_huang_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o);
+
+/* The plan's term at one direction pair, in double (three channels). */
+void hb_ref_eval_pair(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
+
 /* Reference batch evaluation of a plan's term: writes f and returns the invalid count. */
 size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out);
 size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out);

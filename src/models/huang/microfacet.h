@@ -31,34 +31,61 @@ HB_INLINE vf ndf_huang(const hb_huang *h, vf one_minus_x)
     return d;
 }
 
-/* Smith's G1 = 1 / (1 + Lambda) for a direction at cos c >= 0 to the mesonormal (Heitz 2014),
- * as G1 = d / (d + y) with Lambda = y / d, so c -> 0 gives 0 without dividing by zero.
+/* erfcx(a) = e^(a^2) erfc(a) for a >= 0 by A&S 7.1.26 (error below 1.5e-7 e^(a^2), i.e. erfc within 1.5e-7). */
+HB_INLINE vf erfcx_as(vf a)
+{
+    vf t = vf_rcp(vf_fma(vf_set1(0.3275911f), a, vf_set1(1.0f)));
+    vf p = vf_fma(vf_set1(1.061405429f), t, vf_set1(-1.453152027f));
+    p = vf_fma(p, t, vf_set1(1.421413741f));
+    p = vf_fma(p, t, vf_set1(-0.284496736f));
+    p = vf_fma(p, t, vf_set1(0.254829592f));
+    return vf_mul(p, t);
+}
+
+/* Smith's Lambda = y / d for a direction at cos c in [0, 1] to the mesonormal (Heitz 2014), the
+ * parts kept apart so that c -> 0 (Lambda -> infinity) needs no division by zero.
  * GGX: Lambda = (sqrt(1 + r^2 tan^2) - 1) / 2, y = r^2 (1 - c^2), d = 2 c (sqrt(c^2 + y) + c).
  * Beckmann: Lambda = (e^(-a^2) / (a sqrt(pi)) - erfc(a)) / 2, a = c / (r sqrt(1 - c^2)),
- * y = e^(-a^2) (1/sqrt(pi) - a erfcx(a)), d = 2a, erfcx by A&S 7.1.26 (|error| < 1.5e-7 e^(a^2),
- * which leaves Lambda within 7.5e-8). */
-HB_INLINE vf smith_g1_huang(const hb_huang *h, vf c)
+ * y = e^(-a^2) (1/sqrt(pi) - a erfcx(a)), d = 2a (erfcx within 1.5e-7, Lambda within 7.5e-8). */
+typedef struct smith_parts {
+    vf d, y;
+} smith_parts;
+
+HB_INLINE smith_parts smith_lambda_parts(const hb_huang *h, vf c)
 {
-    c = vf_clamp(c, 0.0f, 1.0f);
-    vf sin2 = vf_fnma(c, c, vf_set1(1.0f)), y, d;
+    smith_parts l;
+    vf sin2 = vf_fnma(c, c, vf_set1(1.0f));
     if (h->beckmann) {
         vf a = vf_div(c, vf_mul(vf_set1(h->roughness), vf_sqrt(vf_max(sin2, vf_set1(1e-30f)))));
         a = vf_min(a, vf_set1(1e4f));
-        vf t = vf_rcp(vf_fma(vf_set1(0.3275911f), a, vf_set1(1.0f)));
-        vf erfcx = vf_fma(vf_set1(1.061405429f), t, vf_set1(-1.453152027f));
-        erfcx = vf_fma(erfcx, t, vf_set1(1.421413741f));
-        erfcx = vf_fma(erfcx, t, vf_set1(-0.284496736f));
-        erfcx = vf_fma(erfcx, t, vf_set1(0.254829592f));
-        erfcx = vf_mul(erfcx, t);
-        vf tail = vf_max(vf_fnma(a, erfcx, vf_set1(HB_INV_SQRT_PI_F)), vf_set1(0.0f));
-        y = vf_mul(vf_exp_flush(vf_max(vf_neg(vf_mul(a, a)), vf_set1(-100.0f))), tail);
-        d = vf_add(a, a);
+        vf tail = vf_max(vf_fnma(a, erfcx_as(a), vf_set1(HB_INV_SQRT_PI_F)), vf_set1(0.0f));
+        l.y = vf_mul(vf_exp_flush(vf_max(vf_neg(vf_mul(a, a)), vf_set1(-100.0f))), tail);
+        l.d = vf_add(a, a);
     } else {
-        y = vf_mul(vf_set1(h->roughness2), sin2);
-        vf s = vf_sqrt(vf_fma(c, c, y));
-        d = vf_mul(vf_add(c, c), vf_add(s, c));
+        l.y = vf_mul(vf_set1(h->roughness2), sin2);
+        l.d = vf_mul(vf_add(c, c), vf_add(vf_sqrt(vf_fma(c, c, l.y)), c));
     }
-    return vf_div(d, vf_max(vf_add(d, y), vf_set1(1e-30f)));
+    return l;
+}
+
+/* G1 = 1 / (1 + Lambda) = d / (d + y). */
+HB_INLINE vf smith_g1_huang(const hb_huang *h, vf c)
+{
+    smith_parts l = smith_lambda_parts(h, vf_clamp(c, 0.0f, 1.0f));
+    return vf_div(l.d, vf_max(vf_add(l.d, l.y), vf_set1(1e-30f)));
+}
+
+/* G1 / c, finite as c -> 0 where both vanish (GGX: 2 / r, Beckmann: 2 sqrt(pi) / r): the visible
+ * normals' density divides by w . w_m (Heitz 2014, eq. 2 of Heitz 2018). */
+HB_INLINE vf smith_g1_over_cos(const hb_huang *h, vf c)
+{
+    c = vf_clamp(c, 0.0f, 1.0f);
+    smith_parts l = smith_lambda_parts(h, c);
+    if (h->beckmann) /* d / c = 2 / (r sin), so G1 / c = 2 / (2 c + r sin y) */
+        return vf_div(vf_set1(2.0f), vf_fma(vf_mul(vf_set1(h->roughness), vf_sqrt(vf_fnma(c, c, vf_set1(1.0f)))),
+                                            l.y, vf_add(c, c)));
+    vf d_over_c = vf_mul(vf_set1(2.0f), vf_add(vf_sqrt(vf_fma(c, c, l.y)), c)); /* GGX */
+    return vf_div(d_over_c, vf_max(vf_add(l.d, l.y), vf_set1(1e-30f)));
 }
 
 #endif

@@ -33,6 +33,7 @@ typedef struct huang_r_geometry {
     vf p_minus, p_plus;       /* App. A with A, B: 1 - A - B = 1 - C cos(theta_h - tau), 1 - B + A = 1 + C cos(theta_h + tau) */
     vf q_minus, q_plus;       /* 1 + B - A = 1 - C cos(theta_h + tau), 1 + B + A = 1 + C cos(theta_h - tau) */
     vf cos_phi_h, sin_phi_h;  /* azimuth of w_h (phi_i = 0) */
+    vf phi_h, phi;            /* azimuths of w_h and of w_o (phi_i = 0) */
     vf delta_centre;          /* delta at the middle of the visible window (|delta| <= pi/2 inside it) */
     vf half_width;            /* half the window's width in phi_m (and delta), 0 where nothing is visible */
     vm visible;               /* the window is not empty */
@@ -46,12 +47,12 @@ typedef struct huang_window_ends {
     vf sin_width;                      /* sin((delta_hi - delta_lo) / 2) = sin(half width) */
 } huang_window_ends;
 
-HB_INLINE huang_window_ends window_ends(const huang_r_geometry *g)
+HB_INLINE huang_window_ends window_ends(vf delta_centre, vf half_width)
 {
     huang_window_ends e;
     vf cm, sm, cw, sw;
-    vf_sincos(vf_mul(vf_set1(0.5f), g->delta_centre), &sm, &cm);
-    vf_sincos(vf_mul(vf_set1(0.5f), g->half_width), &sw, &cw);
+    vf_sincos(vf_mul(vf_set1(0.5f), delta_centre), &sm, &cm);
+    vf_sincos(vf_mul(vf_set1(0.5f), half_width), &sw, &cw);
     vf a = vf_mul(cm, cw), b = vf_mul(sm, sw), c = vf_mul(sm, cw), d = vf_mul(cm, sw);
     e.cos_hi = vf_sub(a, b);
     e.cos_lo = vf_add(a, b);
@@ -101,7 +102,7 @@ HB_INLINE huang_r_geometry huang_r_geometry_of(const hb_huang *h, const huang_di
     vf inv_planar = vf_div(one, vf_max(planar, vf_set1(1e-30f)));
     g.cos_phi_h = vf_select(has_azimuth, vf_mul(hz, inv_planar), one);
     g.sin_phi_h = vf_select(has_azimuth, vf_mul(hx, inv_planar), zero);
-    vf phi_h = vf_atan2(hx, hz);
+    g.phi_h = vf_atan2(hx, hz);
     /* theta_h -+ tau, and the App. A factors in cancellation-free form (1 - A - B =
      * r^2 / (1 + C) + C (1 - cos(theta_h - tau)), the issue's trap at small roughness) */
     vf ct = vf_set1(h->cos_tilt), st = vf_set1(h->sin_tilt);
@@ -125,10 +126,11 @@ HB_INLINE huang_r_geometry huang_r_geometry_of(const hb_huang *h, const huang_di
                       vf_sub(d->forward_gap, vf_add(cut_i, cut_o)));
     g.visible = vm_and(vm_and(seen_i, seen_o), vf_gt(width, vf_set1(0.0f)));
     g.half_width = vf_select(g.visible, vf_mul(vf_set1(0.5f), width), vf_set1(0.0f));
-    vf phi = vf_atan2(d->sin_phi, d->cos_phi), half_i = vf_sub(vf_set1(HB_PIO2_F), cut_i);
+    g.phi = vf_atan2(d->sin_phi, d->cos_phi);
+    vf phi = g.phi, half_i = vf_sub(vf_set1(HB_PIO2_F), cut_i);
     vf half_o = vf_sub(vf_set1(HB_PIO2_F), cut_o);
     vf lo = vf_max(vf_neg(half_i), vf_sub(phi, half_o)), hi = vf_min(half_i, vf_add(phi, half_o));
-    g.delta_centre = wrap_angle(vf_sub(phi_h, vf_mul(vf_set1(0.5f), vf_add(lo, hi))));
+    g.delta_centre = wrap_angle(vf_sub(g.phi_h, vf_mul(vf_set1(0.5f), vf_add(lo, hi))));
     return g;
 }
 
@@ -157,7 +159,7 @@ HB_INLINE void reciprocal_terms(const huang_window_ends *e, vf near, vf far, vf 
 HB_INLINE vf r_integral_ggx_analytic(const hb_huang *h, const huang_r_geometry *g)
 {
     vf one = vf_set1(1.0f), int_p, sin_over_p, int_q, sin_over_q;
-    huang_window_ends e = window_ends(g);
+    huang_window_ends e = window_ends(g->delta_centre, g->half_width);
     vf a_coef = vf_mul(g->cos_h_tilt, vf_set1(h->c_rough)), b_coef = vf_mul(g->sin_h_tilt, vf_set1(h->c_rough));
     reciprocal_terms(&e, g->p_minus, g->p_plus, &int_p, &sin_over_p); /* p = (1 - B) - A cos(delta) */
     reciprocal_terms(&e, g->q_plus, g->q_minus, &int_q, &sin_over_q); /* q = (1 + B) + A cos(delta) */
@@ -167,10 +169,19 @@ HB_INLINE vf r_integral_ggx_analytic(const hb_huang *h, const huang_r_geometry *
     return vf_mul(vf_set1(h->roughness2 * 0.25f * HB_INV_PI_F), vf_add(sum_p, sum_q));
 }
 
-/* D G rho at one phi_m of the window, given sin^2(delta / 2), cos(delta), sin(delta): the NDF at
- * the mesonormal, Smith G1(w_i) G1(w_o) against it (eq. 12), and for elliptical fibres the
- * arc length per unit phi_m, rho = b^2 / (1 - e^2 cos^2 phi_m)^(3/2) (eq. 26 after the change
- * of variable gamma -> phi_m, tan(phi_m) = b tan(gamma)). */
+/* The arc length per unit phi_m of an elliptical fibre, rho = b^2 / (1 - e^2 cos^2 phi_m)^(3/2)
+ * (eq. 26 after the change of variable gamma -> phi_m, tan(phi_m) = b tan(gamma)), at the mesonormal
+ * azimuth (cos_m, sin_m) in the frame phi_i = 0. */
+HB_INLINE vf arc_length_rho(const hb_huang *h, const huang_directions *d, vf cos_m, vf sin_m)
+{
+    vf cos_abs = vf_fnma(d->sin_phi_i, sin_m, vf_mul(d->cos_phi_i, cos_m));
+    vf q = vf_fnma(vf_set1(h->e2), vf_mul(cos_abs, cos_abs), vf_set1(1.0f));
+    return vf_div(vf_set1(h->b2), vf_mul(q, vf_sqrt(q)));
+}
+
+/* D G rho at one phi_m = phi_h - delta of the window, given sin^2(delta / 2), cos(delta), sin(delta):
+ * the NDF at the mesonormal, Smith G1(w_i) G1(w_o) against it (eq. 12), and for elliptical fibres
+ * the arc length rho. */
 HB_INLINE vf r_integrand(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g, vf sin2_half,
                          vf cos_delta, vf sin_delta)
 {
@@ -178,7 +189,7 @@ HB_INLINE vf r_integrand(const hb_huang *h, const huang_directions *d, const hua
     vf value = ndf_huang(h, one_minus_x);
     if (!h->shadowing && !h->elliptical)
         return value;
-    vf cos_m = vf_fma(g->cos_phi_h, cos_delta, vf_mul(g->sin_phi_h, sin_delta)); /* phi_m = phi_h - delta */
+    vf cos_m = vf_fma(g->cos_phi_h, cos_delta, vf_mul(g->sin_phi_h, sin_delta));
     vf sin_m = vf_fnma(g->cos_phi_h, sin_delta, vf_mul(g->sin_phi_h, cos_delta));
     if (h->shadowing) {
         vf ct = vf_set1(h->cos_tilt), st = vf_set1(h->sin_tilt);
@@ -187,46 +198,83 @@ HB_INLINE vf r_integrand(const hb_huang *h, const huang_directions *d, const hua
         vf meso_i = vf_fma(ct, macro_i, vf_mul(st, d->sin_ti)), meso_o = vf_fma(ct, macro_o, vf_mul(st, d->sin_to));
         value = vf_mul(value, vf_mul(smith_g1_huang(h, meso_i), smith_g1_huang(h, meso_o)));
     }
-    if (h->elliptical) {
-        vf cos_abs = vf_fnma(d->sin_phi_i, sin_m, vf_mul(d->cos_phi_i, cos_m));
-        vf q = vf_fnma(vf_set1(h->e2), vf_mul(cos_abs, cos_abs), vf_set1(1.0f));
-        value = vf_mul(value, vf_div(vf_set1(h->b2), vf_mul(q, vf_sqrt(q))));
-    }
+    if (h->elliptical)
+        value = vf_mul(value, arc_length_rho(h, d, cos_m, sin_m));
     return value;
 }
 
-/* Composite Simpson in t, tan(t / 2) = sqrt(P+ / P-) tan(delta / 2): the substitution that turns
- * GGX's 1/p^2 peak into a bounded, smooth integrand (d delta / dt = sqrt(P- P+) / (P+ cos^2(t/2) +
- * P- sin^2(t/2))), so a fixed number of panels serves every roughness and every window. The
- * half-angles of the nodes come from a rotation recurrence, one sincos per sample. */
-HB_INLINE vf r_integral_mapped(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g)
+/* The sampling density's integrand at phi_m = phi_h - delta (README, "Huang sampling"): the density
+ * of phi_m, cos(phi_m - phi_o) rho over the window's projected width (applied by the caller),
+ * times the visible normals' density mapped to w_i, G1(w_o) D / (4 w_o . w_m) (Heitz 2014; the 4 is
+ * applied by the caller). G1 / (w_o . w_m) stays finite at the window's ends. The window keeps
+ * w_h . w_m >= 0, where D is the NDF. */
+HB_INLINE vf pdf_integrand(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g, vf sin2_half,
+                           vf cos_delta, vf sin_delta)
 {
-    vf one = vf_set1(1.0f);
-    huang_window_ends e = window_ends(g);
-    vf root_m = vf_sqrt(g->p_minus), root_p = vf_sqrt(g->p_plus), root_mp = vf_mul(root_m, root_p);
-    vf half_t_lo = vf_atan2(vf_mul(root_p, e.sin_lo), vf_mul(root_m, e.cos_lo));
-    /* (t_hi - t_lo) / 2 as one atan2, the arctangent difference of App. A's closed form */
-    vf half_t_span = vf_atan2(vf_mul(root_mp, e.sin_width), vf_fma(g->p_minus, e.cc, vf_mul(g->p_plus, e.ss)));
-    vf half_step = vf_div(half_t_span, vf_set1((float)h->panels));
+    vf one_minus_x = vf_fma(vf_add(g->cos_h_tilt, g->cos_h_tilt), sin2_half, g->one_minus_cos_minus);
+    vf cos_m = vf_fma(g->cos_phi_h, cos_delta, vf_mul(g->sin_phi_h, sin_delta));
+    vf sin_m = vf_fnma(g->cos_phi_h, sin_delta, vf_mul(g->sin_phi_h, cos_delta));
+    vf cos_psi = vf_max(vf_fma(d->cos_phi, cos_m, vf_mul(d->sin_phi, sin_m)), vf_set1(0.0f)); /* phi_m - phi_o */
+    vf meso_o = vf_fma(vf_set1(h->cos_tilt), vf_mul(d->cos_to, cos_psi), vf_mul(vf_set1(h->sin_tilt), d->sin_to));
+    vf value = vf_mul(vf_mul(ndf_huang(h, one_minus_x), cos_psi), smith_g1_over_cos(h, meso_o));
+    if (h->elliptical)
+        value = vf_mul(value, arc_length_rho(h, d, cos_m, sin_m));
+    return value;
+}
+
+/* The peak-following variable t, tan(t / 2) = sqrt(P+ / P-) tan(delta / 2): the substitution that
+ * turns GGX's 1/p^2 peak into a bounded, smooth integrand (d delta / dt = sqrt(P- P+) / (P+ cos^2(t/2) +
+ * P- sin^2(t/2))), so a fixed number of panels serves every roughness and every window. A window
+ * [delta_lo, delta_hi] becomes half-angles t_lo / 2 and (t_hi - t_lo) / 2, the latter one atan2 (App.
+ * A's arctangent difference), so that narrow windows keep their width's digits. */
+typedef struct huang_t_piece {
+    vf half_lo, half_span;
+} huang_t_piece;
+
+HB_INLINE huang_t_piece t_piece_of(const huang_r_geometry *g, vf delta_centre, vf half_width)
+{
+    huang_t_piece t;
+    huang_window_ends e = window_ends(delta_centre, half_width);
+    vf root_m = vf_sqrt(g->p_minus), root_p = vf_sqrt(g->p_plus);
+    t.half_lo = vf_atan2(vf_mul(root_p, e.sin_lo), vf_mul(root_m, e.cos_lo));
+    t.half_span = vf_atan2(vf_mul(vf_mul(root_m, root_p), e.sin_width), vf_fma(g->p_minus, e.cc, vf_mul(g->p_plus, e.ss)));
+    return t;
+}
+
+/* Composite Simpson with `panels` panels over a piece of t, of eval's integrand (r_integrand) or
+ * the sampling pdf's (pdf_integrand). The half-angles of the nodes come from a rotation
+ * recurrence, one sincos per piece. */
+HB_INLINE vf mapped_simpson(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g, huang_t_piece t,
+                            int panels, int pdf)
+{
+    vf one = vf_set1(1.0f), root_mp = vf_sqrt(vf_mul(g->p_minus, g->p_plus));
+    vf half_step = vf_div(t.half_span, vf_set1((float)panels));
     vf c, s, cr, sr;
-    vf_sincos(half_t_lo, &s, &c);
+    vf_sincos(t.half_lo, &s, &c);
     vf_sincos(half_step, &sr, &cr);
     vf sum = vf_set1(0.0f);
-    for (int j = 0; j <= h->panels; j++) {
-        float w = (j == 0 || j == h->panels) ? 1.0f : (j & 1) ? 4.0f : 2.0f;
+    for (int j = 0; j <= panels; j++) {
+        float w = (j == 0 || j == panels) ? 1.0f : (j & 1) ? 4.0f : 2.0f;
         vf pc2 = vf_mul(g->p_plus, vf_mul(c, c)), ms2 = vf_mul(g->p_minus, vf_mul(s, s));
         vf inv_den = vf_div(one, vf_add(pc2, ms2));
         vf sin2_half = vf_mul(ms2, inv_den);
         vf cos_delta = vf_mul(vf_sub(pc2, ms2), inv_den);
         vf sin_delta = vf_mul(vf_mul(vf_set1(2.0f), vf_mul(root_mp, vf_mul(c, s))), inv_den);
         vf jacobian = vf_mul(root_mp, inv_den);
-        sum = vf_fma(vf_set1(w), vf_mul(r_integrand(h, d, g, sin2_half, cos_delta, sin_delta), jacobian), sum);
+        vf value = pdf ? pdf_integrand(h, d, g, sin2_half, cos_delta, sin_delta)
+                       : r_integrand(h, d, g, sin2_half, cos_delta, sin_delta);
+        sum = vf_fma(vf_set1(w), vf_mul(value, jacobian), sum);
         vf c_next = vf_fnma(s, sr, vf_mul(c, cr));
         s = vf_fma(c, sr, vf_mul(s, cr));
         c = c_next;
     }
     /* dt = 2 d(t/2), Simpson's h / 3 */
     return vf_mul(sum, vf_mul(half_step, vf_set1(2.0f / 3.0f)));
+}
+
+HB_INLINE vf r_integral_mapped(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g)
+{
+    return mapped_simpson(h, d, g, t_piece_of(g, g->delta_centre, g->half_width), h->panels, 0);
 }
 
 /* The paper's rule (HHH22 sec. 3.4.2): Simpson in phi_m with an even number of panels n per
@@ -267,7 +315,8 @@ HB_INLINE vf huang_r(const hb_huang *h, const huang_directions *d)
     return vf_select(g.visible, f, vf_set1(0.0f));
 }
 
-HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vf out[3])
+/* The directions of an angle pair. */
+HB_INLINE huang_directions huang_directions_of_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o)
 {
     huang_directions d;
     vf_sincos(theta_i, &d.sin_ti, &d.cos_ti);
@@ -295,6 +344,12 @@ HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o,
         vf_sincos(wrap_angle(phi_o), &s, &c);
         d.sin2_phi_o = vf_mul(s, s);
     }
+    return d;
+}
+
+HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vf out[3])
+{
+    huang_directions d = huang_directions_of_angles(h, theta_i, phi_i, theta_o, phi_o);
     out[0] = out[1] = out[2] = huang_r(h, &d);
 }
 

@@ -1,0 +1,116 @@
+/* Helpers of the sampling tests: see sampling.h. */
+#include <string.h>
+
+#include "sampling.h"
+
+hb_sample_buffers hb_samples;
+
+void hb_test_sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double theta_o, double phi_o,
+                          unsigned long long seed)
+{
+    hb_sample_buffers *b = &hb_samples;
+    float *u[HB_SAMPLE_DIMENSIONS];
+    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+        u[d] = b->u[d];
+    hb_uniforms(seed, 0, n, hb_plan_sample_dimensions(plan), u);
+    for (size_t k = 0; k < n; k++) {
+        b->to[k] = (float)theta_o;
+        b->po[k] = (float)phi_o;
+    }
+    hb_sample_in in = { b->to, b->po, { b->u[0], b->u[1], b->u[2], b->u[3], b->u[4], b->u[5], b->u[6], b->u[7] } };
+    hb_sample_out out = { b->ti, b->pi, b->pdf, { b->w[0], b->w[1], b->w[2] } };
+    hb_eval_report report;
+    CHECK(t, hb_sample_angles(plan, n, in, out, &report) == HB_OK, "hb_sample_angles failed");
+    CHECK(t, report.invalid == 0, "%zu samples reported invalid", report.invalid);
+}
+
+unsigned long long hb_test_next_seed(hb_test_ctx *t) { return (unsigned long long)(hb_test_uniform(t) * 0x1p53); }
+
+/* Gauss-Legendre nodes and weights on [-1, 1] for gl = 6 and 8. */
+static void gauss_rule(int gl, const double **x, const double **w)
+{
+    static const double x6[6] = { -0.9324695142031521, -0.6612093864662645, -0.2386191860831969,
+                                  0.2386191860831969, 0.6612093864662645, 0.9324695142031521 };
+    static const double w6[6] = { 0.1713244923791704, 0.3607615730481386, 0.4679139345726910,
+                                  0.4679139345726910, 0.3607615730481386, 0.1713244923791704 };
+    static const double x8[8] = { -0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                                  -0.1834346424956498, 0.1834346424956498, 0.5255324099163290,
+                                  0.7966664774136267, 0.9602898564975363 };
+    static const double w8[8] = { 0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                                  0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                                  0.2223810344533745, 0.1012285362903763 };
+    *x = gl == 8 ? x8 : x6;
+    *w = gl == 8 ? w8 : w6;
+}
+
+/* dw = d(sin theta) d(phi): the cells are rectangles in (sin theta_i, phi_i). One strip of cells
+ * at a time through the buffers' scratch arrays. */
+double hb_test_cell_probabilities(const hb_plan *plan, double theta_o, double phi_o, int nt, int np, int gl,
+                                  double *prob)
+{
+    hb_sample_buffers *b = &hb_samples;
+    const double *x, *w;
+    gauss_rule(gl, &x, &w);
+    double area = (2.0 / nt) * (2.0 * M_PI / np) / 4.0, total = 0.0;
+    for (int a = 0; a < nt; a++) {
+        size_t n = 0;
+        for (int c = 0; c < np; c++)
+            for (int i = 0; i < gl; i++)
+                for (int j = 0; j < gl; j++, n++) {
+                    double sin_t = -1.0 + (a + 0.5 * (1.0 + x[i])) * 2.0 / nt;
+                    b->ti[n] = (float)asin(sin_t);
+                    b->pi[n] = (float)(-M_PI + (c + 0.5 * (1.0 + x[j])) * 2.0 * M_PI / np);
+                    b->to[n] = (float)theta_o;
+                    b->po[n] = (float)phi_o;
+                }
+        hb_pdf_angles(plan, n, (hb_angles_soa){ b->ti, b->pi, b->to, b->po }, b->pdf2, NULL);
+        n = 0;
+        for (int c = 0; c < np; c++) {
+            double p = 0.0;
+            for (int i = 0; i < gl; i++)
+                for (int j = 0; j < gl; j++, n++)
+                    p += w[i] * w[j] * area * b->pdf2[n];
+            prob[a * np + c] = p;
+            total += p;
+        }
+    }
+    return total;
+}
+
+/* Upper tail of the chi-square distribution with k degrees of freedom (Wilson-Hilferty). */
+static double chi_square_tail(double x, double k)
+{
+    double z = (cbrt(x / k) - (1.0 - 2.0 / (9.0 * k))) / sqrt(2.0 / (9.0 * k));
+    return 0.5 * erfc(z / M_SQRT2);
+}
+
+double hb_test_chi_square(size_t n, const double *prob, double total, int nt, int np, double *chi2, int *cells)
+{
+    static unsigned count[4096];
+    hb_sample_buffers *b = &hb_samples;
+    memset(count, 0, sizeof count);
+    for (size_t i = 0; i < n; i++) {
+        int a = (int)floor((sin((double)b->ti[i]) + 1.0) * nt / 2.0), c = (int)floor((b->pi[i] + M_PI) * np / (2.0 * M_PI));
+        a = a < 0 ? 0 : a >= nt ? nt - 1 : a;
+        c = c < 0 ? 0 : c >= np ? np - 1 : c;
+        count[a * np + c]++;
+    }
+    double pooled_expected = 0.0, pooled_observed = 0.0;
+    *chi2 = 0.0;
+    *cells = 0;
+    for (int k = 0; k < nt * np; k++) {
+        double expected = prob[k] / total * (double)n;
+        if (expected < 5.0) {
+            pooled_expected += expected;
+            pooled_observed += count[k];
+            continue;
+        }
+        *chi2 += (count[k] - expected) * (count[k] - expected) / expected;
+        (*cells)++;
+    }
+    if (pooled_expected > 0.0) {
+        *chi2 += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / fmax(pooled_expected, 5.0);
+        (*cells)++;
+    }
+    return chi_square_tail(*chi2, *cells - 1);
+}

@@ -1,0 +1,35 @@
+/* Helpers of the sampling tests (test_sample.c, test_sample_huang.c): batches of samples for one
+ * w_o in static storage, expected cell probabilities from hb_pdf_angles, and a chi-square test. */
+#ifndef HB_TEST_SAMPLING_H
+#define HB_TEST_SAMPLING_H
+
+#include "test.h"
+
+enum { HB_TEST_MAX_SAMPLES = 200000 };
+
+/* One batch (too large for the stack): inputs, outputs, and scratch for f and a second pdf. */
+typedef struct hb_sample_buffers {
+    float to[HB_TEST_MAX_SAMPLES], po[HB_TEST_MAX_SAMPLES], u[HB_SAMPLE_DIMENSIONS][HB_TEST_MAX_SAMPLES];
+    float ti[HB_TEST_MAX_SAMPLES], pi[HB_TEST_MAX_SAMPLES], pdf[HB_TEST_MAX_SAMPLES], w[3][HB_TEST_MAX_SAMPLES];
+    float f[3][HB_TEST_MAX_SAMPLES], pdf2[HB_TEST_MAX_SAMPLES];
+} hb_sample_buffers;
+extern hb_sample_buffers hb_samples;
+
+/* n samples for w_o = (theta_o, phi_o) with hb_uniforms(seed); checks none is reported invalid. */
+void hb_test_sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double theta_o, double phi_o,
+                          unsigned long long seed);
+
+/* A seed for hb_uniforms drawn from the test's own (printed) seed. */
+unsigned long long hb_test_next_seed(hb_test_ctx *t);
+
+/* Cells of equal solid angle: sin(theta_i) in nt strips, phi_i in np sectors; prob[nt * np] gets
+ * each cell's integral of hb_pdf_angles by gl x gl Gauss-Legendre (gl <= 8, nt * np * gl^2 <=
+ * HB_TEST_MAX_SAMPLES per call of hb_pdf_angles, larger grids run in slices). Returns the sum. */
+double hb_test_cell_probabilities(const hb_plan *plan, double theta_o, double phi_o, int nt, int np, int gl,
+                                  double *prob);
+
+/* Chi-square of the batch in hb_samples (n samples) against prob over nt x np equal-area cells
+ * (cells expecting fewer than 5 pooled); returns the p-value (Wilson-Hilferty), *chi2 and *cells. */
+double hb_test_chi_square(size_t n, const double *prob, double total, int nt, int np, double *chi2, int *cells);
+
+#endif
