@@ -43,33 +43,37 @@ static void gauss_rule(int gl, const double **x, const double **w)
     *w = gl == 8 ? w8 : w6;
 }
 
-/* dw = d(sin theta) d(phi): the cells are rectangles in (sin theta_i, phi_i). One strip of cells
- * at a time through the buffers' scratch arrays. */
-double hb_test_cell_probabilities(const hb_plan *plan, double theta_o, double phi_o, int nt, int np, int gl,
+/* Each cell is integrated in (theta_i, phi_i) with dw = cos(theta) dtheta dphi, which is smooth
+ * up to the poles (in sin(theta), a lobe at a pole has a square-root edge), split into sub x sub
+ * parts with a gl x gl rule. One strip of cells at a time through the buffers' scratch. */
+double hb_test_cell_probabilities(const hb_plan *plan, double theta_o, double phi_o, int nt, int np, int sub, int gl,
                                   double *prob)
 {
     hb_sample_buffers *b = &hb_samples;
     const double *x, *w;
     gauss_rule(gl, &x, &w);
-    double area = (2.0 / nt) * (2.0 * M_PI / np) / 4.0, total = 0.0;
+    int per_cell = sub * sub * gl * gl, side = sub * gl;
+    double total = 0.0, dphi = 2.0 * M_PI / (np * sub);
+    static double weight[HB_TEST_MAX_SAMPLES];
     for (int a = 0; a < nt; a++) {
+        double lo = asin(-1.0 + 2.0 * a / nt), dtheta = (asin(fmin(1.0, -1.0 + 2.0 * (a + 1) / nt)) - lo) / sub;
         size_t n = 0;
         for (int c = 0; c < np; c++)
-            for (int i = 0; i < gl; i++)
-                for (int j = 0; j < gl; j++, n++) {
-                    double sin_t = -1.0 + (a + 0.5 * (1.0 + x[i])) * 2.0 / nt;
-                    b->ti[n] = (float)asin(sin_t);
-                    b->pi[n] = (float)(-M_PI + (c + 0.5 * (1.0 + x[j])) * 2.0 * M_PI / np);
+            for (int i = 0; i < side; i++)
+                for (int j = 0; j < side; j++, n++) {
+                    double theta = lo + (i / gl + 0.5 * (1.0 + x[i % gl])) * dtheta;
+                    b->ti[n] = (float)theta;
+                    b->pi[n] = (float)(-M_PI + (c * sub + j / gl + 0.5 * (1.0 + x[j % gl])) * dphi);
                     b->to[n] = (float)theta_o;
                     b->po[n] = (float)phi_o;
+                    weight[n] = w[i % gl] * w[j % gl] * cos(theta) * dtheta * dphi / 4.0;
                 }
         hb_pdf_angles(plan, n, (hb_angles_soa){ b->ti, b->pi, b->to, b->po }, b->pdf2, NULL);
         n = 0;
         for (int c = 0; c < np; c++) {
             double p = 0.0;
-            for (int i = 0; i < gl; i++)
-                for (int j = 0; j < gl; j++, n++)
-                    p += w[i] * w[j] * area * b->pdf2[n];
+            for (int k = 0; k < per_cell; k++, n++)
+                p += weight[n] * b->pdf2[n];
             prob[a * np + c] = p;
             total += p;
         }

@@ -22,10 +22,10 @@ void hb_test_sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double 
 /* A seed for hb_uniforms drawn from the test's own (printed) seed. */
 unsigned long long hb_test_next_seed(hb_test_ctx *t);
 
-/* Cells of equal solid angle: sin(theta_i) in nt strips, phi_i in np sectors; prob[nt * np] gets
- * each cell's integral of hb_pdf_angles by gl x gl Gauss-Legendre (gl <= 8, nt * np * gl^2 <=
- * HB_TEST_MAX_SAMPLES per call of hb_pdf_angles, larger grids run in slices). Returns the sum. */
-double hb_test_cell_probabilities(const hb_plan *plan, double theta_o, double phi_o, int nt, int np, int gl,
+/* Cells of equal solid angle: sin(theta_i) in nt strips, phi_i in np sectors (nt * np <= 4096);
+ * prob[nt * np] gets each cell's integral of hb_pdf_angles over sub x sub parts of it by gl x gl
+ * Gauss-Legendre (gl 6 or 8; np * (sub gl)^2 <= HB_TEST_MAX_SAMPLES). Returns the sum. */
+double hb_test_cell_probabilities(const hb_plan *plan, double theta_o, double phi_o, int nt, int np, int sub, int gl,
                                   double *prob);
 
 /* Chi-square of the batch in hb_samples (n samples) against prob over nt x np equal-area cells

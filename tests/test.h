@@ -66,5 +66,6 @@ extern const hb_test hb_tests_cli[];
 extern const hb_test hb_tests_images[];
 extern const hb_test hb_tests_corpus[];
 extern const hb_test hb_tests_sample[];
+extern const hb_test hb_tests_sample_huang[];
 
 #endif

@@ -260,22 +260,23 @@ static void test_marschner_commands(hb_test_ctx *t)
 
 /* hairbsdf sample and pdf: rows that are the library's samples, a summary whose mean weight is
  * the white-furnace energy, a pdf column that matches the sampled pdf, and refusals. */
-static void test_sample_commands(hb_test_ctx *t)
+/* `hairbsdf sample <args> --theta-o 0.5 --phi-o 0.2 --count 3 --seed 9` prints the library's samples
+ * for the plan (m, o), and `hairbsdf pdf <args>` the pdf of one of them. */
+static void check_sample_rows(hb_test_ctx *t, const char *args, const hb_material *m, const hb_options *o)
 {
     run_result r;
-    if (!run_tool(t, "sample --theta-o 0.5 --phi-o 0.2 --count 3 --seed 9 --beta-m 0.2", "", &r))
+    char command[256];
+    snprintf(command, sizeof command, "sample %s --theta-o 0.5 --phi-o 0.2 --count 3 --seed 9", args);
+    if (!run_tool(t, command, "", &r))
         return;
-    CHECK(t, r.status == 0, "sample exit %d: %s", r.status, r.err);
-    hb_material m;
-    hb_options o;
-    hb_material_default(&m);
-    hb_options_default(&o);
-    m.beta_m = 0.2;
+    CHECK(t, r.status == 0, "'%s' exit %d: %s", command, r.status, r.err);
     hb_plan *plan = NULL;
-    CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "plan");
+    CHECK(t, hb_plan_create(m, o, &plan, NULL) == HB_OK, "plan");
+    if (!plan)
+        return;
     float to[3] = { 0.5f, 0.5f, 0.5f }, po[3] = { 0.2f, 0.2f, 0.2f }, u[5][3], ti[3], pi[3], pdf[3], w[3][3];
     float *streams[5] = { u[0], u[1], u[2], u[3], u[4] };
-    hb_uniforms(9, 0, 3, 5, streams);
+    hb_uniforms(9, 0, 3, hb_plan_sample_dimensions(plan), streams);
     hb_sample_angles(plan, 3, (hb_sample_in){ to, po, { u[0], u[1], u[2], u[3], u[4] } },
                      (hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, NULL);
     char want[1024] = "theta_i,phi_i,pdf,w_r,w_g,w_b\n", row[256];
@@ -283,15 +284,35 @@ static void test_sample_commands(hb_test_ctx *t)
         snprintf(row, sizeof row, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", ti[k], pi[k], pdf[k], w[0][k], w[1][k], w[2][k]);
         strcat(want, row);
     }
-    CHECK(t, strcmp(r.out, want) == 0, "sample printed\n%s\nwant\n%s", r.out, want);
-
+    CHECK(t, strcmp(r.out, want) == 0, "'%s' printed\n%s\nwant\n%s", command, r.out, want);
     char input[128];
     snprintf(input, sizeof input, "theta_i,phi_i,theta_o,phi_o\n%.9g,%.9g,0.5,0.2\n", ti[1], pi[1]);
-    if (!run_tool(t, "pdf --beta-m 0.2", input, &r))
-        return;
-    CHECK(t, r.status == 0 && fabs(atof(r.out) - pdf[1]) <= 1e-6 * pdf[1], "pdf printed '%s', sampled %.9g (%s)",
-          r.out, pdf[1], r.err);
+    snprintf(command, sizeof command, "pdf %s", args);
+    if (run_tool(t, command, input, &r))
+        CHECK(t, r.status == 0 && fabs(atof(r.out) - pdf[1]) <= 1e-6 * pdf[1], "'%s' printed '%s', sampled %.9g (%s)",
+              command, r.out, pdf[1], r.err);
     hb_plan_destroy(plan);
+}
+
+static void test_sample_commands(hb_test_ctx *t)
+{
+    run_result r;
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.beta_m = 0.2;
+    check_sample_rows(t, "--beta-m 0.2", &m, &o);
+    hb_material_default(&m);
+    m.ndf = HB_NDF_BECKMANN;
+    m.roughness = 0.2;
+    m.eccentricity = 0.5;
+    o.model = HB_MODEL_HUANG;
+    o.lobes = 1u << HB_LOBE_R;
+    check_sample_rows(t, "--model huang --lobes R --ndf beckmann --roughness 0.2 --eccentricity 0.5", &m, &o);
+    hb_material_default(&m);
+    hb_options_default(&o);
+    hb_plan *plan = NULL;
 
     if (!run_tool(t, "sample --theta-o -0.7 --count 20000 --summary --sigma-a 0.3,0.6,1.2", "", &r))
         return;
@@ -311,7 +332,7 @@ static void test_sample_commands(hb_test_ctx *t)
 
     static const char *const refused[] = { "sample --model marschner --theta-o 0.1", "sample --count 10",
                                            "sample --theta-o 2", "sample --theta-o 0.1 --count 0",
-                                           "sample --theta-o 0.1 --seed -3", "pdf --model huang --lobes R" };
+                                           "sample --theta-o 0.1 --seed -3", "pdf --model marschner" };
     for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
         if (!run_tool(t, refused[k], "0,0,0,0\n", &r))
             return;

@@ -1,0 +1,277 @@
+/* HHH22 R lobe sampling and pdf (issue 5 item 2, README "Huang sampling"): sampled directions
+ * follow the pdf, the pdf integrates to 1, the mean weight is the lobe's albedo, the kernels agree
+ * with the double procedure, and hard cases give finite, non-negative results. */
+#include <string.h>
+
+#include "sampling.h"
+#include "plan.h"
+#include "ref/reference.h"
+
+static hb_sample_buffers *const buf = &hb_samples;
+
+typedef struct huang_case {
+    hb_ndf ndf;
+    double roughness, alpha_deg, eccentricity; /* alpha: the scale tilt (the mesonormal's inclination is -alpha) */
+    int shadowing;
+    double theta_o, phi_o;
+} huang_case;
+
+static hb_plan *huang_plan(hb_test_ctx *t, const huang_case *c, hb_quality quality, hb_isa isa)
+{
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.ndf = c->ndf;
+    m.roughness = c->roughness;
+    m.alpha = c->alpha_deg * M_PI / 180.0;
+    m.eccentricity = c->eccentricity;
+    o.model = HB_MODEL_HUANG;
+    o.lobes = 1u << HB_LOBE_R;
+    o.shadowing = c->shadowing ? HB_SHADOWING_SMITH : HB_SHADOWING_NONE;
+    o.quality = quality;
+    o.isa = isa;
+    hb_plan *plan = NULL;
+    hb_error err;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "plan: %s", err.message);
+    return plan;
+}
+
+static void describe(const huang_case *c, char *text, size_t size)
+{
+    snprintf(text, size, "%s r %g alpha %g e %g%s theta_o %g phi_o %g", c->ndf == HB_NDF_BECKMANN ? "beckmann" : "ggx",
+             c->roughness, c->alpha_deg, c->eccentricity, c->shadowing ? " G" : "", c->theta_o, c->phi_o);
+}
+
+/* Both NDFs, with and without G, tilts of +-5 degrees, an elliptical fibre, grazing and
+ * back-facing w_o (tilt 5 at theta_o = -1.5 sees a narrow window; theta_o 1.45 with tilt makes
+ * the pdf's window two arcs). */
+static const huang_case cases[] = {
+    { HB_NDF_GGX, 0.3, 0.0, 0.0, 1, 0.5, 0.3 },         { HB_NDF_GGX, 0.15, -2.0, 0.0, 1, -0.7, 1.0 },
+    { HB_NDF_BECKMANN, 0.25, 2.0, 0.0, 1, 1.3, -2.0 },   { HB_NDF_BECKMANN, 0.4, 5.0, 0.0, 0, 1.45, 0.0 },
+    { HB_NDF_GGX, 0.3, 2.0, 0.8, 1, 0.3, 1.0 },         { HB_NDF_GGX, 0.6, 0.0, 0.0, 0, -1.2, 3.1 },
+    { HB_NDF_BECKMANN, 0.2, -5.0, 0.6, 1, -1.45, -0.6 }, { HB_NDF_GGX, 0.45, 5.0, 0.0, 1, 1.45, 2.0 },
+};
+enum { CASES = sizeof cases / sizeof cases[0], NT = 24, NP = 48 };
+
+/* Item 2: chi-square of sampled directions against hb_pdf_angles over equal-area cells
+ * (significance 1e-3, seeds printed), and the pdf integrates to 1 over those cells. */
+static void test_huang_sample_chi_square(hb_test_ctx *t)
+{
+    static double prob[NT * NP];
+    size_t n = t->emulated ? 20000 : HB_TEST_MAX_SAMPLES;
+    for (int c = 0; c < CASES; c++) {
+        if (t->emulated && c % 2)
+            continue;
+        hb_plan *plan = huang_plan(t, &cases[c], HB_QUALITY_BALANCED, HB_ISA_AUTO);
+        if (!plan)
+            return;
+        double integral = hb_test_cell_probabilities(plan, cases[c].theta_o, cases[c].phi_o, NT, NP, t->emulated ? 2 : 4, 6, prob);
+        unsigned long long seed = hb_test_next_seed(t);
+        hb_test_sample_batch(t, plan, n, cases[c].theta_o, cases[c].phi_o, seed);
+        double chi2;
+        int cells;
+        double p_value = hb_test_chi_square(n, prob, integral, NT, NP, &chi2, &cells);
+        char text[160];
+        describe(&cases[c], text, sizeof text);
+        hb_test_note(t, "%s (seed %llu): integral of pdf %.6f, chi2 %.1f over %d cells, p = %.3f", text, seed, integral,
+                     chi2, cells, p_value);
+        CHECK(t, fabs(integral - 1.0) <= 2e-3, "%s: pdf integrates to %.6f", text, integral);
+        CHECK(t, p_value >= 1e-3, "%s: chi-square p-value %.2e below the 1e-3 significance", text, p_value);
+        hb_plan_destroy(plan);
+    }
+}
+
+/* The mean weight is the lobe's albedo, the integral of f over w_i (by the same cell quadrature
+ * applied to hb_eval_angles), within four standard errors; weights are finite and non-negative,
+ * and without tilt, on a circular fibre with G, f / pdf <= F(w_o . w_h) <= 1 (both integrals cover
+ * the same D, the pdf's with G1(w_o) alone and over a larger window). */
+static void test_huang_sample_albedo(hb_test_ctx *t)
+{
+    size_t n = t->emulated ? 20000 : 100000;
+    enum { FINE_T = 48, FINE_P = 96, GL = 8 };
+    for (int c = 0; c < CASES; c++) {
+        if (t->emulated && c % 2)
+            continue;
+        hb_plan *plan = huang_plan(t, &cases[c], HB_QUALITY_HIGH, HB_ISA_AUTO);
+        if (!plan)
+            return;
+        hb_test_sample_batch(t, plan, n, cases[c].theta_o, cases[c].phi_o, hb_test_next_seed(t));
+        double mean = 0.0, mean2 = 0.0, worst_bound = 0.0;
+        int bounded = cases[c].alpha_deg == 0.0 && cases[c].eccentricity == 0.0 && cases[c].shadowing, bad = 0;
+        for (size_t i = 0; i < n; i++) {
+            double w = buf->w[0][i];
+            bad += !(isfinite(w) && w >= 0.0 && buf->pdf[i] >= 0.0f);
+            mean += w;
+            mean2 += w * w;
+            if (bounded && w > 0.0) { /* w / F(w_o . w_h), w_o . w_h = sqrt((1 + w_i . w_o) / 2) */
+                double ti = buf->ti[i], dphi = buf->pi[i] - cases[c].phi_o, to = cases[c].theta_o;
+                double dot = sin(ti) * sin(to) + cos(ti) * cos(to) * cos(dphi);
+                worst_bound = fmax(worst_bound, w / hb_ref_fresnel(1.55, sqrt(fmax(0.0, 0.5 * (1.0 + dot)))));
+            }
+        }
+        mean /= (double)n;
+        double sigma = sqrt(fmax(mean2 / (double)n - mean * mean, 0.0) / (double)n);
+        /* the albedo: GL x GL per cell of f over (sin theta_i, phi_i) */
+        double albedo = 0.0, area = (2.0 / FINE_T) * (2.0 * M_PI / FINE_P) / 4.0;
+        static const double x[GL] = { -0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                                      -0.1834346424956498, 0.1834346424956498, 0.5255324099163290,
+                                      0.7966664774136267, 0.9602898564975363 };
+        static const double wt[GL] = { 0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                                       0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                                       0.2223810344533745, 0.1012285362903763 };
+        for (int a = 0; a < FINE_T; a++) {
+            size_t k = 0;
+            for (int b = 0; b < FINE_P; b++)
+                for (int i = 0; i < GL; i++)
+                    for (int j = 0; j < GL; j++, k++) {
+                        buf->ti[k] = (float)asin(-1.0 + (a + 0.5 * (1.0 + x[i])) * 2.0 / FINE_T);
+                        buf->pi[k] = (float)(-M_PI + (b + 0.5 * (1.0 + x[j])) * 2.0 * M_PI / FINE_P);
+                        buf->to[k] = (float)cases[c].theta_o;
+                        buf->po[k] = (float)cases[c].phi_o;
+                    }
+            hb_eval_angles(plan, k, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po },
+                           (hb_rgb_soa){ buf->f[0], buf->f[1], buf->f[2] }, NULL);
+            k = 0;
+            for (int b = 0; b < FINE_P; b++)
+                for (int i = 0; i < GL; i++)
+                    for (int j = 0; j < GL; j++, k++)
+                        albedo += wt[i] * wt[j] * area * buf->f[0][k];
+        }
+        char text[160];
+        describe(&cases[c], text, sizeof text);
+        hb_test_note(t, "%s: mean weight %.6f +- %.6f, albedo %.6f", text, mean, sigma, albedo);
+        if (bounded)
+            hb_test_note(t, "    largest weight / F(w_o . w_h): %.6f", worst_bound);
+        CHECK(t, bad == 0, "%s: %d weights not finite and >= 0", text, bad);
+        CHECK(t, fabs(mean - albedo) <= 4.0 * sigma + 2e-3 * albedo, "%s: mean weight %.6f, albedo %.6f (sigma %.2e)",
+              text, mean, albedo, sigma);
+        CHECK(t, !bounded || worst_bound <= 1.0 + 1e-3, "%s: a weight %.6f times F", text, worst_bound);
+        hb_plan_destroy(plan);
+    }
+}
+
+/* Per ISA: the same u give the double procedure's direction, the pdf at the sampled direction is
+ * the adaptive-quadrature pdf, hb_pdf_angles returns the sampled pdf bit for bit, weights are f / pdf. */
+static void test_huang_sample_reference(hb_test_ctx *t)
+{
+    size_t n = t->emulated ? 60 : 200;
+    double worst_direction = 0.0, worst_pdf = 0.0, worst_weight = 0.0;
+    for (int c = 0; c < CASES; c++) {
+        hb_plan *plan = huang_plan(t, &cases[c], HB_QUALITY_HIGH, t->isa);
+        if (!plan)
+            return;
+        hb_test_sample_batch(t, plan, n, cases[c].theta_o, cases[c].phi_o, hb_test_next_seed(t));
+        hb_pdf_angles(plan, n, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, buf->pdf2, NULL);
+        hb_eval_angles(plan, n, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po },
+                       (hb_rgb_soa){ buf->f[0], buf->f[1], buf->f[2] }, NULL);
+        double ref_pdf[200], peak = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            ref_pdf[i] = hb_ref_huang_pdf(plan, buf->ti[i], buf->pi[i], buf->to[i], buf->po[i]);
+            peak = fmax(peak, ref_pdf[i]);
+        }
+        char text[160];
+        describe(&cases[c], text, sizeof text);
+        for (size_t i = 0; i < n; i++) {
+            double u[3] = { buf->u[0][i], buf->u[1][i], buf->u[2][i] }, ti, pi;
+            hb_ref_huang_sample(plan, buf->to[i], buf->po[i], u, &ti, &pi);
+            /* the azimuth is undefined at the poles: compare directions by angle */
+            double cos_angle = sin(ti) * sin(buf->ti[i]) + cos(ti) * cos(buf->ti[i]) * cos(pi - buf->pi[i]);
+            double angle = 2.0 * asin(fmin(1.0, sqrt(fmax(0.0, 0.5 * (1.0 - cos_angle)))));
+            if (angle > 1e-4)
+                hb_test_note(t, "%s: u %.9g %.9g %.9g: %.7f %.7f vs ref %.7f %.7f", text, u[0], u[1], u[2], buf->ti[i], buf->pi[i], ti, pi);
+            worst_direction = fmax(worst_direction, angle);
+            worst_pdf = fmax(worst_pdf, fabs(buf->pdf[i] - ref_pdf[i]) / fmax(ref_pdf[i], 1e-3 * peak));
+            CHECK(t, buf->pdf2[i] == buf->pdf[i], "%s sample %zu: hb_pdf_angles %.9g, sampled pdf %.9g", text, i,
+                  buf->pdf2[i], buf->pdf[i]);
+            if (buf->pdf[i] > 0.0f)
+                worst_weight = fmax(worst_weight, fabs(buf->w[0][i] - buf->f[0][i] / buf->pdf[i]) /
+                                                      fmax(buf->w[0][i], 1e-30));
+            CHECK(t, isfinite(buf->w[0][i]) && buf->w[0][i] >= 0.0f && buf->pdf[i] >= 0.0f,
+                  "%s sample %zu: weight %g pdf %g", text, i, buf->w[0][i], buf->pdf[i]);
+        }
+        hb_plan_destroy(plan);
+    }
+    hb_test_note(t, "directions within %.1e rad of the double procedure; pdf within %.1e; weight = f/pdf to %.1e",
+                 worst_direction, worst_pdf, worst_weight);
+    CHECK(t, worst_direction <= 1e-4, "sampled direction off the reference by %.2e rad", worst_direction);
+    CHECK(t, worst_pdf <= 2e-3, "pdf off the reference by %.2e", worst_pdf);
+    CHECK(t, worst_weight <= 1e-6, "weight differs from f / pdf by %.2e", worst_weight);
+}
+
+/* Hard cases: roughness 0.01, grazing and exactly polar w_o (the float nearest pi/2), phi_o at
+ * +-pi, e = 0.95, eta near 1, strong tilt with a back-facing w_o, u at 0 and 1: every output finite
+ * and non-negative, pdf 0 exactly where w_o sees no mesonormal. */
+static void test_huang_sample_hard_cases(hb_test_ctx *t)
+{
+    static const float thetas[] = { 0.0f, 1.5707963f, -1.5707963f, 1.57079637f, -1.57079637f, 1.55f, -0.9f };
+    static const float phis[] = { 0.0f, 3.14159274f, -3.14159274f, 2.0f };
+    static const float edges[] = { 0.0f, 1.0f, 0.99999994f, 1e-30f, 0.5f };
+    static const struct { hb_ndf ndf; double r, tilt, e, eta; int g; } materials[] = {
+        { HB_NDF_GGX, 0.01, 2.0, 0.0, 1.55, 1 },  { HB_NDF_BECKMANN, 0.01, -2.0, 0.0, 1.55, 1 },
+        { HB_NDF_GGX, 0.3, 0.0, 0.95, 1.0001, 0 }, { HB_NDF_BECKMANN, 0.9, 10.0, 0.0, 1.55, 1 },
+        { HB_NDF_GGX, 1.0, -10.0, 0.5, 3.0, 1 },
+    };
+    enum { M = sizeof materials / sizeof materials[0], NTH = 7, NPH = 4, NE = 5 };
+    static float to[NTH * NPH * NE * NE * NE], po[NTH * NPH * NE * NE * NE], u[3][NTH * NPH * NE * NE * NE];
+    static float ti[NTH * NPH * NE * NE * NE], pi[NTH * NPH * NE * NE * NE], pdf[NTH * NPH * NE * NE * NE];
+    static float w[3][NTH * NPH * NE * NE * NE];
+    size_t n = 0;
+    for (int a = 0; a < NTH; a++)
+        for (int b = 0; b < NPH; b++)
+            for (int i = 0; i < NE * NE * NE; i++, n++) {
+                to[n] = thetas[a];
+                po[n] = phis[b];
+                u[0][n] = edges[i % NE];
+                u[1][n] = edges[i / NE % NE];
+                u[2][n] = edges[i / (NE * NE)];
+            }
+    for (int k = 0; k < M; k++) {
+        huang_case c = { materials[k].ndf, materials[k].r, materials[k].tilt, materials[k].e, materials[k].g, 0.0, 0.0 };
+        hb_material m;
+        hb_options o;
+        hb_material_default(&m);
+        hb_options_default(&o);
+        m.ndf = c.ndf;
+        m.roughness = c.roughness;
+        m.alpha = c.alpha_deg * M_PI / 180.0;
+        m.eccentricity = c.eccentricity;
+        m.eta = materials[k].eta;
+        o.model = HB_MODEL_HUANG;
+        o.lobes = 1u << HB_LOBE_R;
+        o.shadowing = c.shadowing ? HB_SHADOWING_SMITH : HB_SHADOWING_NONE;
+        o.isa = t->isa;
+        hb_plan *plan = NULL;
+        hb_error err;
+        CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "plan %d: %s", k, err.message);
+        if (!plan)
+            return;
+        CHECK(t, hb_plan_sample_dimensions(plan) == 3, "huang reads %d numbers", hb_plan_sample_dimensions(plan));
+        hb_eval_report report;
+        hb_sample_angles(plan, n, (hb_sample_in){ to, po, { u[0], u[1], u[2] } },
+                         (hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, &report);
+        CHECK(t, report.invalid == 0, "material %d: %zu invalid", k, report.invalid);
+        int bad = 0;
+        for (size_t i = 0; i < n; i++)
+            bad += !(isfinite(ti[i]) && fabsf(ti[i]) <= 1.57079637f && isfinite(pi[i]) && fabsf(pi[i]) <= 3.14159274f &&
+                     isfinite(pdf[i]) && pdf[i] >= 0.0f && isfinite(w[0][i]) && w[0][i] >= 0.0f);
+        CHECK(t, bad == 0, "material %d: %d of %zu samples not finite / in range", k, bad, n);
+        /* alpha = +-10 degrees: w_o sees no mesonormal beyond |theta_o| = 80 degrees on one side */
+        int unseen = 0, wrong = 0;
+        for (size_t i = 0; i < n; i++)
+            if (fabs(materials[k].tilt) == 10.0 && materials[k].tilt * to[i] > 0.0 && fabsf(to[i]) > 1.45f) {
+                unseen++;
+                wrong += pdf[i] != 0.0f || w[0][i] != 0.0f;
+            }
+        CHECK(t, wrong == 0, "material %d: %d of %d samples whose w_o sees no mesonormal have a pdf", k, wrong, unseen);
+        hb_plan_destroy(plan);
+    }
+}
+
+const hb_test hb_tests_sample_huang[] = {
+    { "huang_sample_chi_square", test_huang_sample_chi_square, 0 },
+    { "huang_sample_albedo", test_huang_sample_albedo, 0 },
+    { "huang_sample_reference", test_huang_sample_reference, 1 },
+    { "huang_sample_hard_cases", test_huang_sample_hard_cases, 1 },
+    { 0 },
+};
