@@ -169,9 +169,10 @@ typedef struct config {
  * quality; MJC03's longitudinal term and its full model (R + TT + TRT, RGB: one closed-form
  * kernel for every quality); HHH22's R lobe (GGX 0.1): App. A's closed form without G, Simpson
  * with Smith G in the peak-following variable per quality, and the paper's rule (steps of 0.7
- * roughness in phi_m); dFH11 sampling (direction, pdf and weight; its error is the weight's against
- * f_ref / pdf at the sampled directions) and its pdf alone (against the reference quality's pdf,
- * whose procedure has the high-quality node set). */
+ * roughness in phi_m); sampling of dFH11 and of HHH22's R lobe with G (direction, pdf and weight;
+ * its error is the weight's against f_ref / pdf at the sampled directions) and their pdf alone
+ * (against the reference quality's pdf: dFH11's procedure with the high-quality node set, HHH22's
+ * by adaptive quadrature). */
 static const config configs[] = {
     { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
     { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
@@ -192,6 +193,10 @@ static const config configs[] = {
     { "deon", "sample", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE },
     { "deon", "pdf", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF },
+    { "huang", "sample", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE },
+    { "huang", "pdf", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF },
 };
 
