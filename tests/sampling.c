@@ -45,17 +45,20 @@ static void gauss_rule(int gl, const double **x, const double **w)
 
 /* Each cell is integrated in (theta_i, phi_i) with dw = cos(theta) dtheta dphi, which is smooth
  * up to the poles (in sin(theta), a lobe at a pole has a square-root edge), split into sub x sub
- * parts with a gl x gl rule. One strip of cells at a time through the buffers' scratch. */
-double hb_test_cell_probabilities(const hb_plan *plan, double theta_o, double phi_o, int nt, int np, int sub, int gl,
-                                  double *prob)
+ * parts (twice as many each way in the two strips at each pole, where lobes crowd) with a gl x gl
+ * rule. One strip of cells at a time through the buffers' scratch. */
+double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, int nt, int np,
+                              int sub_default, int gl, double *prob)
 {
     hb_sample_buffers *b = &hb_samples;
     const double *x, *w;
     gauss_rule(gl, &x, &w);
-    int per_cell = sub * sub * gl * gl, side = sub * gl;
-    double total = 0.0, dphi = 2.0 * M_PI / (np * sub);
+    double total = 0.0;
     static double weight[HB_TEST_MAX_SAMPLES];
     for (int a = 0; a < nt; a++) {
+        int sub = a < 2 || a >= nt - 2 ? 2 * sub_default : sub_default;
+        int per_cell = sub * sub * gl * gl, side = sub * gl;
+        double dphi = 2.0 * M_PI / (np * sub);
         double lo = asin(-1.0 + 2.0 * a / nt), dtheta = (asin(fmin(1.0, -1.0 + 2.0 * (a + 1) / nt)) - lo) / sub;
         size_t n = 0;
         for (int c = 0; c < np; c++)
@@ -68,7 +71,11 @@ double hb_test_cell_probabilities(const hb_plan *plan, double theta_o, double ph
                     b->po[n] = (float)phi_o;
                     weight[n] = w[i % gl] * w[j % gl] * cos(theta) * dtheta * dphi / 4.0;
                 }
-        hb_pdf_angles(plan, n, (hb_angles_soa){ b->ti, b->pi, b->to, b->po }, b->pdf2, NULL);
+        if (of_pdf)
+            hb_pdf_angles(plan, n, (hb_angles_soa){ b->ti, b->pi, b->to, b->po }, b->pdf2, NULL);
+        else
+            hb_eval_angles(plan, n, (hb_angles_soa){ b->ti, b->pi, b->to, b->po },
+                           (hb_rgb_soa){ b->pdf2, b->f[1], b->f[2] }, NULL);
         n = 0;
         for (int c = 0; c < np; c++) {
             double p = 0.0;

@@ -23,10 +23,11 @@ void hb_test_sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double 
 unsigned long long hb_test_next_seed(hb_test_ctx *t);
 
 /* Cells of equal solid angle: sin(theta_i) in nt strips, phi_i in np sectors (nt * np <= 4096);
- * prob[nt * np] gets each cell's integral of hb_pdf_angles over sub x sub parts of it by gl x gl
- * Gauss-Legendre (gl 6 or 8; np * (sub gl)^2 <= HB_TEST_MAX_SAMPLES). Returns the sum. */
-double hb_test_cell_probabilities(const hb_plan *plan, double theta_o, double phi_o, int nt, int np, int sub, int gl,
-                                  double *prob);
+ * prob[nt * np] gets each cell's integral of hb_pdf_angles (of_pdf) or of f's first channel, over
+ * sub x sub parts of it (2 sub x 2 sub in the two strips at each pole) by gl x gl Gauss-Legendre
+ * (gl 6 or 8; np * (2 sub gl)^2 <= HB_TEST_MAX_SAMPLES). Returns the sum. */
+double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, int nt, int np, int sub,
+                              int gl, double *prob);
 
 /* Chi-square of the batch in hb_samples (n samples) against prob over nt x np equal-area cells
  * (cells expecting fewer than 5 pooled); returns the p-value (Wilson-Hilferty), *chi2 and *cells. */

@@ -149,7 +149,7 @@ static void test_sample_chi_square(hb_test_ctx *t)
                                   HB_QUALITY_BALANCED, HB_ISA_AUTO);
         if (!plan)
             return;
-        double integral = hb_test_cell_probabilities(plan, cases[c].theta_o, cases[c].phi_o, NT, NP, 1, GL, prob);
+        double integral = hb_test_cell_integrals(plan, 1, cases[c].theta_o, cases[c].phi_o, NT, NP, 1, GL, prob);
         unsigned long long seed = hb_test_next_seed(t);
         hb_test_sample_batch(t, plan, n, cases[c].theta_o, cases[c].phi_o, seed);
         double chi2;

@@ -61,12 +61,13 @@ static void test_huang_sample_chi_square(hb_test_ctx *t)
     static double prob[NT * NP];
     size_t n = t->emulated ? 20000 : HB_TEST_MAX_SAMPLES;
     for (int c = 0; c < CASES; c++) {
-        if (t->emulated && c % 2)
+        if (t->emulated && c % 4 != 2) /* under qemu: the Beckmann cases, grazing and at a pole */
             continue;
         hb_plan *plan = huang_plan(t, &cases[c], HB_QUALITY_BALANCED, HB_ISA_AUTO);
         if (!plan)
             return;
-        double integral = hb_test_cell_probabilities(plan, cases[c].theta_o, cases[c].phi_o, NT, NP, t->emulated ? 2 : 4, 6, prob);
+        double integral = hb_test_cell_integrals(plan, 1, cases[c].theta_o, cases[c].phi_o, NT, NP, t->emulated ? 2 : 4, 6,
+                                                 prob);
         unsigned long long seed = hb_test_next_seed(t);
         hb_test_sample_batch(t, plan, n, cases[c].theta_o, cases[c].phi_o, seed);
         double chi2;
@@ -89,9 +90,9 @@ static void test_huang_sample_chi_square(hb_test_ctx *t)
 static void test_huang_sample_albedo(hb_test_ctx *t)
 {
     size_t n = t->emulated ? 20000 : 100000;
-    enum { FINE_T = 48, FINE_P = 96, GL = 8 };
+    static double cell[NT * NP];
     for (int c = 0; c < CASES; c++) {
-        if (t->emulated && c % 2)
+        if (t->emulated && c % 4 != 0) /* under qemu: a circular and an elliptical GGX case */
             continue;
         hb_plan *plan = huang_plan(t, &cases[c], HB_QUALITY_HIGH, HB_ISA_AUTO);
         if (!plan)
@@ -112,32 +113,9 @@ static void test_huang_sample_albedo(hb_test_ctx *t)
         }
         mean /= (double)n;
         double sigma = sqrt(fmax(mean2 / (double)n - mean * mean, 0.0) / (double)n);
-        /* the albedo: GL x GL per cell of f over (sin theta_i, phi_i) */
-        double albedo = 0.0, area = (2.0 / FINE_T) * (2.0 * M_PI / FINE_P) / 4.0;
-        static const double x[GL] = { -0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
-                                      -0.1834346424956498, 0.1834346424956498, 0.5255324099163290,
-                                      0.7966664774136267, 0.9602898564975363 };
-        static const double wt[GL] = { 0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
-                                       0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
-                                       0.2223810344533745, 0.1012285362903763 };
-        for (int a = 0; a < FINE_T; a++) {
-            size_t k = 0;
-            for (int b = 0; b < FINE_P; b++)
-                for (int i = 0; i < GL; i++)
-                    for (int j = 0; j < GL; j++, k++) {
-                        buf->ti[k] = (float)asin(-1.0 + (a + 0.5 * (1.0 + x[i])) * 2.0 / FINE_T);
-                        buf->pi[k] = (float)(-M_PI + (b + 0.5 * (1.0 + x[j])) * 2.0 * M_PI / FINE_P);
-                        buf->to[k] = (float)cases[c].theta_o;
-                        buf->po[k] = (float)cases[c].phi_o;
-                    }
-            hb_eval_angles(plan, k, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po },
-                           (hb_rgb_soa){ buf->f[0], buf->f[1], buf->f[2] }, NULL);
-            k = 0;
-            for (int b = 0; b < FINE_P; b++)
-                for (int i = 0; i < GL; i++)
-                    for (int j = 0; j < GL; j++, k++)
-                        albedo += wt[i] * wt[j] * area * buf->f[0][k];
-        }
+        /* the albedo: the integral of f over w_i, by the cells of the chi-square test */
+        double albedo = hb_test_cell_integrals(plan, 0, cases[c].theta_o, cases[c].phi_o, NT, NP, t->emulated ? 1 : 4, 6,
+                                               cell);
         char text[160];
         describe(&cases[c], text, sizeof text);
         hb_test_note(t, "%s: mean weight %.6f +- %.6f, albedo %.6f", text, mean, sigma, albedo);
