@@ -26,6 +26,20 @@ void hb_test_sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double 
 
 unsigned long long hb_test_next_seed(hb_test_ctx *t) { return (unsigned long long)(hb_test_uniform(t) * 0x1p53); }
 
+void hb_test_check_sampled_weights(hb_test_ctx *t, size_t n, const char *label, double *worst_weight)
+{
+    hb_sample_buffers *b = &hb_samples;
+    for (size_t i = 0; i < n; i++) {
+        CHECK(t, b->pdf2[i] == b->pdf[i], "%s sample %zu: hb_pdf_angles %.9g, sampled pdf %.9g", label, i, b->pdf2[i],
+              b->pdf[i]);
+        if (b->pdf[i] > 0.0f)
+            for (int k = 0; k < 3; k++)
+                *worst_weight = fmax(*worst_weight, fabs(b->w[k][i] - b->f[k][i] / b->pdf[i]) / fmax(b->w[k][i], 1e-30));
+        CHECK(t, isfinite(b->w[0][i]) && b->w[0][i] >= 0.0f && isfinite(b->pdf[i]) && b->pdf[i] >= 0.0f,
+              "%s sample %zu: weight %g pdf %g", label, i, b->w[0][i], b->pdf[i]);
+    }
+}
+
 /* Gauss-Legendre nodes and weights on [-1, 1] for gl = 6 and 8. */
 static void gauss_rule(int gl, const double **x, const double **w)
 {

@@ -29,6 +29,11 @@ unsigned long long hb_test_next_seed(hb_test_ctx *t);
 double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, int nt, int np, int sub,
                               int gl, double *prob);
 
+/* For the batch's first n samples, with hb_pdf_angles at the sampled directions in pdf2 and f in f:
+ * the pdf is the sampled one bit for bit, weights and pdfs are finite and >= 0, and the weights are
+ * f / pdf (their largest relative difference raises *worst_weight). */
+void hb_test_check_sampled_weights(hb_test_ctx *t, size_t n, const char *label, double *worst_weight);
+
 /* Chi-square of the batch in hb_samples (n samples) against prob over nt x np equal-area cells
  * (cells expecting fewer than 5 pooled); returns the p-value (Wilson-Hilferty), *chi2 and *cells. */
 double hb_test_chi_square(size_t n, const double *prob, double total, int nt, int np, double *chi2, int *cells);

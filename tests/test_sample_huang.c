@@ -160,14 +160,8 @@ static void test_huang_sample_reference(hb_test_ctx *t)
                 hb_test_note(t, "%s: u %.9g %.9g %.9g: %.7f %.7f vs ref %.7f %.7f", text, u[0], u[1], u[2], buf->ti[i], buf->pi[i], ti, pi);
             worst_direction = fmax(worst_direction, angle);
             worst_pdf = fmax(worst_pdf, fabs(buf->pdf[i] - ref_pdf[i]) / fmax(ref_pdf[i], 1e-3 * peak));
-            CHECK(t, buf->pdf2[i] == buf->pdf[i], "%s sample %zu: hb_pdf_angles %.9g, sampled pdf %.9g", text, i,
-                  buf->pdf2[i], buf->pdf[i]);
-            if (buf->pdf[i] > 0.0f)
-                worst_weight = fmax(worst_weight, fabs(buf->w[0][i] - buf->f[0][i] / buf->pdf[i]) /
-                                                      fmax(buf->w[0][i], 1e-30));
-            CHECK(t, isfinite(buf->w[0][i]) && buf->w[0][i] >= 0.0f && buf->pdf[i] >= 0.0f,
-                  "%s sample %zu: weight %g pdf %g", text, i, buf->w[0][i], buf->pdf[i]);
         }
+        hb_test_check_sampled_weights(t, n, text, &worst_weight);
         hb_plan_destroy(plan);
     }
     hb_test_note(t, "directions within %.1e rad of the double procedure; pdf within %.1e; weight = f/pdf to %.1e",
