@@ -60,7 +60,7 @@ endif
 ALL_CFLAGS = $(BASE_CFLAGS) $(CFLAGS)
 LDLIBS := -lm
 
-LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/quadrature.c src/furnace.c src/sample.c src/sample_plan.c src/ref/deon_ref.c src/ref/deon_sample_ref.c src/ref/marschner_ref.c src/ref/huang_ref.c src/ref/huang_sample_ref.c
+LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/quadrature.c src/furnace.c src/sample.c src/sample_plan.c src/ref/deon_ref.c src/ref/deon_sample_ref.c src/ref/marschner_ref.c src/ref/huang_ref.c src/ref/huang_sample_ref.c src/ref/huang_internal_ref.c
 LIB_OBJS := $(LIB_SRCS:%.c=$(B)/%.o) $(ISAS:%=$(B)/kernel_%.o)
 TOOL_SRCS := $(wildcard tools/*.c)
 TEST_SRCS := $(wildcard tests/*.c)
@@ -143,7 +143,9 @@ demo: all $(BENCH_BIN)
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model marschner --eumelanin 0.3
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model marschner --eumelanin 0.3 --quality reference
 	$(RUN) $(TOOL) dump --model marschner --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_marschner.png
-	@echo "lobe images: $(B)/lobes_deon.png, $(B)/lobes_marschner.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
+	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model huang --eumelanin 0.3
+	$(RUN) $(TOOL) dump --model huang --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_huang.png
+	@echo "lobe images: $(B)/lobes_deon.png, $(B)/lobes_marschner.png, $(B)/lobes_huang.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
 	$(RUN) $(BENCH_BIN)
 
 # libFuzzer (clang): CLI parsing and plan creation + evaluation, FUZZ_SECONDS per target; the

@@ -146,6 +146,14 @@ typedef enum hb_r_integration {
     HB_R_INTEGRATION_NUMERIC   /* composite Simpson over the visible window (r_panels, r_step) */
 } hb_r_integration;
 
+/* How HHH22's TT and TRT lobes (eqs. 23, 24: 3D and 5D integrals) are evaluated. */
+typedef enum hb_tt_trt {
+    HB_TT_TRT_MC,       /* the paper's combined Monte-Carlo/Simpson estimator (eqs. 31, 32): Simpson over
+                           the entry azimuth, one internal path per node from a counter-based generator keyed
+                           by the seed and the sample's index in the batch; unbiased for Simpson's sum */
+    HB_TT_TRT_REFERENCE /* nested quadrature in double (slow: for tests and accuracy tables) */
+} hb_tt_trt;
+
 typedef struct hb_options {
     size_t struct_size; /* sizeof(hb_options), set by hb_options_default */
     hb_model model;     /* default HB_MODEL_DEON */
@@ -169,7 +177,15 @@ typedef struct hb_options {
      * roughness)) panels, so the cost is fixed by the plan and grows as 1 / roughness. */
     int r_panels;
     double r_step;
+    /* HHH22 TT and TRT. tt_panels: Simpson panels over the entry window (even; 0 = from quality and
+     * roughness, README "Huang TT and TRT"); seed: keys the Monte-Carlo numbers, so the same seed and
+     * sample index give the same value on every ISA (change it per frame to accumulate). */
+    hb_tt_trt tt_trt;
+    int tt_panels;
+    unsigned long long seed;
 } hb_options;
+
+#define HB_MAX_TT_PANELS 2048
 
 #define HB_MAX_R_PANELS 16384
 

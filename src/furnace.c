@@ -26,6 +26,10 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
         /* N_p is not smooth in phi (square-root edges where a root leaves the fibre or total
          * reflection sets in): a fixed fine midpoint rule, error below 1e-4 for the defaults */
         nphi = longitudinal ? 1 : 1440;
+    } else if (plan->options.model == HB_MODEL_HUANG) {
+        /* HHH22's lobes are about a roughness wide in theta and (TT, the forward focus) in phi */
+        beta_m = plan->material.roughness;
+        nphi = (int)ceil(3.0 * M_PI / fmin(plan->material.roughness, 1.0)) + 8;
     } else {
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
             if (plan->deon.lobes >> p & 1u || (longitudinal && p == HB_LOBE_R)) {

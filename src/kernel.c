@@ -7,7 +7,7 @@
 #include "math/vmath.h"
 #include "models/deon/sample.h"
 #include "models/marschner/azimuthal.h"
-#include "models/huang/sample.h"
+#include "models/huang/eval.h"
 #include "kernels.h"
 
 #if defined(HB_TARGET_SCALAR)
@@ -233,16 +233,27 @@ static void marschner_vectors_kernel(const hb_marschner *mjc, size_t n, hb_vecto
     HB_BATCH(load_vectors, 6, in, n, invalid, (marschner_vectors(mjc, a, a + 3, f), store_rgb(out, i, lanes, valid, f)));
 }
 
+/* The sample indices first + lane of a block (mod 2^32), which key the Monte-Carlo numbers. */
+HB_INLINE vi lane_indices(size_t first)
+{
+    float lane[HB_W];
+    for (int k = 0; k < HB_W; k++)
+        lane[k] = (float)k;
+    return vi_add(vi_set1((int32_t)(uint32_t)first), vi_from_vf(vf_loadu(lane)));
+}
+
 static void huang_angles_kernel(const hb_huang *h, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
 {
     vf f[3];
-    HB_BATCH(load_angles, 4, in, n, invalid, (huang_angles(h, a[0], a[1], a[2], a[3], f), store_rgb(out, i, lanes, valid, f)));
+    HB_BATCH(load_angles, 4, in, n, invalid,
+             (huang_angles(h, a[0], a[1], a[2], a[3], lane_indices(i), f), store_rgb(out, i, lanes, valid, f)));
 }
 
 static void huang_vectors_kernel(const hb_huang *h, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
 {
     vf f[3];
-    HB_BATCH(load_vectors, 6, in, n, invalid, (huang_vectors(h, a, a + 3, f), store_rgb(out, i, lanes, valid, f)));
+    HB_BATCH(load_vectors, 6, in, n, invalid,
+             (huang_vectors(h, a, a + 3, lane_indices(i), f), store_rgb(out, i, lanes, valid, f)));
 }
 
 static void huang_sample_kernel(const hb_huang *h, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)

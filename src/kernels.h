@@ -4,6 +4,7 @@
 #define HB_KERNELS_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include "hairbsdf.h"
 
 /* Constants of one lobe's longitudinal function, fixed at plan creation. */
@@ -43,7 +44,7 @@ typedef struct hb_marschner {
 /* Everything the HHH22 kernel reads, fixed at plan creation (README, "Huang"). The flags are
  * the same for every sample of a batch, so branching on them never depends on the data. */
 typedef struct hb_huang {
-    unsigned lobes;      /* bit R */
+    unsigned lobes;      /* bits R, TT, TRT */
     int beckmann;        /* NDF: 0 GGX (eq. 41), 1 Beckmann */
     int shadowing;       /* separable Smith G1(w_i) G1(w_o) against the mesonormal */
     int analytic;        /* R: App. A, eq. 43 (GGX, no G, circular); else Simpson */
@@ -59,6 +60,11 @@ typedef struct hb_huang {
     float cos_tilt, sin_tilt; /* the mesonormal's inclination tau (sec. 3.2, eq. 39) */
     float eta, inv_eta2;
     float e2, b, b2;     /* eccentricity^2, the minor semi-axis b = sqrt(1 - e^2) and b^2 */
+    /* TT and TRT by eqs. 31, 32: Simpson panels over the entry window, the counter-based
+     * generator's keys (from the seed), absorption per unit radius */
+    int tt_panels;
+    uint32_t rng_key, rng_key2;
+    float sigma_a[3];
 } hb_huang;
 
 /* dFH11's Gaussian detector D_p (eq. 11), a wrapped Gaussian (a Jacobi theta function),

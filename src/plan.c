@@ -181,14 +181,22 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
     return HB_OK;
 }
 
-/* HHH22 so far: the R lobe, whose closed form (App. A) covers GGX without G on circular fibres. */
+/* HHH22: R, TT and TRT; the R lobe's closed form (App. A) covers GGX without G on circular fibres. */
 static hb_status validate_huang(const hb_material *m, const hb_options *o, hb_error *error)
 {
     if (o->term != HB_TERM_FULL)
         return fail(error, HB_ERR_UNSUPPORTED, "the huang model is not separable: it has no longitudinal term");
-    if (o->lobes != 1u << HB_LOBE_R)
+    if (o->lobes & ~7u)
+        return fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the huang model has R, TT and TRT only (HHH22 eq. 3)",
+                    o->lobes);
+    if ((unsigned)o->tt_trt > HB_TT_TRT_REFERENCE)
+        return fail(error, HB_ERR_PARAM, "tt_trt = %d is not a TT/TRT evaluation method", (int)o->tt_trt);
+    if (o->absorption != HB_ABSORPTION_CORRECTED)
         return fail(error, HB_ERR_UNSUPPORTED,
-                    "huang: only the R lobe is implemented so far (TT and TRT are not); ask for lobes R");
+                    "huang traces the chord itself (HHH22 eq. 17 note): there is no paper absorption variant");
+    if (o->tt_panels < 0 || o->tt_panels > HB_MAX_TT_PANELS || o->tt_panels % 2)
+        return fail(error, HB_ERR_PARAM, "tt_panels = %d must be 0 (from quality) or even, in [2, %d]", o->tt_panels,
+                    HB_MAX_TT_PANELS);
     if (o->r_integration == HB_R_INTEGRATION_ANALYTIC) {
         if (m->ndf != HB_NDF_GGX)
             return fail(error, HB_ERR_UNSUPPORTED, "the analytic R integral (HHH22 App. A) exists for GGX only");
@@ -418,6 +426,20 @@ static const int huang_r_panels[] = {
     [HB_QUALITY_FAST] = 16, [HB_QUALITY_BALANCED] = 32, [HB_QUALITY_HIGH] = 64, [HB_QUALITY_REFERENCE] = 64,
 };
 
+/* HHH22 TT and TRT: Simpson's step over the entry azimuth per quality, in units of the roughness
+ * (the paper's 0.7 for balanced, sec. 3.4.2), and the panels covering the widest window, pi. */
+static const double huang_tt_step[] = {
+    [HB_QUALITY_FAST] = 1.4, [HB_QUALITY_BALANCED] = 0.7, [HB_QUALITY_HIGH] = 0.35, [HB_QUALITY_REFERENCE] = 0.35,
+};
+
+static int huang_tt_panels(const hb_options *o, double roughness)
+{
+    if (o->tt_panels > 0)
+        return o->tt_panels;
+    double panels = 2.0 * ceil(M_PI / (2.0 * huang_tt_step[o->quality] * roughness));
+    return (int)fmin(fmax(panels, 4.0), HB_MAX_TT_PANELS);
+}
+
 /* The mesonormal's inclination tau = -alpha, so that, as in dFH11 and MJC03, alpha > 0 moves the R
  * highlight toward the root (theta_o = -theta_i - 2 alpha at phi = 0); lobe_alpha[R] sets tau itself. */
 static void derive_huang(hb_plan *plan)
@@ -427,7 +449,13 @@ static void derive_huang(hb_plan *plan)
     hb_huang *h = &plan->huang;
     double r = m->roughness, c = sqrt(1.0 - r * r);
     plan->huang_tilt = (m->lobe_alpha_override & 1u) ? m->lobe_alpha[HB_LOBE_R] : -m->alpha;
-    h->lobes = o->lobes;
+    h->lobes = o->lobes == HB_LOBES_DEFAULT ? 7u : o->lobes;
+    h->tt_panels = huang_tt_panels(o, r);
+    unsigned long long key = hb_mix64(o->seed + 0x9e3779b97f4a7c15ull);
+    h->rng_key = (uint32_t)key;
+    h->rng_key2 = (uint32_t)(key >> 32);
+    for (int k = 0; k < 3; k++)
+        h->sigma_a[k] = (float)plan->sigma_a[k];
     h->beckmann = m->ndf == HB_NDF_BECKMANN;
     h->shadowing = o->shadowing == HB_SHADOWING_SMITH;
     h->elliptical = m->eccentricity > 0.0;
@@ -479,7 +507,9 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
     plan->material = *material;
     plan->options = *options;
     plan->isa = isa;
-    plan->kernels = options->quality == HB_QUALITY_REFERENCE ? NULL : hb_kernels_for(isa);
+    int reference = options->quality == HB_QUALITY_REFERENCE ||
+                    (options->model == HB_MODEL_HUANG && options->tt_trt == HB_TT_TRT_REFERENCE);
+    plan->kernels = reference ? NULL : hb_kernels_for(isa);
     derive_deon(plan);
     derive_marschner(plan);
     derive_huang(plan);

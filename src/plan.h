@@ -22,6 +22,9 @@ struct hb_plan {
     hb_huang huang;                              /* float constants of the SIMD kernels */
 };
 
+/* SplitMix64's finaliser: a bijective 64-bit mix (src/sample.c). */
+unsigned long long hb_mix64(unsigned long long x);
+
 /* The sampler's constants (src/sample_plan.c). */
 void hb_plan_derive_sampling(hb_plan *plan);
 

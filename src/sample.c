@@ -15,8 +15,8 @@ int hb_plan_sample_dimensions(const hb_plan *plan)
         return 0;
     if (plan->options.model == HB_MODEL_DEON && plan->options.r_fresnel == HB_R_FRESNEL_OFFSET)
         return HB_DEON_DIMENSIONS;
-    if (plan->options.model == HB_MODEL_HUANG)
-        return HB_HUANG_DIMENSIONS;
+    if (plan->options.model == HB_MODEL_HUANG && plan->huang.lobes == 1u << HB_LOBE_R)
+        return HB_HUANG_DIMENSIONS; /* TT and TRT are not sampled yet (README) */
     return 0;
 }
 
@@ -125,7 +125,7 @@ hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *
 }
 
 /* SplitMix64's finaliser (Steele, Lea and Flood 2014): a bijective 64-bit mix. */
-static unsigned long long mix64(unsigned long long x)
+unsigned long long hb_mix64(unsigned long long x)
 {
     x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
     x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
@@ -134,10 +134,10 @@ static unsigned long long mix64(unsigned long long x)
 
 void hb_uniforms(unsigned long long seed, unsigned long long first, size_t n, int dimensions, float *const *u)
 {
-    unsigned long long key = mix64(seed + 0x9e3779b97f4a7c15ull);
+    unsigned long long key = hb_mix64(seed + 0x9e3779b97f4a7c15ull);
     for (int d = 0; d < dimensions; d++)
         for (size_t k = 0; k < n; k++) {
             unsigned long long index = (first + k) * HB_SAMPLE_DIMENSIONS + (unsigned long long)d;
-            u[d][k] = (float)(mix64(key ^ mix64(index)) >> 40) * 0x1p-24f;
+            u[d][k] = (float)(hb_mix64(key ^ hb_mix64(index)) >> 40) * 0x1p-24f;
         }
 }

@@ -67,5 +67,6 @@ extern const hb_test hb_tests_images[];
 extern const hb_test hb_tests_corpus[];
 extern const hb_test hb_tests_sample[];
 extern const hb_test hb_tests_sample_huang[];
+extern const hb_test hb_tests_huang_internal[];
 
 #endif

@@ -127,8 +127,8 @@ static void test_eval_errors(hb_test_ctx *t)
     CHECK(t, r.status == 2 && strstr(r.err, "--eta"), "non-numeric value: %d %s", r.status, r.err);
     run_tool(t, "eval --term longitudinal --beta-m", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "needs a value"), "missing value: %d %s", r.status, r.err);
-    run_tool(t, "eval --model huang --lobes R,TT", "", &r);
-    CHECK(t, r.status == 2 && strstr(r.err, "only the R lobe"), "unimplemented lobes: %d %s", r.status, r.err);
+    run_tool(t, "eval --model huang --lobes R,TT,TRT,TRRT", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "R, TT and TRT only"), "a lobe the model lacks: %d %s", r.status, r.err);
     run_tool(t, "eval --model huang --lobes R --r-integration analytic", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "no shadowing"), "analytic with G: %d %s", r.status, r.err);
     run_tool(t, "eval --model huang --lobes R --r-panels 7", "", &r);

@@ -346,7 +346,7 @@ static void refusals(hb_test_ctx *t)
         { HB_NDF_BECKMANN, HB_SHADOWING_NONE, 0.0, HB_R_INTEGRATION_ANALYTIC, 1u, HB_TERM_FULL, "GGX only" },
         { HB_NDF_GGX, HB_SHADOWING_SMITH, 0.0, HB_R_INTEGRATION_ANALYTIC, 1u, HB_TERM_FULL, "no shadowing" },
         { HB_NDF_GGX, HB_SHADOWING_NONE, 0.5, HB_R_INTEGRATION_ANALYTIC, 1u, HB_TERM_FULL, "circular" },
-        { HB_NDF_GGX, HB_SHADOWING_SMITH, 0.0, HB_R_INTEGRATION_AUTO, 3u, HB_TERM_FULL, "only the R lobe" },
+        { HB_NDF_GGX, HB_SHADOWING_SMITH, 0.0, HB_R_INTEGRATION_AUTO, 15u, HB_TERM_FULL, "R, TT and TRT only" },
         { HB_NDF_GGX, HB_SHADOWING_SMITH, 0.0, HB_R_INTEGRATION_AUTO, 1u, HB_TERM_LONGITUDINAL, "not separable" },
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {

@@ -24,6 +24,10 @@ const char cli_model_options_help[] =
     "  --r-integration auto|analytic|numeric  huang R lobe: App. A closed form (GGX, no G, circular) or Simpson\n"
     "  --r-panels N                   huang: Simpson panels in the peak-following variable (default: from quality)\n"
     "  --r-step X                     huang: the paper's rule instead, steps of X * roughness in phi_m (HHH22: 0.7)\n"
+    "  --tt-trt mc|table|reference    huang TT and TRT: Monte-Carlo/Simpson (eqs. 31, 32; default) or nested\n"
+    "                                 quadrature in double (slow); table is not implemented yet\n"
+    "  --tt-panels N                  huang TT/TRT: Simpson panels over the entry azimuth (default: from quality)\n"
+    "  --seed S                       huang TT/TRT: key of the Monte-Carlo numbers (with the row index; default 0)\n"
     "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
     "Material options:\n"
     "  --eta X  --sigma-a R,G,B  --eumelanin X  --pheomelanin X\n"
@@ -126,11 +130,13 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
                                            "--r-step", NULL };
     static const char *const with_value[] = { "--model", "--term", "--lobes", "--quality", "--isa", "--i0",
                                               "--ndf", "--sigma-a", "--pmax", "--quadrature", "--absorption",
-                                              "--r-fresnel", "--r-integration", "--r-panels", NULL };
+                                              "--r-fresnel", "--r-integration", "--r-panels", "--tt-trt",
+                                              "--tt-panels", "--seed", NULL };
     static const char *const per_lobe[] = { "--lobe-beta-m", "--lobe-beta-n", "--lobe-alpha", NULL };
     static const char *const absorptions[] = { "corrected", "paper", NULL };
     static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
     static const char *const r_integrations[] = { "auto", "analytic", "numeric", NULL };
+    static const char *const tt_trts[] = { "mc", "reference", NULL };
     static const char *const models[] = { "marschner", "deon", "huang", NULL };
     static const char *const terms[] = { "full", "longitudinal", NULL };
     static const char *const qualities[] = { "fast", "balanced", "high", "reference", NULL };
@@ -226,6 +232,16 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         else expected = "auto, analytic or numeric";
     } else if (strcmp(name, "--r-panels") == 0) {
         if (!parse_int(value, 2, HB_MAX_R_PANELS, &o->r_panels) || o->r_panels % 2) expected = "an even panel count";
+    } else if (strcmp(name, "--tt-trt") == 0) {
+        if ((k = pick(value, tt_trts)) >= 0) o->tt_trt = (hb_tt_trt)k;
+        else expected = strcmp(value, "table") == 0 ? "available yet (tables are issue #6's next step): use mc or reference"
+                                                     : "mc, table or reference";
+    } else if (strcmp(name, "--tt-panels") == 0) {
+        if (!parse_int(value, 2, HB_MAX_TT_PANELS, &o->tt_panels) || o->tt_panels % 2) expected = "an even panel count";
+    } else if (strcmp(name, "--seed") == 0) {
+        char *end;
+        o->seed = strtoull(value, &end, 10);
+        if (end == value || *end || value[0] == '-') expected = "a non-negative integer";
     } else if (strcmp(name, "--pmax") == 0) {
         if (!parse_int(value, 0, HB_MAX_LOBES - 1, &o->pmax)) expected = "an order from 0 to 7";
     } else if (strcmp(name, "--quadrature") == 0) {

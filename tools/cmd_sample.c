@@ -62,6 +62,8 @@ int cmd_sample(int argc, char **argv)
                 return 2;
             }
             *(option[2] == 'c' ? &count : &seed) = v;
+            if (option[2] == 's')
+                args.options.seed = v; /* also keys a model's own Monte-Carlo numbers */
         } else {
             int r = cli_parse_model_option(argc, argv, &i, &args, err, sizeof err);
             if (r <= 0) {

@@ -141,8 +141,7 @@ static double adaptive(const ref_r_setup *s, const double *cuts, int ncuts)
     }
 }
 
-/* Half the width of the phi_m (around the direction's azimuth) that see both normals, or -1. */
-static double half_width(double theta, double tilt)
+double hb_ref_huang_half_width(double theta, double tilt)
 {
     double num = -sin(theta) * sin(tilt), den = fmax(cos(theta), 0.0) * cos(tilt);
     if (num > den)
@@ -154,7 +153,7 @@ static double half_width(double theta, double tilt)
 static int window(const ref_r_setup *s, double theta_i, double phi_i, double theta_o, double phi_o, double *lo,
                   double *hi)
 {
-    double half_i = half_width(theta_i, s->tilt), half_o = half_width(theta_o, s->tilt);
+    double half_i = hb_ref_huang_half_width(theta_i, s->tilt), half_o = hb_ref_huang_half_width(theta_o, s->tilt);
     double phi = remainder(phi_o - phi_i, 2.0 * M_PI);
     *lo = phi_i + fmax(-half_i, phi - half_o);
     *hi = phi_i + fmin(half_i, phi + half_o);
@@ -249,7 +248,7 @@ double hb_ref_huang_r_integral_analytic(const hb_plan *plan, double theta_i, dou
 int hb_ref_huang_o_window(const hb_plan *plan, double theta_o, double phi_o, double *half, double *lo, double *hi)
 {
     double b = sqrt(1.0 - plan->material.eccentricity * plan->material.eccentricity);
-    *half = half_width(theta_o, plan->huang_tilt);
+    *half = hb_ref_huang_half_width(theta_o, plan->huang_tilt);
     if (*half < 0.0)
         return 0;
     double ends[2];
@@ -297,6 +296,14 @@ double hb_ref_huang_pdf(const hb_plan *plan, double theta_i, double phi_i, doubl
 void hb_ref_huang(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
 {
     const hb_material *m = &plan->material;
+    double tt[3] = { 0.0, 0.0, 0.0 }, trt[3] = { 0.0, 0.0, 0.0 };
+    if (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT))
+        hb_ref_huang_internal(plan, theta_i, phi_i, theta_o, phi_o, 0, HB_REF_HUANG_PHI_POINTS, HB_REF_HUANG_TT_POINTS,
+                              HB_REF_HUANG_TRT_POINTS, tt, trt);
+    for (int c = 0; c < 3; c++)
+        f[c] = tt[c] + trt[c];
+    if (!(plan->huang.lobes >> HB_LOBE_R & 1u))
+        return;
     double integral = hb_ref_huang_r_integral(plan, theta_i, phi_i, theta_o, phi_o,
                                               plan->options.shadowing == HB_SHADOWING_SMITH);
     double wi[3], wo[3];
@@ -306,5 +313,6 @@ void hb_ref_huang(const hb_plan *plan, double theta_i, double phi_i, double thet
     double fresnel = hb_ref_fresnel(m->eta, cos_half);
     double projected = sqrt(1.0 - m->eccentricity * m->eccentricity * sin(phi_o) * sin(phi_o)); /* eq. 27 */
     double value = fresnel * integral / (8.0 * fmax(cos(theta_o), HB_REF_HUANG_COS_FLOOR) * projected); /* eqs. 12, 28 */
-    f[0] = f[1] = f[2] = value;
+    for (int c = 0; c < 3; c++)
+        f[c] += value;
 }

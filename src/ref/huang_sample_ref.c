@@ -10,7 +10,7 @@
 static double normal_half_quantile(double u)
 {
     double lo = -30.0, hi = 30.0;
-    for (int k = 0; k < 200; k++) {
+    while (hi - lo > 1e-13) { /* 60 halvings */
         double mid = 0.5 * (lo + hi);
         if (0.5 * erfc(-mid) > u)
             hi = mid;
@@ -26,7 +26,7 @@ static double beckmann_slope(double cos_t, double sin_t, double u)
 {
     double top = sin_t > 0.0 ? cos_t / sin_t : 30.0, lo = -30.0, hi = fmin(top, 30.0);
     double total = cos_t * erfc(-hi) + sin_t * exp(-hi * hi) / sqrt(M_PI);
-    for (int k = 0; k < 200; k++) {
+    while (hi - lo > 1e-13) {
         double mid = 0.5 * (lo + hi);
         if ((cos_t * erfc(-mid) + sin_t * exp(-mid * mid) / sqrt(M_PI)) / total > u)
             hi = mid;
@@ -36,7 +36,7 @@ static double beckmann_slope(double cos_t, double sin_t, double u)
     return 0.5 * (lo + hi);
 }
 
-static void visible_normal(const hb_plan *plan, const double o[3], double u1, double u2, double m[3])
+void hb_ref_huang_visible_normal(const hb_plan *plan, const double o[3], double u1, double u2, double m[3])
 {
     double r = plan->material.roughness;
     double s[3] = { r * o[0], r * o[1], o[2] }, norm = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]), h[3];
@@ -81,7 +81,7 @@ void hb_ref_huang_sample(const hb_plan *plan, double theta_o, double phi_o, cons
         o[2] += wo[k] * wm[k];
     }
     o[2] = fmax(o[2], 1e-300);
-    visible_normal(plan, o, u[1], u[2], m);
+    hb_ref_huang_visible_normal(plan, o, u[1], u[2], m);
     double dot = o[0] * m[0] + o[1] * m[1] + o[2] * m[2];
     for (int k = 0; k < 3; k++)
         wi[k] = (2.0 * dot * m[0] - o[0]) * t1[k] + (2.0 * dot * m[1] - o[1]) * t2[k] + (2.0 * dot * m[2] - o[2]) * wm[k];

@@ -79,6 +79,32 @@ void hb_ref_huang_sample(const hb_plan *plan, double theta_o, double phi_o, cons
                          double *phi_i);
 double hb_ref_huang_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o);
 
+/* Half the width of the mesonormal azimuths (around a direction's own) from which a direction of
+ * inclination theta sees both the macronormal and the mesonormal tilted by tau (eq. 40), or -1. */
+double hb_ref_huang_half_width(double theta, double tilt);
+
+/* A visible normal (Heitz and d'Eon 2014) of the direction o (o[2] > 0, in the mesonormal's frame)
+ * from two uniform numbers: the kernels' mapping (GGX: Dupuy and Benyoub 2023; Beckmann: the visible
+ * slope's CDF inverted by bisection). */
+void hb_ref_huang_visible_normal(const hb_plan *plan, const double o[3], double u1, double u2, double m[3]);
+
+/* HHH22 TT and TRT (README, "Huang TT and TRT"). The kernels' counter-based numbers: number
+ * `counter` of sample `index` under the plan's keys. */
+float hb_ref_huang_uniform(const hb_plan *plan, unsigned index, unsigned counter);
+/* The kernels' estimator (eqs. 31, 32) in double with the same numbers: f_TT and f_TRT per channel. */
+void hb_ref_huang_internal_mc(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                              unsigned index, double tt[3], double trt[3]);
+/* The same integrals by nested quadrature: over the entry azimuth phi_m1 either Simpson on the plan's
+ * nodes (simpson = 1: what the estimator's mean is) or composite Gauss-Legendre with phi_points
+ * points (simpson = 0); over each visible-normal pair (the estimator's numbers) composite
+ * Gauss-Legendre with tt_points (TT) or trt_points (TRT) points per dimension. */
+void hb_ref_huang_internal(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                           int simpson, int phi_points, int tt_points, int trt_points, double tt[3], double trt[3]);
+/* The points the reference quality uses (README, "Huang TT and TRT": their convergence). */
+#define HB_REF_HUANG_PHI_POINTS 192
+#define HB_REF_HUANG_TT_POINTS 32
+#define HB_REF_HUANG_TRT_POINTS 12
+
 /* The plan's term at one direction pair, in double (three channels). */
 void hb_ref_eval_pair(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
 

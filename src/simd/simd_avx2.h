@@ -50,6 +50,7 @@ HB_INLINE vi vi_sub(vi a, vi b) { return _mm256_sub_epi32(a, b); }
 HB_INLINE vi vi_and(vi a, vi b) { return _mm256_and_si256(a, b); }
 HB_INLINE vi vi_or(vi a, vi b) { return _mm256_or_si256(a, b); }
 HB_INLINE vi vi_xor(vi a, vi b) { return _mm256_xor_si256(a, b); }
+HB_INLINE vi vi_mul(vi a, vi b) { return _mm256_mullo_epi32(a, b); } /* low 32 bits */
 HB_INLINE vi vi_shl(vi a, int n) { return _mm256_slli_epi32(a, n); }
 HB_INLINE vi vi_shr(vi a, int n) { return _mm256_srli_epi32(a, n); }
 HB_INLINE vm vi_eq(vi a, vi b) { return _mm256_castsi256_ps(_mm256_cmpeq_epi32(a, b)); }

@@ -50,6 +50,7 @@ HB_INLINE vi vi_sub(vi a, vi b) { return _mm512_sub_epi32(a, b); }
 HB_INLINE vi vi_and(vi a, vi b) { return _mm512_and_si512(a, b); }
 HB_INLINE vi vi_or(vi a, vi b) { return _mm512_or_si512(a, b); }
 HB_INLINE vi vi_xor(vi a, vi b) { return _mm512_xor_si512(a, b); }
+HB_INLINE vi vi_mul(vi a, vi b) { return _mm512_mullo_epi32(a, b); } /* low 32 bits */
 HB_INLINE vi vi_shl(vi a, int n) { return _mm512_slli_epi32(a, (unsigned)n); }
 HB_INLINE vi vi_shr(vi a, int n) { return _mm512_srli_epi32(a, (unsigned)n); }
 HB_INLINE vm vi_eq(vi a, vi b) { return _mm512_cmpeq_epi32_mask(a, b); }

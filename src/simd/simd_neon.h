@@ -52,6 +52,7 @@ HB_INLINE vi vi_sub(vi a, vi b) { return vsubq_s32(a, b); }
 HB_INLINE vi vi_and(vi a, vi b) { return vandq_s32(a, b); }
 HB_INLINE vi vi_or(vi a, vi b) { return vorrq_s32(a, b); }
 HB_INLINE vi vi_xor(vi a, vi b) { return veorq_s32(a, b); }
+HB_INLINE vi vi_mul(vi a, vi b) { return vmulq_s32(a, b); } /* low 32 bits */
 HB_INLINE vi vi_shl(vi a, int n) { return vshlq_s32(a, vdupq_n_s32(n)); }
 HB_INLINE vi vi_shr(vi a, int n)
 {

@@ -50,6 +50,7 @@ HB_INLINE vi vi_sub(vi a, vi b) { return (vi)((uint32_t)a - (uint32_t)b); }
 HB_INLINE vi vi_and(vi a, vi b) { return a & b; }
 HB_INLINE vi vi_or(vi a, vi b) { return a | b; }
 HB_INLINE vi vi_xor(vi a, vi b) { return a ^ b; }
+HB_INLINE vi vi_mul(vi a, vi b) { return (vi)((uint32_t)a * (uint32_t)b); } /* low 32 bits */
 HB_INLINE vi vi_shl(vi a, int n) { return (vi)((uint32_t)a << n); }
 HB_INLINE vi vi_shr(vi a, int n) { return (vi)((uint32_t)a >> n); }
 HB_INLINE vm vi_eq(vi a, vi b) { return a == b; }

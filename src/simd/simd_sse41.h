@@ -61,6 +61,7 @@ HB_INLINE vi vi_sub(vi a, vi b) { return _mm_sub_epi32(a, b); }
 HB_INLINE vi vi_and(vi a, vi b) { return _mm_and_si128(a, b); }
 HB_INLINE vi vi_or(vi a, vi b) { return _mm_or_si128(a, b); }
 HB_INLINE vi vi_xor(vi a, vi b) { return _mm_xor_si128(a, b); }
+HB_INLINE vi vi_mul(vi a, vi b) { return _mm_mullo_epi32(a, b); } /* low 32 bits */
 HB_INLINE vi vi_shl(vi a, int n) { return _mm_slli_epi32(a, n); }
 HB_INLINE vi vi_shr(vi a, int n) { return _mm_srli_epi32(a, n); }
 HB_INLINE vm vi_eq(vi a, vi b) { return _mm_castsi128_ps(_mm_cmpeq_epi32(a, b)); }

@@ -347,17 +347,11 @@ HB_INLINE huang_directions huang_directions_of_angles(const hb_huang *h, vf thet
     return d;
 }
 
-HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vf out[3])
-{
-    huang_directions d = huang_directions_of_angles(h, theta_i, phi_i, theta_o, phi_o);
-    out[0] = out[1] = out[2] = huang_r(h, &d);
-}
-
 /* From unit vectors (within HB_UNIT_TOLERANCE). The sum w_i + w_o, normalised and turned to the
  * frame phi_i = 0, and pi - |phi| are formed in double: products of floats are exact there, so both
  * keep their digits where w_o is nearly -w_i (the forward focus), which float rounding of the
  * normalisation alone would blur by 6e-8. */
-HB_INLINE void huang_vectors(const hb_huang *h, const vf wi[3], const vf wo[3], vf out[3])
+HB_INLINE huang_directions huang_directions_of_vectors(const vf wi[3], const vf wo[3])
 {
     huang_directions d;
     vf one = vf_set1(1.0f), zero = vf_set1(0.0f), tiny = vf_set1(1e-30f);
@@ -399,7 +393,7 @@ HB_INLINE void huang_vectors(const hb_huang *h, const vf wi[3], const vf wo[3], 
     vf dot = vdw_to_vf(vdw_fma(i[0], o[0], vdw_mul(i[2], o[2])));
     d.forward_gap = vf_select(vm_and(azimuth_i, azimuth_o), vf_atan2(vf_abs(cross), vf_neg(dot)),
                               vf_sub(vf_set1(HB_PI_F), vf_abs(vf_atan2(d.sin_phi, d.cos_phi))));
-    out[0] = out[1] = out[2] = huang_r(h, &d);
+    return d;
 }
 
 #endif

@@ -58,7 +58,7 @@ HB_INLINE huang_o_window huang_o_window_of(const hb_huang *h, vf cos_to, vf sin_
     return w;
 }
 
-/* pdf at a direction pair (the frame of huang_angles: phi_i = 0). */
+/* pdf at a direction pair (in the frame phi_i = 0). */
 HB_INLINE vf huang_pdf(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g, const huang_o_window *w)
 {
     vf pi = vf_set1(HB_PI_F), two_pi = vf_set1(HB_TWO_PI_F), zero = vf_set1(0.0f);
@@ -226,14 +226,14 @@ HB_INLINE void huang_sample_direction(const hb_huang *h, vf theta_o, vf phi_o, c
 HB_INLINE void huang_sample(const hb_huang *h, vf theta_o, vf phi_o, const vf u[3], vf *theta_i, vf *phi_i, vf *pdf,
                             vf weight[3])
 {
-    vf f[3];
     huang_sample_direction(h, theta_o, phi_o, u, theta_i, phi_i);
     *pdf = huang_pdf_angles(h, *theta_i, *phi_i, theta_o, phi_o);
-    huang_angles(h, *theta_i, *phi_i, theta_o, phi_o, f);
+    huang_directions d = huang_directions_of_angles(h, *theta_i, *phi_i, theta_o, phi_o);
+    vf f = huang_r(h, &d); /* the plan samples R-only plans */
     vm positive = vf_gt(*pdf, vf_set1(0.0f));
     vf inv = vf_div(vf_set1(1.0f), vf_select(positive, *pdf, vf_set1(1.0f)));
     for (int c = 0; c < 3; c++)
-        weight[c] = vf_select(positive, vf_mul(f[c], inv), vf_set1(0.0f));
+        weight[c] = vf_select(positive, vf_mul(f, inv), vf_set1(0.0f));
 }
 
 #endif

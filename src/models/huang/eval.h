@@ -1,0 +1,35 @@
+/* HHH22 f = (S_R + S_TT + S_TRT) cos(theta_i) (eq. 3) for the plan's lobes, from angles or vectors. */
+#ifndef HB_HUANG_EVAL_H
+#define HB_HUANG_EVAL_H
+
+#include "internal.h"
+
+/* index: each lane's sample index, which keys the Monte-Carlo numbers of TT and TRT. */
+HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, vi index, vf out[3])
+{
+    vf r = vf_set1(0.0f);
+    if (h->lobes >> HB_LOBE_R & 1u)
+        r = huang_r(h, d);
+    for (int c = 0; c < 3; c++)
+        out[c] = r;
+    if (!(h->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)))
+        return;
+    vf tt[3], trt[3];
+    huang_internal(h, d, index, tt, trt);
+    for (int c = 0; c < 3; c++)
+        out[c] = vf_add(out[c], vf_add(tt[c], trt[c]));
+}
+
+HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vi index, vf out[3])
+{
+    huang_directions d = huang_directions_of_angles(h, theta_i, phi_i, theta_o, phi_o);
+    huang_eval(h, &d, index, out);
+}
+
+HB_INLINE void huang_vectors(const hb_huang *h, const vf wi[3], const vf wo[3], vi index, vf out[3])
+{
+    huang_directions d = huang_directions_of_vectors(wi, wo);
+    huang_eval(h, &d, index, out);
+}
+
+#endif
