@@ -108,17 +108,14 @@ HB_INLINE vf fresnel_from_inside(const hb_huang *h, vf cos_in)
     return vf_select(vf_ge(sin2_out, vf_set1(1.0f)), vf_set1(1.0f), fresnel_dielectric(cos_out, h->eta, h->inv_eta2));
 }
 
-/* Smith G1 for a direction at cos c to the mesonormal. */
-HB_INLINE vf g1_of(const hb_huang *h, vf c) { return smith_g1_huang(h, c); }
-
 /* The weight of a visible-normal sample through an interface: what its BSDF times the outgoing
  * cosine over the sample's density leaves besides the Fresnel factor (Heitz 2014): G1 of the
  * outgoing direction with shadowing, 1 / G1 of the incoming one without. */
 HB_INLINE vf sampled_shadowing(const hb_huang *h, vf cos_in, vf cos_out)
 {
     if (h->shadowing)
-        return g1_of(h, cos_out);
-    return vf_div(vf_set1(1.0f), vf_max(g1_of(h, cos_in), vf_set1(1e-30f)));
+        return smith_g1_huang(h, cos_out);
+    return vf_div(vf_set1(1.0f), vf_max(smith_g1_huang(h, cos_in), vf_set1(1e-30f)));
 }
 
 /* Leaving through the exit point q along w (inside) toward w_o: f_t |w_o . w_m| of the rough
@@ -140,7 +137,7 @@ HB_INLINE vf exit_value(const hb_huang *h, const fibre_point *q, v3 w, v3 wo)
     vf value = vf_mul(vf_sub(vf_set1(1.0f), fresnel_dielectric(vf_min(cos_out, vf_set1(1.0f)), h->eta, h->inv_eta2)),
                       ndf_huang(h, v3_one_minus_dot(wh, q->meso)));
     if (h->shadowing)
-        value = vf_mul(value, vf_mul(g1_of(h, w_m), g1_of(h, wo_m)));
+        value = vf_mul(value, vf_mul(smith_g1_huang(h, w_m), smith_g1_huang(h, wo_m)));
     value = vf_div(vf_mul(value, vf_mul(cos_in, cos_out)), vf_max(vf_mul(w_m, vf_max(len2, vf_set1(1e-30f))), vf_set1(1e-30f)));
     return vf_select(ok, value, zero);
 }
@@ -168,7 +165,7 @@ HB_INLINE void internal_path(const hb_huang *h, const fibre_point *p, v3 wi, v3 
     vf wi_m = v3_dot(wi, p->meso), wt_m = vf_neg(v3_dot(wt, p->meso));
     vm inside = vm_and(vf_gt(wt_m, zero), vf_lt(v3_dot(wt, p->macro), zero));
     vf entry = vf_mul(vf_sub(one, fresnel_dielectric(vf_min(c1, one), h->eta, h->inv_eta2)),
-                      h->shadowing ? vf_mul(wi_m, g1_of(h, wt_m)) : vf_div(one, smith_g1_over_cos(h, wi_m)));
+                      h->shadowing ? vf_mul(wi_m, smith_g1_huang(h, wt_m)) : vf_div(one, smith_g1_over_cos(h, wi_m)));
     entry = vf_select(inside, entry, zero);
     vf length, a[3];
     fibre_point q = chord_exit(h, p, wt, &length);
