@@ -274,12 +274,16 @@ static int run_once(const char *name)
 
 int main(int argc, char **argv)
 {
-    const char *budgets = NULL, *results_dir = NULL;
+    const char *budgets = NULL, *results_dir = NULL, *only = "", *only_isa = NULL;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--budgets") == 0 && i + 1 < argc)
             budgets = argv[++i];
         else if (strcmp(argv[i], "--results") == 0 && i + 1 < argc)
             results_dir = argv[++i];
+        else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc)
+            only = argv[++i];
+        else if (strcmp(argv[i], "--isa") == 0 && i + 1 < argc)
+            only_isa = argv[++i];
         else if (strcmp(argv[i], "--once") == 0 && i + 1 < argc)
             return run_once(argv[++i]);
         else if (strcmp(argv[i], "--list") == 0) {
@@ -287,7 +291,10 @@ int main(int argc, char **argv)
                 printf("%s/%s/%s\n", configs[ci].model, configs[ci].term, configs[ci].variant);
             return 0;
         } else {
-            fprintf(stderr, "usage: %s [--budgets FILE] [--results DIR] | --list | --once MODEL/TERM/VARIANT\n", argv[0]);
+            fprintf(stderr,
+                    "usage: %s [--budgets FILE] [--results DIR] [--only PREFIX] [--isa NAME] | --list | --once "
+                    "MODEL/TERM/VARIANT\n",
+                    argv[0]);
             return 2;
         }
     }
@@ -310,9 +317,13 @@ int main(int argc, char **argv)
     int nrows = 0;
     for (size_t ci = 0; ci < N_CONFIGS; ci++) {
         const config *c = &configs[ci];
+        char label[64];
+        snprintf(label, sizeof label, "%s/%s/%s", c->model, c->term, c->variant);
+        if (strncmp(label, only, strlen(only)) != 0)
+            continue;
         reference_of(&m, c);
         for (int isa = HB_ISA_SCALAR; isa < HB_ISA_COUNT; isa++) {
-            if (!hb_isa_available((hb_isa)isa))
+            if (!hb_isa_available((hb_isa)isa) || (only_isa && strcmp(only_isa, hb_isa_name((hb_isa)isa))))
                 continue;
             hb_options o;
             options_of(c, &o);
@@ -340,7 +351,8 @@ int main(int argc, char **argv)
     static const char *const models[][2] = { { "deon", "d'Eon 2011 full model" },
                                              { "marschner", "Marschner 2003 full model" },
                                              { "huang", "Huang 2022 R lobe" } };
-    for (int mi = 0; mi < 3 && results_dir; mi++) {
+    int partial = *only || only_isa; /* a partial run leaves the results of the last full run alone */
+    for (int mi = 0; mi < 3 && results_dir && !partial; mi++) {
         static bench_point points[N_CONFIGS * HB_ISA_COUNT], full[N_CONFIGS * HB_ISA_COUNT];
         static char labels[N_CONFIGS * HB_ISA_COUNT][48];
         int npoints = 0, nfull = 0;

@@ -41,6 +41,12 @@ typedef struct hb_marschner {
     float inv_caustic_fade, caustic_limit, glint_scale;
 } hb_marschner;
 
+/* A dielectric interface of index eta > 1, with eta^2 - 1 formed in double so that Fresnel keeps
+ * its relative accuracy as eta -> 1 (the float eta alone holds eta - 1 to 1.7e-4 at eta 1.0001). */
+typedef struct hb_dielectric {
+    float eta, inv_eta2, eta2_minus_1;
+} hb_dielectric;
+
 /* Everything the HHH22 kernel reads, fixed at plan creation (README, "Huang"). The flags are
  * the same for every sample of a batch, so branching on them never depends on the data. */
 typedef struct hb_huang {
@@ -58,7 +64,7 @@ typedef struct hb_huang {
     float c_rough;       /* C = sqrt(1 - r^2) of App. A */
     float one_minus_c;   /* 1 - C = r^2 / (1 + C) */
     float cos_tilt, sin_tilt; /* the mesonormal's inclination tau (sec. 3.2, eq. 39) */
-    float eta, inv_eta2;
+    hb_dielectric ior;
     float e2, b, b2;     /* eccentricity^2, the minor semi-axis b = sqrt(1 - e^2) and b^2 */
     /* TT and TRT by eqs. 31, 32: Simpson panels over the entry window, the counter-based
      * generator's keys (from the seed), absorption per unit radius */
@@ -86,7 +92,7 @@ typedef struct hb_deon {
     int nodes;
     int absorption_paper;
     int r_fresnel_offset; /* R uses eq. 14 per node instead of eq. 12 */
-    float eta, inv_eta2;
+    hb_dielectric ior;
     float sigma_a[3];
     /* quadrature over gamma_i in [0, pi/2] (h = sin gamma_i), weights include 1/2 and dh/dgamma */
     float gamma_i[HB_MAX_NODES], cos_gamma_i[HB_MAX_NODES], h[HB_MAX_NODES], weight[HB_MAX_NODES];

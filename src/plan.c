@@ -258,6 +258,11 @@ static double lobe_shift(const hb_material *m, int p)
     return p < 3 ? ratio[p] * m->alpha : 0.0;
 }
 
+static hb_dielectric dielectric_of(double eta)
+{
+    return (hb_dielectric){ (float)eta, (float)(1.0 / (eta * eta)), (float)((eta - 1.0) * (eta + 1.0)) };
+}
+
 /* dFH11 eq. 7 constants, in double. */
 static void derive_longitudinal(hb_longitudinal *l, double v, double shift)
 {
@@ -330,8 +335,7 @@ static void derive_deon(hb_plan *plan)
             d->fourier_terms = d->detector[p].terms;
     d->absorption_paper = o->absorption == HB_ABSORPTION_PAPER;
     d->r_fresnel_offset = o->r_fresnel == HB_R_FRESNEL_OFFSET;
-    d->eta = (float)m->eta;
-    d->inv_eta2 = (float)(1.0 / (m->eta * m->eta));
+    d->ior = dielectric_of(m->eta);
     for (int c = 0; c < 3; c++)
         d->sigma_a[c] = (float)plan->sigma_a[c];
     /* eq. 10 over h in [0, 1] with h = sin(gamma_i): the h^(1/2) behaviour of gamma_i at h = 1
@@ -473,8 +477,7 @@ static void derive_huang(hb_plan *plan)
     h->one_minus_c = (float)(r * r / (1.0 + c));
     h->cos_tilt = (float)cos(plan->huang_tilt);
     h->sin_tilt = (float)sin(plan->huang_tilt);
-    h->eta = (float)m->eta;
-    h->inv_eta2 = (float)(1.0 / (m->eta * m->eta));
+    h->ior = dielectric_of(m->eta);
     h->e2 = (float)(m->eccentricity * m->eccentricity);
     h->b = (float)sqrt(1.0 - m->eccentricity * m->eccentricity);
     h->b2 = (float)(1.0 - m->eccentricity * m->eccentricity);
@@ -496,6 +499,9 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
         st = validate_options(options, error);
     if (st == HB_OK && options->model == HB_MODEL_HUANG)
         st = validate_huang(material, options, error);
+    if (st == HB_OK && options->model == HB_MODEL_DEON && material->eccentricity > 0.0)
+        st = fail(error, HB_ERR_UNSUPPORTED, "eccentricity = %g: the deon model is for circular fibres (dFH11 sec. 4); "
+                  "marschner and huang have elliptical ones", material->eccentricity);
     hb_isa isa = HB_ISA_SCALAR;
     if (st == HB_OK && options->quality != HB_QUALITY_REFERENCE)
         st = resolve_isa(options->isa, &isa, error);

@@ -113,6 +113,10 @@ static void test_unsupported_and_null(hb_test_ctx *t)
     o.lobes = HB_LOBES_DEFAULT;
     CHECK(t, create(&m, &o, &err) == HB_ERR_PARAM && strstr(err.message, "pmax"), "pmax 8: %s", err.message);
     o.pmax = 3;
+    m.eccentricity = 0.5; /* valid for marschner and huang; dFH11 has no elliptical fibre */
+    CHECK(t, create(&m, &o, &err) == HB_ERR_UNSUPPORTED && strstr(err.message, "eccentricity"), "deon ellipse: %s",
+          err.message);
+    m.eccentricity = 0.0;
     o.quadrature_order = HB_MAX_NODES + 1;
     CHECK(t, create(&m, &o, &err) == HB_ERR_PARAM && strstr(err.message, "quadrature_order"), "nodes: %s",
           err.message);

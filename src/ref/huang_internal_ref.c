@@ -125,7 +125,7 @@ static void internal_path(const hb_plan *plan, unsigned lobes, double phi_m1, co
     double c1 = fmax(dot3(wi, h1), 0.0), cos_t = sqrt(fmax(1.0 - (1.0 - c1 * c1) / (eta * eta), 0.0));
     for (int k = 0; k < 3; k++)
         wt[k] = (c1 / eta - cos_t) * h1[k] - wi[k] / eta;
-    double wi_m = dot3(wi, p.meso), wt_m = -dot3(wt, p.meso);
+    double wi_m = fmax(dot3(wi, p.meso), 0.0), wt_m = -dot3(wt, p.meso); /* >= 0 up to rounding */
     if (!(wt_m > 0.0 && dot3(wt, p.macro) < 0.0))
         return;
     double entry = (1.0 - hb_ref_fresnel(eta, fmin(c1, 1.0))) *

@@ -69,8 +69,8 @@ typedef struct deon_medium {
 HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_medium *m)
 {
     m->cos_theta_d = g->cos_theta_d;
-    m->inv_eta_prime = vf_div(g->cos_theta_d, vf_sqrt(vf_sub(vf_set1(d->eta * d->eta), g->sin2_theta_d))); /* sec. 5 */
-    vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(d->inv_eta2), vf_set1(1.0f)));
+    m->inv_eta_prime = vf_div(g->cos_theta_d, vf_sqrt(vf_sub(vf_set1(d->ior.eta * d->ior.eta), g->sin2_theta_d))); /* sec. 5 */
+    vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(d->ior.inv_eta2), vf_set1(1.0f)));
     for (int c = 0; c < 3; c++)
         m->mu[c] = vf_div(vf_set1(d->sigma_a[c]), cos_theta_t);
 }
@@ -89,7 +89,7 @@ HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf 
     vf sin_gamma_t = vf_mul(h, m->inv_eta_prime);
     vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
     vf gamma_t = vf_asin(sin_gamma_t);
-    vf f = fresnel_dielectric(vf_mul(m->cos_theta_d, cos_gamma_i), d->eta, d->inv_eta2); /* eq. 14 */
+    vf f = fresnel_dielectric(vf_mul(m->cos_theta_d, cos_gamma_i), &d->ior); /* eq. 14 */
     /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (SPEC.md 4) */
     vf path = d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
                                   : vf_add(cos_gamma_t, cos_gamma_t);
@@ -169,7 +169,7 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
             pdf->sum = vf_fma(vf_set1(d->node_half_probability[j]),
                               vf_div(detected, vf_max(mass, vf_set1(1e-37f))), pdf->sum);
     }
-    vf fresnel_r = d->r_fresnel_offset ? vf_set1(1.0f) : fresnel_dielectric(g->cos_half_io, d->eta, d->inv_eta2); /* eq. 12 */
+    vf fresnel_r = d->r_fresnel_offset ? vf_set1(1.0f) : fresnel_dielectric(g->cos_half_io, &d->ior); /* eq. 12 */
     for (int c = 0; c < 3; c++)
         N[0][c] = vf_mul(N[0][c], fresnel_r);
 }

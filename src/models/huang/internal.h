@@ -99,13 +99,20 @@ HB_INLINE v3 visible_micronormal(const hb_huang *h, const fibre_point *p, v3 tow
     return v3_axpy(vf_mul(s, m[2]), p->meso, r);
 }
 
+/* 1 - F entering at cos_i (<= 1), never below 0 where rounding puts F a hair above 1 at grazing. */
+HB_INLINE vf fresnel_transmittance(const hb_huang *h, vf cos_i)
+{
+    vf f = fresnel_dielectric(vf_min(cos_i, vf_set1(1.0f)), &h->ior);
+    return vf_max(vf_sub(vf_set1(1.0f), f), vf_set1(0.0f));
+}
+
 /* Reflectance at a smooth interface met from inside the fibre at cos_in: 1 past the critical
  * angle (total internal reflection), else Fresnel at the outside angle (F is the same both ways). */
 HB_INLINE vf fresnel_from_inside(const hb_huang *h, vf cos_in)
 {
-    vf sin2_out = vf_mul(vf_set1(h->eta * h->eta), vf_fnma(cos_in, cos_in, vf_set1(1.0f)));
+    vf sin2_out = vf_mul(vf_set1(h->ior.eta * h->ior.eta), vf_fnma(cos_in, cos_in, vf_set1(1.0f)));
     vf cos_out = vf_sqrt(vf_max(vf_sub(vf_set1(1.0f), sin2_out), vf_set1(0.0f)));
-    return vf_select(vf_ge(sin2_out, vf_set1(1.0f)), vf_set1(1.0f), fresnel_dielectric(cos_out, h->eta, h->inv_eta2));
+    return vf_select(vf_ge(sin2_out, vf_set1(1.0f)), vf_set1(1.0f), fresnel_dielectric(cos_out, &h->ior));
 }
 
 /* The weight of a visible-normal sample through an interface: what its BSDF times the outgoing
@@ -124,7 +131,7 @@ HB_INLINE vf sampled_shadowing(const hb_huang *h, vf cos_in, vf cos_out)
  * sees the point's macronormal and mesonormal and w_h faces out of it. */
 HB_INLINE vf exit_value(const hb_huang *h, const fibre_point *q, v3 w, v3 wo)
 {
-    vf zero = vf_set1(0.0f), eta = vf_set1(h->eta);
+    vf zero = vf_set1(0.0f), eta = vf_set1(h->ior.eta);
     v3 half = v3_axpy(eta, w, v3_scale(vf_set1(-1.0f), wo));
     vf len2 = v3_dot(half, half);
     vf inv_len = vf_div(vf_set1(1.0f), vf_sqrt(vf_max(len2, vf_set1(1e-30f))));
@@ -134,8 +141,7 @@ HB_INLINE vf exit_value(const hb_huang *h, const fibre_point *q, v3 w, v3 wo)
     vm ok = vm_and(vf_gt(cos_out, zero), vf_gt(cos_in, zero));
     ok = vm_and(ok, vm_and(vf_gt(v3_dot(wo, q->macro), zero), vf_gt(wo_m, zero)));
     ok = vm_and(ok, vm_and(vf_gt(w_m, zero), vf_gt(v3_dot(wh, q->meso), zero)));
-    vf value = vf_mul(vf_sub(vf_set1(1.0f), fresnel_dielectric(vf_min(cos_out, vf_set1(1.0f)), h->eta, h->inv_eta2)),
-                      ndf_huang(h, v3_one_minus_dot(wh, q->meso)));
+    vf value = vf_mul(fresnel_transmittance(h, cos_out), ndf_huang(h, v3_one_minus_dot(wh, q->meso)));
     if (h->shadowing)
         value = vf_mul(value, vf_mul(smith_g1_huang(h, w_m), smith_g1_huang(h, wo_m)));
     value = vf_div(vf_mul(value, vf_mul(cos_in, cos_out)), vf_max(vf_mul(w_m, vf_max(len2, vf_set1(1e-30f))), vf_set1(1e-30f)));
@@ -154,17 +160,17 @@ HB_INLINE void absorption(const hb_huang *h, vf length, vf a[3])
  * 1 and 2. */
 HB_INLINE void internal_path(const hb_huang *h, const fibre_point *p, v3 wi, v3 wo, const vf u[4], vf tt[3], vf trt[3])
 {
-    vf zero = vf_set1(0.0f), one = vf_set1(1.0f), inv_eta = vf_set1(1.0f / h->eta);
+    vf zero = vf_set1(0.0f), one = vf_set1(1.0f), inv_eta = vf_set1(1.0f / h->ior.eta);
     for (int c = 0; c < 3; c++)
         tt[c] = trt[c] = zero;
     /* interface 1: refraction into the fibre through a visible normal of w_i */
     v3 h1 = visible_micronormal(h, p, wi, 1.0f, u[0], u[1]);
     vf c1 = vf_max(v3_dot(wi, h1), zero);
     vf cos_t = vf_sqrt(vf_max(vf_fnma(vf_mul(inv_eta, inv_eta), vf_fnma(c1, c1, one), one), zero));
-    v3 wt = v3_axpy(vf_fnma(vf_set1(h->eta), cos_t, c1), v3_scale(inv_eta, h1), v3_scale(vf_neg(inv_eta), wi));
-    vf wi_m = v3_dot(wi, p->meso), wt_m = vf_neg(v3_dot(wt, p->meso));
+    v3 wt = v3_axpy(vf_fnma(vf_set1(h->ior.eta), cos_t, c1), v3_scale(inv_eta, h1), v3_scale(vf_neg(inv_eta), wi));
+    vf wi_m = vf_max(v3_dot(wi, p->meso), zero), wt_m = vf_neg(v3_dot(wt, p->meso)); /* >= 0 up to rounding at the window's ends */
     vm inside = vm_and(vf_gt(wt_m, zero), vf_lt(v3_dot(wt, p->macro), zero));
-    vf entry = vf_mul(vf_sub(one, fresnel_dielectric(vf_min(c1, one), h->eta, h->inv_eta2)),
+    vf entry = vf_mul(fresnel_transmittance(h, c1),
                       h->shadowing ? vf_mul(wi_m, smith_g1_huang(h, wt_m)) : vf_div(one, smith_g1_over_cos(h, wi_m)));
     entry = vf_select(inside, entry, zero);
     vf length, a[3];

@@ -307,7 +307,7 @@ HB_INLINE vf huang_r(const hb_huang *h, const huang_directions *d)
     huang_r_geometry g = huang_r_geometry_of(h, d);
     vf integral = h->analytic ? r_integral_ggx_analytic(h, &g)
                   : h->step_rule ? r_integral_steps(h, d, &g) : r_integral_mapped(h, d, &g);
-    vf fresnel = fresnel_dielectric(vf_min(g.cos_half, vf_set1(1.0f)), h->eta, h->inv_eta2);
+    vf fresnel = fresnel_dielectric(vf_min(g.cos_half, vf_set1(1.0f)), &h->ior);
     vf den = vf_mul(vf_set1(8.0f), vf_max(d->cos_to, vf_set1(HB_HUANG_COS_FLOOR)));
     if (h->elliptical)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), d->sin2_phi_o, vf_set1(1.0f))));
