@@ -69,9 +69,13 @@ double hb_ref_deon_pdf(const hb_plan *plan, double theta_i, double phi_i, double
     return mixture / c_total * sum;
 }
 
-/* The standard normal quantile, by bisection on erfc to double precision. */
+/* The standard normal quantile, by bisection on erfc to double precision, u clamped to
+ * [2^-25, 1 - 2^-25] (5.4 standard deviations) as the kernels' vf_normal_quantile does: the
+ * procedure is the same on both paths, and a u of 1e-44 cannot draw a 14-sigma azimuth whose
+ * density (1e-42) makes the weight f / pdf overflow a float. */
 static double normal_quantile(double u)
 {
+    u = fmin(fmax(u, 0x1p-25), 1.0 - 0x1p-25);
     double lo = -40.0, hi = 40.0;
     for (int k = 0; k < 200 && hi - lo > 1e-15; k++) {
         double mid = 0.5 * (lo + hi);
