@@ -258,6 +258,11 @@ static double lobe_shift(const hb_material *m, int p)
     return p < 3 ? ratio[p] * m->alpha : 0.0;
 }
 
+/* An absorption coefficient as the kernels' float: any finite double is valid, but one above
+ * FLT_MAX would become +Inf and Inf * 0 (a zero path length) NaN; past 1e30 per radius every
+ * path but a zero-length one is absorbed entirely, so 1e30 stands for all of them. */
+static float absorption_float(double sigma_a) { return (float)fmin(sigma_a, 1e30); }
+
 static hb_dielectric dielectric_of(double eta)
 {
     return (hb_dielectric){ (float)eta, (float)(1.0 / (eta * eta)), (float)((eta - 1.0) * (eta + 1.0)) };
@@ -337,7 +342,7 @@ static void derive_deon(hb_plan *plan)
     d->r_fresnel_offset = o->r_fresnel == HB_R_FRESNEL_OFFSET;
     d->ior = dielectric_of(m->eta);
     for (int c = 0; c < 3; c++)
-        d->sigma_a[c] = (float)plan->sigma_a[c];
+        d->sigma_a[c] = absorption_float(plan->sigma_a[c]);
     /* eq. 10 over h in [0, 1] with h = sin(gamma_i): the h^(1/2) behaviour of gamma_i at h = 1
      * becomes smooth, and detection at phi and -phi covers h < 0 (A even, Phi odd mod 2 pi). */
     double beta_min = HUGE_VAL;
@@ -395,7 +400,7 @@ static void derive_marschner(hb_plan *plan)
     k->eta2_minus_one = (float)((m->eta - 1.0) * (m->eta + 1.0));
     k->inv_eta2 = (float)(1.0 / (m->eta * m->eta));
     for (int c = 0; c < 3; c++)
-        k->sigma_a[c] = (float)plan->sigma_a[c];
+        k->sigma_a[c] = absorption_float(plan->sigma_a[c]);
     /* eta* (MJC03 sec. 4.4) with the axis ratio a = sqrt(1 - e^2): eta1 = 2(eta - 1) a^2 - eta + 2
      * at phi_h = 0 (both directions along z, the minor axis), eta2 = 2(eta - 1) / a^2 - eta + 2 at
      * phi_h = pi/2; clamped to 1.0001 where a very flat fibre would take it below 1 */
@@ -459,7 +464,7 @@ static void derive_huang(hb_plan *plan)
     h->rng_key = (uint32_t)key;
     h->rng_key2 = (uint32_t)(key >> 32);
     for (int k = 0; k < 3; k++)
-        h->sigma_a[k] = (float)plan->sigma_a[k];
+        h->sigma_a[k] = absorption_float(plan->sigma_a[k]);
     h->beckmann = m->ndf == HB_NDF_BECKMANN;
     h->shadowing = o->shadowing == HB_SHADOWING_SMITH;
     h->elliptical = m->eccentricity > 0.0;
