@@ -151,7 +151,11 @@ typedef enum hb_tt_trt {
     HB_TT_TRT_MC,       /* the paper's combined Monte-Carlo/Simpson estimator (eqs. 31, 32): Simpson over
                            the entry azimuth, one internal path per node from a counter-based generator keyed
                            by the seed and the sample's index in the batch; unbiased for Simpson's sum */
-    HB_TT_TRT_REFERENCE /* nested quadrature in double (slow: for tests and accuracy tables) */
+    HB_TT_TRT_REFERENCE, /* nested quadrature in double (slow: for tests and accuracy tables) */
+    HB_TT_TRT_TABLE      /* deterministic and real-time: interpolated from a table of f_TT + f_TRT that plan
+                            creation builds for the material (3D, 4D for elliptical fibres; HHH22 sec. 3.4.2),
+                            its resolution and build cost from quality and roughness (README "Huang TT and
+                            TRT tables" gives both and the error); not with HB_QUALITY_REFERENCE */
 } hb_tt_trt;
 
 typedef struct hb_options {

@@ -47,6 +47,28 @@ typedef struct hb_dielectric {
     float eta, inv_eta2, eta2_minus_1;
 } hb_dielectric;
 
+/* HHH22's f_TT + f_TRT tabulated at plan creation (README "Huang TT and TRT tables"): values
+ * times 2 a cos(theta_o) (bounded where f has its 1 / cos(theta_o)) on a grid over theta_i,
+ * phi_i (elliptical fibres only; reduced to [0, pi/2] by the cross-section's two mirror
+ * symmetries), s = theta_i + theta_o warped as u = asinh((s - sum_centre) / sum_width) so that the
+ * nodes crowd where the lobes are narrow, and delta = phi_o - phi_i (|delta| in [0, pi] for a
+ * circle, [-pi, pi] for an ellipse). Node order: theta_i, phi_i, u, delta, channel. */
+typedef struct hb_huang_table {
+    const float *values;
+    int n_theta_i, n_phi_i, n_sum, n_delta;
+    float sum_centre, inv_sum_width, u_lo, u_scale; /* u node k at u_lo + k / u_scale */
+    float delta_lo, delta_scale;                    /* delta node l at delta_lo + l / delta_scale */
+} hb_huang_table;
+
+/* What the table builder needs besides the plan's constants: the grid of one row (s and delta at
+ * every node), the lattice points per Simpson node, and scratch for the row's internal paths. */
+typedef struct hb_huang_table_build {
+    const float *sums, *deltas;
+    int lattice;
+    float *scratch; /* HB_HUANG_EXIT_FLOATS * 2 * lattice * (tt_panels + 1) floats */
+} hb_huang_table_build;
+#define HB_HUANG_EXIT_FLOATS 11
+
 /* Everything the HHH22 kernel reads, fixed at plan creation (README, "Huang"). The flags are
  * the same for every sample of a batch, so branching on them never depends on the data. */
 typedef struct hb_huang {
@@ -71,6 +93,7 @@ typedef struct hb_huang {
     int tt_panels;
     uint32_t rng_key, rng_key2;
     float sigma_a[3];
+    hb_huang_table table; /* values == NULL: TT and TRT by eqs. 31, 32 at every evaluation */
 } hb_huang;
 
 /* dFH11's Gaussian detector D_p (eq. 11), a wrapped Gaussian (a Jacobi theta function),
@@ -154,6 +177,9 @@ typedef void (*hb_huang_vectors_fn)(const hb_huang *huang, size_t n, hb_vectors_
 typedef void (*hb_huang_sample_fn)(const hb_huang *huang, size_t n, hb_sample_in in, hb_sample_out out,
                                    size_t *invalid);
 typedef void (*hb_huang_pdf_fn)(const hb_huang *huang, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
+/* One table row (theta_i, phi_i): n_sum * n_delta * 3 values. */
+typedef void (*hb_huang_table_row_fn)(const hb_huang *huang, float theta_i, float phi_i, const hb_huang_table_build *build,
+                                      float *row);
 
 typedef struct hb_kernels {
     hb_isa isa;
@@ -172,6 +198,7 @@ typedef struct hb_kernels {
     hb_huang_vectors_fn huang_vectors;
     hb_huang_sample_fn huang_sample;
     hb_huang_pdf_fn huang_pdf;
+    hb_huang_table_row_fn huang_table_row;
     /* the real roots of gamma^3 + P gamma + Q = 0 the kernels find, for tests: roots[3 * i + k],
      * NaN where root k does not exist */
     void (*cubic_map)(size_t n, const float *P, const float *Q, float *roots);

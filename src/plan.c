@@ -189,8 +189,11 @@ static hb_status validate_huang(const hb_material *m, const hb_options *o, hb_er
     if (o->lobes & ~7u)
         return fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the huang model has R, TT and TRT only (HHH22 eq. 3)",
                     o->lobes);
-    if ((unsigned)o->tt_trt > HB_TT_TRT_REFERENCE)
+    if ((unsigned)o->tt_trt > HB_TT_TRT_TABLE)
         return fail(error, HB_ERR_PARAM, "tt_trt = %d is not a TT/TRT evaluation method", (int)o->tt_trt);
+    if (o->tt_trt == HB_TT_TRT_TABLE && o->quality == HB_QUALITY_REFERENCE)
+        return fail(error, HB_ERR_UNSUPPORTED, "the TT/TRT table is a float fast path: the reference quality "
+                                               "evaluates TT and TRT by nested quadrature instead");
     if (o->absorption != HB_ABSORPTION_CORRECTED)
         return fail(error, HB_ERR_UNSUPPORTED,
                     "huang traces the chord itself (HHH22 eq. 17 note): there is no paper absorption variant");
@@ -526,10 +529,23 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
     derive_huang(plan);
     if (options->model == HB_MODEL_DEON)
         hb_plan_derive_sampling(plan);
+    if (options->model == HB_MODEL_HUANG && options->tt_trt == HB_TT_TRT_TABLE &&
+        (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT))) {
+        st = hb_plan_build_huang_table(plan, error);
+        if (st != HB_OK) {
+            hb_plan_destroy(plan);
+            return st;
+        }
+    }
     *out = plan;
     return HB_OK;
 }
 
-void hb_plan_destroy(hb_plan *plan) { free(plan); }
+void hb_plan_destroy(hb_plan *plan)
+{
+    if (plan)
+        free(plan->huang_table);
+    free(plan);
+}
 
 hb_isa hb_plan_isa(const hb_plan *plan) { return plan ? plan->isa : HB_ISA_SCALAR; }

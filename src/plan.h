@@ -20,10 +20,14 @@ struct hb_plan {
     hb_marschner marschner;                      /* float constants of the SIMD kernels */
     double huang_tilt;                           /* HHH22 mesonormal inclination tau (eq. 39) */
     hb_huang huang;                              /* float constants of the SIMD kernels */
+    float *huang_table;                          /* owns huang.table.values (HB_TT_TRT_TABLE) */
 };
 
 /* SplitMix64's finaliser: a bijective 64-bit mix (src/sample.c). */
 unsigned long long hb_mix64(unsigned long long x);
+
+/* HHH22's TT/TRT table for HB_TT_TRT_TABLE (src/huang_table.c). */
+hb_status hb_plan_build_huang_table(hb_plan *plan, hb_error *error);
 
 /* The sampler's constants (src/sample_plan.c). */
 void hb_plan_derive_sampling(hb_plan *plan);

@@ -68,5 +68,6 @@ extern const hb_test hb_tests_corpus[];
 extern const hb_test hb_tests_sample[];
 extern const hb_test hb_tests_sample_huang[];
 extern const hb_test hb_tests_huang_internal[];
+extern const hb_test hb_tests_huang_table[];
 
 #endif

@@ -24,8 +24,8 @@ const char cli_model_options_help[] =
     "  --r-integration auto|analytic|numeric  huang R lobe: App. A closed form (GGX, no G, circular) or Simpson\n"
     "  --r-panels N                   huang: Simpson panels in the peak-following variable (default: from quality)\n"
     "  --r-step X                     huang: the paper's rule instead, steps of X * roughness in phi_m (HHH22: 0.7)\n"
-    "  --tt-trt mc|table|reference    huang TT and TRT: Monte-Carlo/Simpson (eqs. 31, 32; default) or nested\n"
-    "                                 quadrature in double (slow); table is not implemented yet\n"
+    "  --tt-trt mc|table|reference    huang TT and TRT: Monte-Carlo/Simpson (eqs. 31, 32; default), a table built\n"
+    "                                 at plan creation (deterministic, real-time), or nested quadrature (slow)\n"
     "  --tt-panels N                  huang TT/TRT: Simpson panels over the entry azimuth (default: from quality)\n"
     "  --seed S                       huang TT/TRT: key of the Monte-Carlo numbers (with the row index; default 0)\n"
     "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
@@ -136,7 +136,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     static const char *const absorptions[] = { "corrected", "paper", NULL };
     static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
     static const char *const r_integrations[] = { "auto", "analytic", "numeric", NULL };
-    static const char *const tt_trts[] = { "mc", "reference", NULL };
+    static const char *const tt_trts[] = { "mc", "reference", "table", NULL };
     static const char *const models[] = { "marschner", "deon", "huang", NULL };
     static const char *const terms[] = { "full", "longitudinal", NULL };
     static const char *const qualities[] = { "fast", "balanced", "high", "reference", NULL };

@@ -2,9 +2,10 @@
 #ifndef HB_HUANG_EVAL_H
 #define HB_HUANG_EVAL_H
 
-#include "internal.h"
+#include "table.h"
 
-/* index: each lane's sample index, which keys the Monte-Carlo numbers of TT and TRT. */
+/* index: each lane's sample index, which keys the Monte-Carlo numbers of TT and TRT (unused when
+ * the plan has their table). */
 HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, vi index, vf out[3])
 {
     vf r = vf_set1(0.0f);
@@ -14,10 +15,13 @@ HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, vi index
         out[c] = r;
     if (!(h->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)))
         return;
-    vf tt[3], trt[3];
-    huang_internal(h, d, index, tt, trt);
+    vf internal[3];
+    if (h->table.values)
+        huang_table_lookup(h, d, internal);
+    else
+        huang_internal(h, d, index, internal);
     for (int c = 0; c < 3; c++)
-        out[c] = vf_add(out[c], vf_add(tt[c], trt[c]));
+        out[c] = vf_add(out[c], internal[c]);
 }
 
 HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vi index, vf out[3])

@@ -155,14 +155,20 @@ HB_INLINE void absorption(const hb_huang *h, vf length, vf a[3])
         a[c] = vf_exp_flush(vf_max(vf_mul(vf_set1(-h->sigma_a[c]), length), vf_set1(-100.0f)));
 }
 
-/* One internal path from the entry point p: the TT and TRT integrands of eqs. 31, 32 per channel
- * (the entry factor rho |w_i . w_m1| included), u[0..3] the visible normals' numbers at interfaces
- * 1 and 2. */
-HB_INLINE void internal_path(const hb_huang *h, const fibre_point *p, v3 wi, v3 wo, const vf u[4], vf tt[3], vf trt[3])
+/* Where an internal path leaves the fibre: the exit point, the direction inside, and the path's
+ * weight up to the exit interface per channel (entry and bounce factors and absorption). */
+typedef struct internal_exit {
+    fibre_point q;
+    v3 w;
+    vf weight[3];
+} internal_exit;
+
+/* One internal path from the entry point p, u[0..3] the visible normals' numbers at interfaces 1
+ * and 2: its TT exit (exits[0]) and TRT exit (exits[1], traced only when the plan has TRT), the
+ * entry factor |w_i . w_m1| of eqs. 31, 32 included. */
+HB_INLINE void internal_exits(const hb_huang *h, const fibre_point *p, v3 wi, const vf u[4], internal_exit exits[2])
 {
     vf zero = vf_set1(0.0f), one = vf_set1(1.0f), inv_eta = vf_set1(1.0f / h->ior.eta);
-    for (int c = 0; c < 3; c++)
-        tt[c] = trt[c] = zero;
     /* interface 1: refraction into the fibre through a visible normal of w_i */
     v3 h1 = visible_micronormal(h, p, wi, 1.0f, u[0], u[1]);
     vf c1 = vf_max(v3_dot(wi, h1), zero);
@@ -174,78 +180,102 @@ HB_INLINE void internal_path(const hb_huang *h, const fibre_point *p, v3 wi, v3 
                       h->shadowing ? vf_mul(wi_m, smith_g1_huang(h, wt_m)) : vf_div(one, smith_g1_over_cos(h, wi_m)));
     entry = vf_select(inside, entry, zero);
     vf length, a[3];
-    fibre_point q = chord_exit(h, p, wt, &length);
+    exits[0].q = chord_exit(h, p, wt, &length);
+    exits[0].w = wt;
     absorption(h, length, a);
-    if (h->lobes >> HB_LOBE_TT & 1u) {
-        vf leave = vf_mul(entry, exit_value(h, &q, wt, wo));
-        for (int c = 0; c < 3; c++)
-            tt[c] = vf_mul(leave, a[c]);
-    }
+    for (int c = 0; c < 3; c++)
+        exits[0].weight[c] = vf_mul(entry, a[c]);
+    exits[1] = exits[0];
     if (!(h->lobes >> HB_LOBE_TRT & 1u))
         return;
     /* interface 2: internal reflection off a visible normal (inner side) of -w_t */
-    v3 h2 = visible_micronormal(h, &q, v3_scale(vf_set1(-1.0f), wt), -1.0f, u[2], u[3]);
+    const fibre_point *q = &exits[0].q;
+    v3 h2 = visible_micronormal(h, q, v3_scale(vf_set1(-1.0f), wt), -1.0f, u[2], u[3]);
     vf c2 = vf_max(vf_neg(v3_dot(wt, h2)), zero);
     v3 wtr = v3_axpy(vf_add(c2, c2), h2, wt);
-    vf wt_m2 = v3_dot(wt, q.meso), wtr_m2 = vf_neg(v3_dot(wtr, q.meso));
-    vm back = vm_and(vf_gt(wtr_m2, zero), vf_lt(v3_dot(wtr, q.macro), zero));
+    vf wt_m2 = v3_dot(wt, q->meso), wtr_m2 = vf_neg(v3_dot(wtr, q->meso));
+    vm back = vm_and(vf_gt(wtr_m2, zero), vf_lt(v3_dot(wtr, q->macro), zero));
     vf bounce = vf_mul(fresnel_from_inside(h, c2), sampled_shadowing(h, wt_m2, wtr_m2));
     bounce = vf_select(back, vf_mul(entry, bounce), zero);
     vf length2, a2[3];
-    fibre_point r = chord_exit(h, &q, wtr, &length2);
+    exits[1].q = chord_exit(h, q, wtr, &length2);
+    exits[1].w = wtr;
     absorption(h, length2, a2);
-    vf leave = vf_mul(bounce, exit_value(h, &r, wtr, wo));
     for (int c = 0; c < 3; c++)
-        trt[c] = vf_mul(leave, vf_mul(a[c], a2[c]));
+        exits[1].weight[c] = vf_mul(bounce, vf_mul(a[c], a2[c]));
 }
 
-/* f_TT and f_TRT (eqs. 29-32; f = S cos(theta_i)): 1 / (2 a cos(theta_o)) times Simpson over the
- * entry window |phi_m1 - phi_i| <= pi/2 - cut_i of rho(phi_m1) times one internal path per node,
- * a = sqrt(1 - e^2 sin^2 phi_o) the fibre's projected half width. Node j of sample `index`
- * draws numbers 4j..4j+3 of the sample's stream. */
-HB_INLINE void huang_internal(const hb_huang *h, const huang_directions *d, vi index, vf tt[3], vf trt[3])
+/* The entry window of w_i, |phi_m1 - phi_i| <= pi/2 - cut_i, and composite Simpson over it with
+ * `panels` panels (eqs. 31, 32 integrate over phi_m1). */
+typedef struct entry_rule {
+    vf half, step;
+    vf cos_phi_i, sin_phi_i;
+    vm seen;
+    v3 wi;
+} entry_rule;
+
+HB_INLINE entry_rule entry_rule_of(const hb_huang *h, vf cos_ti, vf sin_ti, vf cos_phi_i, vf sin_phi_i, int panels)
+{
+    entry_rule e;
+    vf cut = visible_cut(h, cos_ti, sin_ti, &e.seen);
+    e.half = vf_select(e.seen, vf_sub(vf_set1(HB_PIO2_F), cut), vf_set1(0.0f));
+    e.step = vf_div(vf_add(e.half, e.half), vf_set1((float)panels));
+    e.cos_phi_i = cos_phi_i;
+    e.sin_phi_i = sin_phi_i;
+    e.wi = (v3){ vf_mul(sin_phi_i, cos_ti), sin_ti, vf_mul(cos_phi_i, cos_ti) };
+    return e;
+}
+
+/* Node j of the rule: the entry point, and its weight, Simpson's 1-4-2-...-4-1 times rho(phi_m1)
+ * (eq. 26 in phi_m for an ellipse: rho = b^2 / k^3, k^2 = sin^2 + b^2 cos^2 = 1 - e^2 cos^2). */
+HB_INLINE fibre_point entry_node(const hb_huang *h, const entry_rule *e, int j, int panels, vf *weight)
+{
+    vf s, c;
+    vf_sincos(vf_fma(vf_set1((float)j), e->step, vf_neg(e->half)), &s, &c);
+    vf cos_m = vf_fnma(s, e->sin_phi_i, vf_mul(c, e->cos_phi_i)), sin_m = vf_fma(s, e->cos_phi_i, vf_mul(c, e->sin_phi_i));
+    *weight = vf_set1((j == 0 || j == panels) ? 1.0f : (j & 1) ? 4.0f : 2.0f);
+    if (h->elliptical) {
+        vf k2 = vf_fma(vf_set1(h->b2), vf_mul(cos_m, cos_m), vf_mul(sin_m, sin_m));
+        *weight = vf_mul(*weight, vf_div(vf_set1(h->b2), vf_mul(k2, vf_sqrt(k2))));
+    }
+    return entry_point(h, cos_m, sin_m);
+}
+
+/* f_TT + f_TRT (eqs. 29-32; f = S cos(theta_i)) per channel: 1 / (2 a cos(theta_o)) times Simpson
+ * over the entry window of rho(phi_m1) times one internal path per node, a = sqrt(1 - e^2 sin^2 phi_o)
+ * the fibre's projected half width. Node j of sample `index` draws numbers 4j..4j+3 of the
+ * sample's stream. */
+HB_INLINE void huang_internal(const hb_huang *h, const huang_directions *d, vi index, vf out[3])
 {
     vf zero = vf_set1(0.0f);
-    for (int c = 0; c < 3; c++)
-        tt[c] = trt[c] = zero;
-    vm seen;
-    vf cut = visible_cut(h, d->cos_ti, d->sin_ti, &seen);
-    vf half = vf_select(seen, vf_sub(vf_set1(HB_PIO2_F), cut), zero);
-    /* the directions in the fibre frame: w_i at phi_i, w_o turned from the frame phi_i = 0 */
-    v3 wi = { vf_mul(d->sin_phi_i, d->cos_ti), d->sin_ti, vf_mul(d->cos_phi_i, d->cos_ti) };
+    int panels = h->tt_panels;
+    entry_rule e = entry_rule_of(h, d->cos_ti, d->sin_ti, d->cos_phi_i, d->sin_phi_i, panels);
+    /* w_o in the fibre frame, turned from the frame phi_i = 0 */
     vf ox = vf_mul(d->sin_phi, d->cos_to), oz = vf_mul(d->cos_phi, d->cos_to);
     v3 wo = { vf_fma(ox, d->cos_phi_i, vf_mul(oz, d->sin_phi_i)), d->sin_to, vf_fnma(ox, d->sin_phi_i, vf_mul(oz, d->cos_phi_i)) };
     vi stream = rng_stream(h->rng_key, index);
-    int panels = h->tt_panels;
-    vf step = vf_div(vf_add(half, half), vf_set1((float)panels));
-    vf sum_tt[3] = { zero, zero, zero }, sum_trt[3] = { zero, zero, zero };
+    vf sum[3] = { zero, zero, zero };
     for (int j = 0; j <= panels; j++) {
-        float w = (j == 0 || j == panels) ? 1.0f : (j & 1) ? 4.0f : 2.0f;
-        vf s, c, u[4], path_tt[3], path_trt[3];
-        vf_sincos(vf_fma(vf_set1((float)j), step, vf_neg(half)), &s, &c);
-        vf cos_m = vf_fnma(s, d->sin_phi_i, vf_mul(c, d->cos_phi_i)), sin_m = vf_fma(s, d->cos_phi_i, vf_mul(c, d->sin_phi_i));
-        fibre_point p = entry_point(h, cos_m, sin_m);
+        vf weight, u[4];
+        fibre_point p = entry_node(h, &e, j, panels, &weight);
         for (int k = 0; k < 4; k++)
             u[k] = rng_uniform(stream, h->rng_key2, 4 * j + k);
-        internal_path(h, &p, wi, wo, u, path_tt, path_trt);
-        vf weight = vf_set1(w);
-        if (h->elliptical) { /* rho = b^2 / k^3, k^2 = sin^2 + b^2 cos^2 = 1 - e^2 cos^2 (eq. 26 in phi_m) */
-            vf k2 = vf_fma(vf_set1(h->b2), vf_mul(cos_m, cos_m), vf_mul(sin_m, sin_m));
-            weight = vf_mul(weight, vf_div(vf_set1(h->b2), vf_mul(k2, vf_sqrt(k2))));
-        }
-        for (int ch = 0; ch < 3; ch++) {
-            sum_tt[ch] = vf_fma(weight, path_tt[ch], sum_tt[ch]);
-            sum_trt[ch] = vf_fma(weight, path_trt[ch], sum_trt[ch]);
+        internal_exit exits[2];
+        internal_exits(h, &p, e.wi, u, exits);
+        for (int l = 0; l < 2; l++) {
+            if (!(h->lobes >> (HB_LOBE_TT + l) & 1u))
+                continue;
+            vf leave = vf_mul(weight, exit_value(h, &exits[l].q, exits[l].w, wo));
+            for (int c = 0; c < 3; c++)
+                sum[c] = vf_fma(leave, exits[l].weight[c], sum[c]);
         }
     }
     vf den = vf_mul(vf_set1(2.0f), vf_max(d->cos_to, vf_set1(HB_HUANG_COS_FLOOR)));
     if (h->elliptical)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), d->sin2_phi_o, vf_set1(1.0f))));
-    vf scale = vf_select(seen, vf_div(vf_mul(step, vf_set1(1.0f / 3.0f)), den), zero);
-    for (int c = 0; c < 3; c++) {
-        tt[c] = vf_mul(sum_tt[c], scale);
-        trt[c] = vf_mul(sum_trt[c], scale);
-    }
+    vf scale = vf_select(e.seen, vf_div(vf_mul(e.step, vf_set1(1.0f / 3.0f)), den), zero);
+    for (int c = 0; c < 3; c++)
+        out[c] = vf_mul(sum[c], scale);
 }
 
 #endif

@@ -1,0 +1,87 @@
+/* HHH22 TT/TRT table (HB_TT_TRT_TABLE): its grid, chosen from quality and roughness, and its
+ * rows, each built by the plan's kernel (src/models/huang/table.h). README "Huang TT and TRT
+ * tables" has the measured error and build time per quality. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "plan.h"
+
+/* Per quality (fast, balanced, high): nodes in theta_i and in phi_i (elliptical), the delta step
+ * and the step of u = asinh(s / roughness) (near s = 0 that is the step in s over the roughness),
+ * and the internal paths per Simpson node. */
+typedef struct table_resolution {
+    int theta_i, phi_i;
+    double delta_step, u_step;
+    int lattice;
+} table_resolution;
+
+static const table_resolution resolutions[] = {
+    [HB_QUALITY_FAST] = { 17, 5, 1.0, 0.5, 8 },
+    [HB_QUALITY_BALANCED] = { 33, 9, 0.5, 0.25, 32 },
+    [HB_QUALITY_HIGH] = { 49, 13, 0.35, 0.18, 64 },
+};
+
+static int nodes_for(double range, double step, int least, int most)
+{
+    int n = (int)ceil(range / step) + 1;
+    return n < least ? least : n > most ? most : n;
+}
+
+static hb_status out_of_memory(hb_error *error, void *a, void *b, void *c)
+{
+    free(a);
+    free(b);
+    free(c);
+    if (error) {
+        error->status = HB_ERR_NOMEM;
+        snprintf(error->message, sizeof error->message, "could not allocate the huang TT/TRT table");
+    }
+    return HB_ERR_NOMEM;
+}
+
+hb_status hb_plan_build_huang_table(hb_plan *plan, hb_error *error)
+{
+    hb_huang *h = &plan->huang;
+    hb_huang_table *t = &h->table;
+    const table_resolution *res = &resolutions[plan->options.quality];
+    double r = plan->material.roughness;
+    t->n_theta_i = res->theta_i;
+    t->n_phi_i = h->elliptical ? res->phi_i : 1;
+    double delta_range = h->elliptical ? 2.0 * M_PI : M_PI;
+    t->n_delta = nodes_for(delta_range, res->delta_step * r, 9, 257);
+    t->delta_lo = h->elliptical ? (float)-M_PI : 0.0f;
+    t->delta_scale = (float)((t->n_delta - 1) / delta_range);
+    t->sum_centre = 0.0f;
+    t->inv_sum_width = (float)(1.0 / r);
+    double u_lo = asinh(-M_PI / r), u_hi = asinh(M_PI / r);
+    t->n_sum = nodes_for(u_hi - u_lo, res->u_step, 9, 513);
+    t->u_lo = (float)u_lo;
+    t->u_scale = (float)((t->n_sum - 1) / (u_hi - u_lo));
+
+    size_t row = (size_t)t->n_sum * (size_t)t->n_delta * 3;
+    size_t rows = (size_t)t->n_theta_i * (size_t)t->n_phi_i;
+    size_t exits = 2 * (size_t)res->lattice * (size_t)(h->tt_panels + 1);
+    float *values = malloc(rows * row * sizeof *values);
+    float *grid = malloc(((size_t)t->n_sum + (size_t)t->n_delta) * sizeof *grid);
+    float *scratch = malloc(exits * HB_HUANG_EXIT_FLOATS * sizeof *scratch);
+    if (!values || !grid || !scratch)
+        return out_of_memory(error, values, grid, scratch);
+    for (int k = 0; k < t->n_sum; k++)
+        grid[k] = (float)(r * sinh(u_lo + k * (u_hi - u_lo) / (t->n_sum - 1)));
+    for (int l = 0; l < t->n_delta; l++)
+        grid[t->n_sum + l] = (float)(t->delta_lo + l * delta_range / (t->n_delta - 1));
+    hb_huang_table_build build = { grid, grid + t->n_sum, res->lattice, scratch };
+    for (int i = 0; i < t->n_theta_i; i++)
+        for (int m = 0; m < t->n_phi_i; m++) {
+            double theta_i = -M_PI_2 + M_PI * i / (t->n_theta_i - 1);
+            double phi_i = t->n_phi_i > 1 ? M_PI_2 * m / (t->n_phi_i - 1) : 0.0;
+            plan->kernels->huang_table_row(h, (float)theta_i, (float)phi_i, &build,
+                                           values + ((size_t)i * (size_t)t->n_phi_i + (size_t)m) * row);
+        }
+    free(grid);
+    free(scratch);
+    plan->huang_table = values;
+    t->values = values;
+    return HB_OK;
+}

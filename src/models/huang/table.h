@@ -1,0 +1,189 @@
+/* HHH22 TT and TRT from a table built at plan creation (HHH22 sec. 3.4.2 suggests "precomputing
+ * them and storing the result in a 3D table (4D for elliptical cross-sections)"; README "Huang TT
+ * and TRT tables"). The builder integrates eqs. 31, 32 deterministically: Simpson over the entry
+ * azimuth phi_m1 as at evaluation, and at each node `lattice` internal paths whose visible normals
+ * come from a shifted R4 low-discrepancy sequence instead of one random path; every path is traced
+ * once per row and connected to every w_o of the row. Lookup is multilinear interpolation. */
+#ifndef HB_HUANG_TABLE_H
+#define HB_HUANG_TABLE_H
+
+#include "internal.h"
+
+/* asinh(x) = sign(x) log(|x| + sqrt(x^2 + 1)): the warp of s (monotone and continuous, which is
+ * all the grid needs; its absolute error is a few float ulps of the index). */
+HB_INLINE vf table_asinh(vf x)
+{
+    vf a = vf_abs(x);
+    return vf_copysign(vf_log(vf_add(a, vf_sqrt(vf_fma(a, a, vf_set1(1.0f))))), x);
+}
+
+/* Node coordinate x of a table axis with n >= 2 nodes, clamped to the table: the lower node's
+ * index and the fraction toward the next. */
+HB_INLINE vi table_cell(vf x, int n, vf *fraction)
+{
+    x = vf_clamp(x, 0.0f, (float)(n - 1));
+    vf lower = vf_min(vf_from_vi(vi_from_vf(x)), vf_set1((float)(n - 2)));
+    *fraction = vf_sub(x, lower);
+    return vi_from_vf(lower);
+}
+
+/* f_TT + f_TRT per channel from the table. */
+HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_directions *d, vf out[3])
+{
+    const hb_huang_table *t = &h->table;
+    vf theta_i = vf_atan2(d->sin_ti, d->cos_ti), theta_o = vf_atan2(d->sin_to, d->cos_to);
+    vf delta = vf_atan2(d->sin_phi, d->cos_phi), phi_i = vf_set1(0.0f);
+    if (h->elliptical) { /* x -> -x and z -> -z map the fibre onto itself: phi_i into [0, pi/2] */
+        phi_i = vf_atan2(d->sin_phi_i, d->cos_phi_i);
+        vm flip = vf_lt(phi_i, vf_set1(0.0f));
+        phi_i = vf_abs(phi_i);
+        delta = vf_select(flip, vf_neg(delta), delta);
+        flip = vf_gt(phi_i, vf_set1(HB_PIO2_F));
+        phi_i = vf_select(flip, vf_sub(vf_set1(HB_PI_F), phi_i), phi_i);
+        delta = vf_select(flip, vf_neg(delta), delta);
+    } else {
+        delta = vf_abs(delta);
+    }
+    vf u = table_asinh(vf_mul(vf_sub(vf_add(theta_i, theta_o), vf_set1(t->sum_centre)), vf_set1(t->inv_sum_width)));
+    vf frac[4];
+    vi cell[4];
+    cell[0] = table_cell(vf_mul(vf_add(theta_i, vf_set1(HB_PIO2_F)), vf_set1((float)(t->n_theta_i - 1) / HB_PI_F)),
+                         t->n_theta_i, &frac[0]);
+    cell[1] = vi_set1(0);
+    frac[1] = vf_set1(0.0f);
+    if (t->n_phi_i > 1)
+        cell[1] = table_cell(vf_mul(phi_i, vf_set1((float)(t->n_phi_i - 1) / HB_PIO2_F)), t->n_phi_i, &frac[1]);
+    cell[2] = table_cell(vf_mul(vf_sub(u, vf_set1(t->u_lo)), vf_set1(t->u_scale)), t->n_sum, &frac[2]);
+    cell[3] = table_cell(vf_mul(vf_sub(delta, vf_set1(t->delta_lo)), vf_set1(t->delta_scale)), t->n_delta, &frac[3]);
+    int stride[4];
+    stride[3] = 3;
+    stride[2] = 3 * t->n_delta;
+    stride[1] = stride[2] * t->n_sum;
+    stride[0] = stride[1] * t->n_phi_i;
+    vi base = vi_set1(0);
+    for (int axis = 0; axis < 4; axis++)
+        base = vi_add(base, vi_mul(cell[axis], vi_set1(stride[axis])));
+    vf zero = vf_set1(0.0f), one = vf_set1(1.0f), sum[3] = { zero, zero, zero };
+    for (int corner = 0; corner < 16; corner++) {
+        if ((corner >> 1 & 1) && t->n_phi_i == 1)
+            continue;
+        vf weight = one;
+        int offset = 0;
+        for (int axis = 0; axis < 4; axis++) {
+            int upper = corner >> axis & 1;
+            weight = vf_mul(weight, upper ? frac[axis] : vf_sub(one, frac[axis]));
+            offset += upper ? stride[axis] : 0;
+        }
+        vi index = vi_add(base, vi_set1(offset));
+        for (int c = 0; c < 3; c++)
+            sum[c] = vf_fma(weight, vf_gather(t->values + c, index), sum[c]);
+    }
+    vf den = vf_mul(vf_set1(2.0f), vf_max(d->cos_to, vf_set1(HB_HUANG_COS_FLOOR)));
+    if (h->elliptical)
+        den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), d->sin2_phi_o, one)));
+    for (int c = 0; c < 3; c++)
+        out[c] = vf_div(vf_max(sum[c], zero), den);
+}
+
+/* The R4 additive sequence (M. Roberts 2018): point l is frac(shift + l alpha) with alpha_k =
+ * 1 / phi_4^(k + 1), phi_4 the real root of x^5 = x + 1; low discrepancy in 4D for any count. */
+HB_INLINE vf unit_fraction(vf x)
+{
+    vf f = vf_sub(x, vf_round(x));
+    return vf_select(vf_lt(f, vf_set1(0.0f)), vf_add(f, vf_set1(1.0f)), f);
+}
+
+/* Traces the row's internal paths and stores their exits with weight (Simpson weight times rho
+ * times step / 3 / lattice, times the path's own weight): HB_HUANG_EXIT_FLOATS floats each,
+ * those of zero weight left out. Returns how many. */
+HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, int lattice, float *store)
+{
+    static const float r4_alpha[4] = { 0.8566748838545029f, 0.733891856627126f, 0.6287067210378087f,
+                                       0.5385972572236101f };
+    int panels = h->tt_panels, count = 0;
+    vf sin_ti, cos_ti, sin_pi, cos_pi;
+    vf_sincos(vf_set1(theta_i), &sin_ti, &cos_ti);
+    vf_sincos(vf_set1(phi_i), &sin_pi, &cos_pi);
+    entry_rule e = entry_rule_of(h, vf_max(cos_ti, vf_set1(0.0f)), sin_ti, cos_pi, sin_pi, panels);
+    float lane_of[HB_W];
+    for (int k = 0; k < HB_W; k++)
+        lane_of[k] = (float)k;
+    vf scale = vf_div(e.step, vf_set1(3.0f * (float)lattice));
+    for (int j = 0; j <= panels; j++) {
+        vf weight;
+        fibre_point p = entry_node(h, &e, j, panels, &weight);
+        weight = vf_select(e.seen, vf_mul(weight, scale), vf_set1(0.0f));
+        vi stream = rng_stream(h->rng_key, vi_set1(j)); /* the node's shift of the sequence */
+        for (int first = 0; first < lattice; first += HB_W) {
+            vf index = vf_add(vf_set1((float)first), vf_loadu(lane_of)), u[4];
+            for (int k = 0; k < 4; k++)
+                u[k] = unit_fraction(vf_fma(index, vf_set1(r4_alpha[k]), rng_uniform(stream, h->rng_key2, k)));
+            internal_exit exits[2];
+            internal_exits(h, &p, e.wi, u, exits);
+            for (int l = 0; l < 2; l++) {
+                if (!(h->lobes >> (HB_LOBE_TT + l) & 1u))
+                    continue;
+                const internal_exit *x = &exits[l];
+                vf fields[HB_HUANG_EXIT_FLOATS] = { x->q.macro.x, x->q.macro.z, x->q.meso.x, x->q.meso.y, x->q.meso.z,
+                                                    x->w.x,       x->w.y,       x->w.z };
+                for (int c = 0; c < 3; c++)
+                    fields[8 + c] = vf_mul(weight, x->weight[c]);
+                float lanes[HB_HUANG_EXIT_FLOATS][HB_W];
+                for (int f = 0; f < HB_HUANG_EXIT_FLOATS; f++)
+                    vf_storeu(lanes[f], fields[f]);
+                for (int k = 0; k < HB_W && first + k < lattice; k++) {
+                    if (lanes[8][k] + lanes[9][k] + lanes[10][k] <= 0.0f)
+                        continue;
+                    for (int f = 0; f < HB_HUANG_EXIT_FLOATS; f++)
+                        store[HB_HUANG_EXIT_FLOATS * count + f] = lanes[f][k];
+                    count++;
+                }
+            }
+        }
+    }
+    return count;
+}
+
+/* One row of the table: for every (s, delta) node, the sum over the row's exits of their weight
+ * times the exit interface's value toward w_o (eqs. 31, 32 without 1 / (2 a cos(theta_o))). */
+HB_INLINE void huang_table_row(const hb_huang *h, float theta_i, float phi_i, const hb_huang_table_build *b, float *row)
+{
+    const hb_huang_table *t = &h->table;
+    int exits = table_row_exits(h, theta_i, phi_i, b->lattice, b->scratch);
+    vf zero = vf_set1(0.0f);
+    for (int k = 0; k < t->n_sum; k++)
+        for (int first = 0; first < t->n_delta; first += HB_W) {
+            float theta_o[HB_W], phi_o[HB_W];
+            for (int l = 0; l < HB_W; l++) {
+                float s = b->sums[k] - theta_i;
+                theta_o[l] = s < -HB_PIO2_F ? -HB_PIO2_F : s > HB_PIO2_F ? HB_PIO2_F : s;
+                phi_o[l] = phi_i + b->deltas[first + l < t->n_delta ? first + l : t->n_delta - 1];
+            }
+            vf st, ct, sp, cp;
+            vf_sincos(vf_loadu(theta_o), &st, &ct);
+            vf_sincos(vf_loadu(phi_o), &sp, &cp);
+            ct = vf_max(ct, zero);
+            v3 wo = { vf_mul(sp, ct), st, vf_mul(cp, ct) };
+            vf sum[3] = { zero, zero, zero };
+            for (int x = 0; x < exits; x++) {
+                const float *f = b->scratch + HB_HUANG_EXIT_FLOATS * x;
+                fibre_point q;
+                q.px = q.pz = zero;
+                q.macro = (v3){ vf_set1(f[0]), zero, vf_set1(f[1]) };
+                q.meso = (v3){ vf_set1(f[2]), vf_set1(f[3]), vf_set1(f[4]) };
+                q.t1 = q.t2 = q.meso; /* unused by exit_value */
+                v3 w = { vf_set1(f[5]), vf_set1(f[6]), vf_set1(f[7]) };
+                vf value = exit_value(h, &q, w, wo);
+                for (int c = 0; c < 3; c++)
+                    sum[c] = vf_fma(value, vf_set1(f[8 + c]), sum[c]);
+            }
+            float lanes[3][HB_W];
+            for (int c = 0; c < 3; c++)
+                vf_storeu(lanes[c], sum[c]);
+            for (int l = 0; l < HB_W && first + l < t->n_delta; l++)
+                for (int c = 0; c < 3; c++)
+                    row[3 * (k * t->n_delta + first + l) + c] = lanes[c][l];
+        }
+}
+
+#endif
