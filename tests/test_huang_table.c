@@ -3,6 +3,7 @@
  * emulation) within the error the README states for the balanced table, and with the
  * nested-quadrature reference at each material's brightest pair; lookups are finite and non-negative at the hard directions. */
 #include <stdlib.h>
+#include <string.h>
 
 #include "test.h"
 #include "ref/reference.h"
@@ -173,7 +174,27 @@ static void test_table_hard_directions(hb_test_ctx *t)
     }
 }
 
+/* A table too costly to build, or asked of the double reference quality, fails at plan creation. */
+static void test_table_refusals(hb_test_ctx *t)
+{
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    o.model = HB_MODEL_HUANG;
+    o.tt_trt = HB_TT_TRT_TABLE;
+    m.roughness = 0.01;
+    hb_plan *plan = NULL;
+    hb_error err;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_UNSUPPORTED && !plan && strstr(err.message, "tt_trt = mc"),
+          "roughness 0.01 balanced: %s", err.message);
+    m.roughness = 0.3;
+    o.quality = HB_QUALITY_REFERENCE;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_UNSUPPORTED && !plan, "reference quality: %s", err.message);
+}
+
 const hb_test hb_tests_huang_table[] = {
+    { "huang_table_refusals", test_table_refusals, 0 },
     { "huang_table_matches_estimator", test_table_matches_estimator, 1 },
     { "huang_table_matches_reference", test_table_matches_reference, 0 },
     { "huang_table_hard_directions", test_table_hard_directions, 1 },
