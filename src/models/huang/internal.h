@@ -185,9 +185,8 @@ HB_INLINE void internal_exits(const hb_huang *h, const fibre_point *p, v3 wi, co
     absorption(h, length, a);
     for (int c = 0; c < 3; c++)
         exits[0].weight[c] = vf_mul(entry, a[c]);
-    exits[1] = exits[0];
     if (!(h->lobes >> HB_LOBE_TRT & 1u))
-        return;
+        return; /* exits[1] is left unset: callers skip the lobes the plan leaves out */
     /* interface 2: internal reflection off a visible normal (inner side) of -w_t */
     const fibre_point *q = &exits[0].q;
     v3 h2 = visible_micronormal(h, q, v3_scale(vf_set1(-1.0f), wt), -1.0f, u[2], u[3]);
