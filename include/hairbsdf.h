@@ -249,7 +249,12 @@ hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_r
  * u outside [0, 1] or NaN) get theta_i = phi_i = 0, pdf 0 and weight 0 and are counted.
  * The reverse use (w_o given w_i, for light tracing) is the same call with the two directions'
  * roles swapped; it samples f(w_o, w_i), which equals f(w_i, w_o) where the model is reciprocal
- * (dFH11 with alpha = 0; README). */
+ * (dFH11 with alpha = 0; README).
+ * HHH22 plans with TT or TRT (not HB_QUALITY_REFERENCE) read 8 numbers and trace one path through
+ * the fibre from w_o (sec. 3.4.1): the weight is that path's throughput over the lobe choice, whose
+ * mean is the mean of f / pdf (unbiased; exact for alpha = 0, where the model is reciprocal: README
+ * "Huang sampling with TT and TRT"); the pdf is eq. 33 estimated with one path per Simpson node from
+ * the seed and the sample's index, so hb_pdf_angles at the same index returns the sampled pdf. */
 #define HB_SAMPLE_DIMENSIONS 8 /* the most numbers any sampler reads */
 
 typedef struct hb_sample_in {
@@ -260,7 +265,7 @@ typedef struct hb_sample_in {
 typedef struct hb_sample_out {
     float *theta_i, *phi_i;
     float *pdf;        /* per unit solid angle */
-    hb_rgb_soa weight; /* f(w_i, w_o) / pdf */
+    hb_rgb_soa weight; /* f(w_i, w_o) / pdf (HHH22 with TT or TRT: an unbiased estimate of it) */
 } hb_sample_out;
 
 int hb_plan_sample_dimensions(const hb_plan *plan); /* 0 when the plan cannot sample */

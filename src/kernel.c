@@ -8,6 +8,7 @@
 #include "models/deon/sample.h"
 #include "models/marschner/azimuthal.h"
 #include "models/huang/eval.h"
+#include "models/huang/sample_paths.h"
 #include "kernels.h"
 
 #if defined(HB_TARGET_SCALAR)
@@ -121,6 +122,11 @@ HB_INLINE vm load_deon_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
 HB_INLINE vm load_huang_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
 {
     return load_sample(in, HB_HUANG_SAMPLE_DIMENSIONS, i, lanes, a);
+}
+
+HB_INLINE vm load_huang_path_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
+{
+    return load_sample(in, HB_HUANG_PATH_DIMENSIONS, i, lanes, a);
 }
 
 /* Invalid lanes get 0 in every plane. */
@@ -256,19 +262,31 @@ static void huang_vectors_kernel(const hb_huang *h, size_t n, hb_vectors_soa in,
              (huang_vectors(h, a, a + 3, lane_indices(i), f), store_rgb(out, i, lanes, valid, f)));
 }
 
+/* R-only plans sample exactly (weight = f / pdf); with TT or TRT, by traced paths (sample_paths.h). */
 static void huang_sample_kernel(const hb_huang *h, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
 {
     vf theta_i, phi_i, pdf, weight[3];
-    HB_BATCH(load_huang_sample, 2 + HB_HUANG_SAMPLE_DIMENSIONS, in, n, invalid,
-             (huang_sample(h, a[0], a[1], a + 2, &theta_i, &phi_i, &pdf, weight),
-              store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
+    if (h->lobes == 1u << HB_LOBE_R)
+        HB_BATCH(load_huang_sample, 2 + HB_HUANG_SAMPLE_DIMENSIONS, in, n, invalid,
+                 (huang_sample(h, a[0], a[1], a + 2, &theta_i, &phi_i, &pdf, weight),
+                  store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
+    else
+        HB_BATCH(load_huang_path_sample, 2 + HB_HUANG_PATH_DIMENSIONS, in, n, invalid,
+                 (huang_path_sample(h, a[0], a[1], a + 2, lane_indices(i), &theta_i, &phi_i, &pdf, weight),
+                  store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
 }
 
 static void huang_pdf_kernel(const hb_huang *h, size_t n, hb_angles_soa in, float *pdf, size_t *invalid)
 {
-    HB_BATCH(load_angles, 4, in, n, invalid,
-             store_block(pdf, i, lanes,
-                         vf_select(valid, huang_pdf_angles(h, a[0], a[1], a[2], a[3]), vf_set1(0.0f))));
+    if (h->lobes == 1u << HB_LOBE_R)
+        HB_BATCH(load_angles, 4, in, n, invalid,
+                 store_block(pdf, i, lanes,
+                             vf_select(valid, huang_pdf_angles(h, a[0], a[1], a[2], a[3]), vf_set1(0.0f))));
+    else
+        HB_BATCH(load_angles, 4, in, n, invalid,
+                 store_block(pdf, i, lanes,
+                             vf_select(valid, huang_path_pdf(h, a[0], a[1], a[2], a[3], lane_indices(i)),
+                                       vf_set1(0.0f))));
 }
 
 HB_KERNEL_VARIANTS(abramowitz, HB_I0_ABRAMOWITZ)

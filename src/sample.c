@@ -7,6 +7,7 @@
 
 #define HB_DEON_DIMENSIONS 5
 #define HB_HUANG_DIMENSIONS 3
+#define HB_HUANG_PATH_DIMENSIONS 8 /* with TT or TRT: HHH22 sec. 3.4.1 */
 #define HB_MOST_DIMENSIONS HB_DEON_DIMENSIONS
 
 int hb_plan_sample_dimensions(const hb_plan *plan)
@@ -16,7 +17,10 @@ int hb_plan_sample_dimensions(const hb_plan *plan)
     if (plan->options.model == HB_MODEL_DEON && plan->options.r_fresnel == HB_R_FRESNEL_OFFSET)
         return HB_DEON_DIMENSIONS;
     if (plan->options.model == HB_MODEL_HUANG && plan->huang.lobes == 1u << HB_LOBE_R)
-        return HB_HUANG_DIMENSIONS; /* TT and TRT are not sampled yet (README) */
+        return HB_HUANG_DIMENSIONS;
+    /* TT and TRT are sampled by the kernels only (the double path has no TT/TRT sampler) */
+    if (plan->options.model == HB_MODEL_HUANG && plan->kernels)
+        return HB_HUANG_PATH_DIMENSIONS;
     return 0;
 }
 

@@ -103,7 +103,7 @@ double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, d
 }
 
 /* Upper tail of the chi-square distribution with k degrees of freedom (Wilson-Hilferty). */
-static double chi_square_tail(double x, double k)
+double hb_test_chi_square_tail(double x, double k)
 {
     double z = (cbrt(x / k) - (1.0 - 2.0 / (9.0 * k))) / sqrt(2.0 / (9.0 * k));
     return 0.5 * erfc(z / M_SQRT2);
@@ -137,5 +137,5 @@ double hb_test_chi_square(size_t n, const double *prob, double total, int nt, in
         *chi2 += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / fmax(pooled_expected, 5.0);
         (*cells)++;
     }
-    return chi_square_tail(*chi2, *cells - 1);
+    return hb_test_chi_square_tail(*chi2, *cells - 1);
 }

@@ -38,4 +38,7 @@ void hb_test_check_sampled_weights(hb_test_ctx *t, size_t n, const char *label, 
  * (cells expecting fewer than 5 pooled); returns the p-value (Wilson-Hilferty), *chi2 and *cells. */
 double hb_test_chi_square(size_t n, const double *prob, double total, int nt, int np, double *chi2, int *cells);
 
+/* The upper tail of the chi-square distribution with k degrees of freedom (Wilson-Hilferty). */
+double hb_test_chi_square_tail(double x, double k);
+
 #endif

@@ -14,7 +14,9 @@ typedef struct huang_case {
     double roughness, alpha_deg, eccentricity; /* alpha: the scale tilt (the mesonormal's inclination is -alpha) */
     int shadowing;
     double theta_o, phi_o;
-    double eta; /* 0: the default */
+    double eta;     /* 0: the default */
+    unsigned lobes; /* 0: R alone */
+    double sigma_a; /* grey absorption (0: lossless) */
 } huang_case;
 
 static hb_plan *huang_plan(hb_test_ctx *t, const huang_case *c, hb_quality quality, hb_isa isa)
@@ -30,7 +32,9 @@ static hb_plan *huang_plan(hb_test_ctx *t, const huang_case *c, hb_quality quali
     if (c->eta > 0.0)
         m.eta = c->eta;
     o.model = HB_MODEL_HUANG;
-    o.lobes = 1u << HB_LOBE_R;
+    for (int k = 0; k < 3; k++)
+        m.sigma_a[k] = c->sigma_a;
+    o.lobes = c->lobes ? c->lobes : 1u << HB_LOBE_R;
     o.shadowing = c->shadowing ? HB_SHADOWING_SMITH : HB_SHADOWING_NONE;
     o.quality = quality;
     o.isa = isa;
@@ -50,10 +54,10 @@ static void describe(const huang_case *c, char *text, size_t size)
  * back-facing w_o (alpha -5 at theta_o = -1.45 sees a narrow window; theta_o 1.45 with tilt makes
  * the pdf's window two arcs). */
 static const huang_case cases[] = {
-    { HB_NDF_GGX, 0.3, 0.0, 0.0, 1, 0.5, 0.3, 0.0 },         { HB_NDF_GGX, 0.15, -2.0, 0.0, 1, -0.7, 1.0, 0.0 },
-    { HB_NDF_BECKMANN, 0.25, 2.0, 0.0, 1, 1.3, -2.0, 0.0 },   { HB_NDF_BECKMANN, 0.4, 5.0, 0.0, 0, 1.45, 0.0, 0.0 },
-    { HB_NDF_GGX, 0.3, 2.0, 0.8, 1, 0.3, 1.0, 0.0 },         { HB_NDF_GGX, 0.6, 0.0, 0.0, 0, -1.2, 3.1, 0.0 },
-    { HB_NDF_BECKMANN, 0.2, -5.0, 0.6, 1, -1.45, -0.6, 0.0 }, { HB_NDF_GGX, 0.45, 5.0, 0.0, 1, 1.45, 2.0, 0.0 },
+    { HB_NDF_GGX, 0.3, 0.0, 0.0, 1, 0.5, 0.3, 0.0, 0, 0.0 },         { HB_NDF_GGX, 0.15, -2.0, 0.0, 1, -0.7, 1.0, 0.0, 0, 0.0 },
+    { HB_NDF_BECKMANN, 0.25, 2.0, 0.0, 1, 1.3, -2.0, 0.0, 0, 0.0 },   { HB_NDF_BECKMANN, 0.4, 5.0, 0.0, 0, 1.45, 0.0, 0.0, 0, 0.0 },
+    { HB_NDF_GGX, 0.3, 2.0, 0.8, 1, 0.3, 1.0, 0.0, 0, 0.0 },         { HB_NDF_GGX, 0.6, 0.0, 0.0, 0, -1.2, 3.1, 0.0, 0, 0.0 },
+    { HB_NDF_BECKMANN, 0.2, -5.0, 0.6, 1, -1.45, -0.6, 0.0, 0, 0.0 }, { HB_NDF_GGX, 0.45, 5.0, 0.0, 1, 1.45, 2.0, 0.0, 0, 0.0 },
 };
 enum { CASES = sizeof cases / sizeof cases[0], NT = 24, NP = 48 };
 
@@ -203,7 +207,7 @@ static void test_huang_sample_hard_cases(hb_test_ctx *t)
             }
     for (int k = 0; k < M; k++) {
         huang_case c = { materials[k].ndf, materials[k].r, materials[k].tilt, materials[k].e, materials[k].g, 0.0, 0.0,
-                         materials[k].eta };
+                         materials[k].eta, 0, 0.0 };
         hb_plan *plan = huang_plan(t, &c, HB_QUALITY_BALANCED, t->isa);
         if (!plan)
             return;
@@ -229,10 +233,229 @@ static void test_huang_sample_hard_cases(hb_test_ctx *t)
     }
 }
 
+/* With TT and TRT: paths traced from w_o (sec. 3.4.1) and the pdf of eq. 33 (README "Huang
+ * sampling with TT and TRT"). Without tilt, where the model is reciprocal (with it, eqs. 23-32 are
+ * not: README), across roughness 0.1..0.4, both NDFs, circular and elliptical, with and without G
+ * and absorption. */
+#define HB_ALL_HUANG_LOBES (1u << HB_LOBE_R | 1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)
+static const huang_case path_cases[] = {
+    { HB_NDF_GGX, 0.3, 0.0, 0.0, 1, 0.4, 0.3, 0.0, HB_ALL_HUANG_LOBES, 0.0 },
+    { HB_NDF_BECKMANN, 0.2, 0.0, 0.8, 1, -0.7, 1.0, 0.0, HB_ALL_HUANG_LOBES, 0.0 },
+    { HB_NDF_GGX, 0.1, 0.0, 0.0, 0, 1.3, -2.0, 0.0, HB_ALL_HUANG_LOBES, 0.0 },
+    { HB_NDF_GGX, 0.15, 0.0, 0.0, 1, 0.0, 0.0, 0.0, HB_ALL_HUANG_LOBES, 0.5 },
+    { HB_NDF_BECKMANN, 0.4, 0.0, 0.6, 1, -1.3, 0.5, 0.0, 1u << HB_LOBE_TT | 1u << HB_LOBE_TRT, 0.2 },
+};
+enum { PATH_CASES = sizeof path_cases / sizeof path_cases[0], PATH_NT = 16, PATH_NP = 32, PATH_JITTER = 8 };
+
+/* Sampled w_i against eq. 33's pdf. The pdf is itself an unbiased estimate (one path per Simpson
+ * node), so each cell's probability is the mean of PATH_JITTER^2 jittered points of it, each with its
+ * own sample index, and the cell's variance joins the counts' in the statistic
+ * sum (n_c - N p_c)^2 / (N p_c + N^2 var(p_c)). Samples whose path the fibre absorbed (weight 0) are
+ * not counted: the pdf's mass is that of the others. */
+static void test_huang_path_chi_square(hb_test_ctx *t)
+{
+    enum { CELLS = PATH_NT * PATH_NP, POINTS = CELLS * PATH_JITTER * PATH_JITTER };
+    static double mean[CELLS], var[CELLS], count[CELLS];
+    size_t n = t->emulated ? 20000 : 100000;
+    for (int c = 0; c < PATH_CASES; c++) {
+        if (t->emulated && c != 1)
+            continue;
+        const huang_case *pc = &path_cases[c];
+        hb_plan *plan = huang_plan(t, pc, HB_QUALITY_HIGH, HB_ISA_AUTO);
+        if (!plan)
+            return;
+        unsigned long long seed = hb_test_next_seed(t);
+        hb_test_sample_batch(t, plan, n, pc->theta_o, pc->phi_o, seed);
+        memset(count, 0, sizeof count);
+        size_t kept = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (buf->w[0][i] + buf->w[1][i] + buf->w[2][i] <= 0.0f)
+                continue;
+            int a = (int)floor((sin((double)buf->ti[i]) + 1.0) * PATH_NT / 2.0);
+            int b = (int)floor((buf->pi[i] + M_PI) * PATH_NP / (2.0 * M_PI));
+            a = a < 0 ? 0 : a >= PATH_NT ? PATH_NT - 1 : a;
+            b = b < 0 ? 0 : b >= PATH_NP ? PATH_NP - 1 : b;
+            count[a * PATH_NP + b]++;
+            kept++;
+        }
+        /* jittered points: sin(theta) and phi uniform in each cell (equal solid angle per point) */
+        for (int k = 0; k < POINTS; k++) {
+            int cell = k / (PATH_JITTER * PATH_JITTER), j = k % (PATH_JITTER * PATH_JITTER);
+            double x = (cell / PATH_NP + (j / PATH_JITTER + hb_test_uniform(t)) / PATH_JITTER) / PATH_NT;
+            double y = (cell % PATH_NP + (j % PATH_JITTER + hb_test_uniform(t)) / PATH_JITTER) / PATH_NP;
+            buf->ti[k] = (float)asin(fmin(fmax(2.0 * x - 1.0, -1.0), 1.0));
+            buf->pi[k] = (float)(M_PI * (2.0 * y - 1.0));
+            buf->to[k] = (float)pc->theta_o;
+            buf->po[k] = (float)pc->phi_o;
+        }
+        hb_pdf_angles(plan, POINTS, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, buf->pdf2, NULL);
+        double cell_area = 4.0 * M_PI / CELLS, total = 0.0, chi2 = 0.0, pooled_e = 0.0, pooled_o = 0.0, pooled_v = 0.0;
+        int cells = 0, bad = 0;
+        for (int cell = 0; cell < CELLS; cell++) {
+            double s = 0.0, s2 = 0.0;
+            for (int j = 0; j < PATH_JITTER * PATH_JITTER; j++) {
+                double v = buf->pdf2[cell * PATH_JITTER * PATH_JITTER + j];
+                bad += !(isfinite(v) && v >= 0.0);
+                s += v;
+                s2 += v * v;
+            }
+            double m = PATH_JITTER * PATH_JITTER;
+            mean[cell] = s / m * cell_area;
+            var[cell] = fmax(s2 / m - (s / m) * (s / m), 0.0) / (m - 1.0) * cell_area * cell_area;
+            total += mean[cell];
+            double expected = mean[cell] * (double)n, spread = var[cell] * (double)n * (double)n;
+            if (expected < 5.0) {
+                pooled_e += expected;
+                pooled_o += count[cell];
+                pooled_v += spread;
+                continue;
+            }
+            chi2 += (count[cell] - expected) * (count[cell] - expected) / (expected + spread);
+            cells++;
+        }
+        if (pooled_e > 0.0 || pooled_o > 0.0) {
+            chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / (fmax(pooled_e, 5.0) + pooled_v);
+            cells++;
+        }
+        double p_value = hb_test_chi_square_tail(chi2, cells);
+        char text[160];
+        describe(pc, text, sizeof text);
+        hb_test_note(t, "%s lobes %u (seed %llu): pdf mass %.4f, unabsorbed %.4f, chi2 %.1f over %d cells, p = %.3f",
+                     text, pc->lobes, seed, total, (double)kept / (double)n, chi2, cells, p_value);
+        CHECK(t, bad == 0, "%s: %d pdfs not finite and >= 0", text, bad);
+        CHECK(t, p_value >= 1e-3, "%s: chi-square p-value %.2e below the 1e-3 significance", text, p_value);
+        hb_plan_destroy(plan);
+    }
+}
+
+/* Item 2: the mean weight equals the albedo, the integral of f over w_i, estimated independently by
+ * hb_eval_angles at uniformly distributed w_i (each its own Monte-Carlo index), within four combined
+ * standard errors per channel. */
+static void test_huang_path_albedo(hb_test_ctx *t)
+{
+    size_t n = t->emulated ? 20000 : 100000;
+    for (int c = 0; c < PATH_CASES; c++) {
+        if (t->emulated && c != 0)
+            continue;
+        const huang_case *pc = &path_cases[c];
+        hb_plan *plan = huang_plan(t, pc, HB_QUALITY_BALANCED, HB_ISA_AUTO);
+        if (!plan)
+            return;
+        hb_test_sample_batch(t, plan, n, pc->theta_o, pc->phi_o, hb_test_next_seed(t));
+        double sampled[3], sampled_se[3], albedo[3], albedo_se[3];
+        int bad = 0;
+        for (int k = 0; k < 3; k++) {
+            double s = 0.0, s2 = 0.0;
+            for (size_t i = 0; i < n; i++) {
+                double w = buf->w[k][i];
+                bad += !(isfinite(w) && w >= 0.0 && isfinite(buf->pdf[i]) && buf->pdf[i] >= 0.0f);
+                s += w;
+                s2 += w * w;
+            }
+            sampled[k] = s / (double)n;
+            sampled_se[k] = sqrt(fmax(s2 / (double)n - sampled[k] * sampled[k], 0.0) / (double)n);
+        }
+        for (size_t i = 0; i < n; i++) {
+            buf->ti[i] = (float)asin(2.0 * hb_test_uniform(t) - 1.0);
+            buf->pi[i] = (float)(M_PI * (2.0 * hb_test_uniform(t) - 1.0));
+        }
+        hb_eval_angles(plan, n, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po },
+                       (hb_rgb_soa){ buf->f[0], buf->f[1], buf->f[2] }, NULL);
+        char text[160];
+        describe(pc, text, sizeof text);
+        for (int k = 0; k < 3; k++) {
+            double s = 0.0, s2 = 0.0;
+            for (size_t i = 0; i < n; i++) {
+                double v = 4.0 * M_PI * buf->f[k][i];
+                s += v;
+                s2 += v * v;
+            }
+            albedo[k] = s / (double)n;
+            albedo_se[k] = sqrt(fmax(s2 / (double)n - albedo[k] * albedo[k], 0.0) / (double)n);
+            double se = hypot(sampled_se[k], albedo_se[k]);
+            CHECK(t, fabs(sampled[k] - albedo[k]) <= 4.0 * se, "%s channel %d: mean weight %.5f, albedo %.5f (se %.2e)",
+                  text, k, sampled[k], albedo[k], se);
+        }
+        hb_test_note(t, "%s lobes %u: mean weight %.5f +- %.5f, albedo %.5f +- %.5f (red)", text, pc->lobes, sampled[0],
+                     sampled_se[0], albedo[0], albedo_se[0]);
+        CHECK(t, bad == 0, "%s: %d weights or pdfs not finite and >= 0", text, bad);
+        hb_plan_destroy(plan);
+    }
+}
+
+/* Every ISA draws what the scalar kernel draws (the same numbers; rounding may flip a lobe choice or
+ * a visibility test for a few samples), hb_pdf_angles returns the sampled pdf bit for bit, and hard
+ * inputs (poles, phi = +-pi, u at 0 and 1, roughness 0.01 and 1, e 0.95, eta 1.0001, sigma_a 1e3,
+ * tilt) give finite, non-negative pdfs and weights. */
+static void test_huang_path_isa(hb_test_ctx *t)
+{
+    enum { N = 1024 };
+    static const huang_case materials[] = {
+        { HB_NDF_GGX, 0.3, 0.0, 0.0, 1, 0.0, 0.0, 0.0, HB_ALL_HUANG_LOBES, 0.3 },
+        { HB_NDF_BECKMANN, 0.2, 2.0, 0.8, 1, 0.0, 0.0, 0.0, HB_ALL_HUANG_LOBES, 0.0 },
+        { HB_NDF_GGX, 0.01, -2.0, 0.0, 0, 0.0, 0.0, 0.0, HB_ALL_HUANG_LOBES, 0.0 },
+        { HB_NDF_BECKMANN, 1.0, 10.0, 0.95, 1, 0.0, 0.0, 1.0001, 1u << HB_LOBE_TRT, 0.0 },
+        { HB_NDF_GGX, 0.2, 0.0, 0.0, 1, 0.0, 0.0, 2.5, HB_ALL_HUANG_LOBES, 1e3 },
+    };
+    static const float thetas[] = { 0.0f, 1.57079637f, -1.57079637f, 1.5707963f, -0.9f, 0.4f };
+    static const float phis[] = { 0.0f, 3.14159274f, -3.14159274f, 2.0f };
+    static const float edges[] = { 0.0f, 0.99999994f, 1e-30f, 0.5f };
+    static float ref_ti[N], ref_pi[N], ref_pdf[N], ref_w[3][N];
+    for (size_t k = 0; k < sizeof materials / sizeof materials[0]; k++) {
+        hb_plan *plan = huang_plan(t, &materials[k], HB_QUALITY_FAST, t->isa);
+        hb_plan *scalar = huang_plan(t, &materials[k], HB_QUALITY_FAST, HB_ISA_SCALAR);
+        if (!plan || !scalar)
+            return;
+        CHECK(t, hb_plan_sample_dimensions(plan) == 8, "reads %d numbers", hb_plan_sample_dimensions(plan));
+        float *u[HB_SAMPLE_DIMENSIONS];
+        for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+            u[d] = buf->u[d];
+        hb_uniforms(k, 0, N, 8, u);
+        for (size_t i = 0; i < N; i++) {
+            int hard = i < N / 4;
+            buf->to[i] = hard ? thetas[i % 6] : (float)hb_test_range(t, -1.5, 1.5);
+            buf->po[i] = hard ? phis[i / 6 % 4] : (float)hb_test_range(t, -M_PI, M_PI);
+            if (hard)
+                for (int d = 0; d < 8; d++)
+                    buf->u[d][i] = edges[(i / 24 + (size_t)d) % 4];
+        }
+        hb_sample_in in = { buf->to, buf->po, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
+        hb_eval_report report;
+        hb_sample_angles(plan, N, in, (hb_sample_out){ buf->ti, buf->pi, buf->pdf, { buf->w[0], buf->w[1], buf->w[2] } },
+                         &report);
+        hb_sample_angles(scalar, N, in, (hb_sample_out){ ref_ti, ref_pi, ref_pdf, { ref_w[0], ref_w[1], ref_w[2] } }, NULL);
+        hb_pdf_angles(plan, N, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, buf->pdf2, NULL);
+        int bad = 0, differ = 0, pdf_bits = 0;
+        for (size_t i = 0; i < N; i++) {
+            bad += !(isfinite(buf->pdf[i]) && buf->pdf[i] >= 0.0f && fabsf(buf->ti[i]) <= 1.57079637f &&
+                     fabsf(buf->pi[i]) <= 3.14159274f);
+            for (int c = 0; c < 3; c++)
+                bad += !(isfinite(buf->w[c][i]) && buf->w[c][i] >= 0.0f);
+            pdf_bits += buf->pdf2[i] != buf->pdf[i] && buf->w[0][i] + buf->w[1][i] + buf->w[2][i] > 0.0f;
+            double angle = fabs(buf->ti[i] - ref_ti[i]) + fabs(remainder(buf->pi[i] - ref_pi[i], 2.0 * M_PI));
+            double weight = fabs(buf->w[0][i] - ref_w[0][i]) / fmax(ref_w[0][i], 1e-3);
+            double pdf = fabs(buf->pdf[i] - ref_pdf[i]) / fmax(ref_pdf[i], 1e-3);
+            differ += i >= N / 4 && (angle > 1e-3 || weight > 1e-2 || pdf > 1e-2); /* the hard inputs sit on edges */
+        }
+        CHECK(t, report.invalid == 0, "material %zu: %zu invalid", k, report.invalid);
+        CHECK(t, bad == 0, "material %zu: %d samples not finite, negative or out of range", k, bad);
+        CHECK(t, pdf_bits == 0, "material %zu: hb_pdf_angles differs from the sampled pdf at %d samples", k, pdf_bits);
+        CHECK(t, differ <= N / 100, "material %zu: %d of %d random samples differ from the scalar kernel's", k, differ,
+              3 * N / 4);
+        if (differ)
+            hb_test_note(t, "material %zu: %d of %d random samples differ from the scalar kernel's", k, differ, 3 * N / 4);
+        hb_plan_destroy(plan);
+        hb_plan_destroy(scalar);
+    }
+}
+
 const hb_test hb_tests_sample_huang[] = {
     { "huang_sample_chi_square", test_huang_sample_chi_square, 0 },
     { "huang_sample_albedo", test_huang_sample_albedo, 0 },
     { "huang_sample_reference", test_huang_sample_reference, 1 },
     { "huang_sample_hard_cases", test_huang_sample_hard_cases, 1 },
+    { "huang_path_chi_square", test_huang_path_chi_square, 0 },
+    { "huang_path_albedo", test_huang_path_albedo, 0 },
+    { "huang_path_isa", test_huang_path_isa, 1 },
     { 0 },
 };

@@ -15,7 +15,7 @@ static void sample_usage(FILE *to)
     fprintf(to, "usage: hairbsdf sample [options] --theta-o X [--phi-o Y] [--count N] [--seed S] [--summary]\n"
                 "Draws N directions w_i (default 16) for w_o = (theta_o, phi_o) with random numbers from\n"
                 "hb_uniforms(seed), and prints theta_i,phi_i,pdf,w_r,w_g,w_b per sample, where the weight\n"
-                "w = f / pdf; --summary prints count,mean_w_r,mean_w_g,mean_w_b,stderr_r,stderr_g,stderr_b.\n%s",
+                "w = f / pdf (huang with TT or TRT: the traced path's throughput, whose mean is that of f / pdf);\n--summary prints count,mean_w_r,mean_w_g,mean_w_b,stderr_r,stderr_g,stderr_b.\n%s",
             cli_model_options_help);
 }
 

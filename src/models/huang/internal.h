@@ -125,17 +125,23 @@ HB_INLINE vf sampled_shadowing(const hb_huang *h, vf cos_in, vf cos_out)
     return vf_div(vf_set1(1.0f), vf_max(smith_g1_huang(h, cos_in), vf_set1(1e-30f)));
 }
 
+/* The outward micronormal at an exit that refracts w (inside) into d (outside): the generalised
+ * half vector (eta w - d) / |eta w - d| (Walter et al. 2007), with |eta w - d|^2 in *len2. */
+HB_INLINE v3 exit_half_vector(const hb_huang *h, v3 w, v3 d, vf *len2)
+{
+    v3 half = v3_axpy(vf_set1(h->ior.eta), w, v3_scale(vf_set1(-1.0f), d));
+    *len2 = vf_max(v3_dot(half, half), vf_set1(1e-30f));
+    return v3_scale(vf_div(vf_set1(1.0f), vf_sqrt(*len2)), half);
+}
+
 /* Leaving through the exit point q along w (inside) toward w_o: f_t |w_o . w_m| of the rough
  * interface (Walter et al. 2007) with the generalised half vector w_h = (eta w - w_o) / |.|,
  * T D G |w . w_h| |w_o . w_h| / (|w . w_m| |eta w - w_o|^2) (HHH22 eqs. 21, 31), zero unless w_o
  * sees the point's macronormal and mesonormal and w_h faces out of it. */
 HB_INLINE vf exit_value(const hb_huang *h, const fibre_point *q, v3 w, v3 wo)
 {
-    vf zero = vf_set1(0.0f), eta = vf_set1(h->ior.eta);
-    v3 half = v3_axpy(eta, w, v3_scale(vf_set1(-1.0f), wo));
-    vf len2 = v3_dot(half, half);
-    vf inv_len = vf_div(vf_set1(1.0f), vf_sqrt(vf_max(len2, vf_set1(1e-30f))));
-    v3 wh = v3_scale(inv_len, half);
+    vf zero = vf_set1(0.0f), len2;
+    v3 wh = exit_half_vector(h, w, wo, &len2);
     vf cos_in = v3_dot(w, wh), cos_out = v3_dot(wo, wh);
     vf w_m = v3_dot(w, q->meso), wo_m = v3_dot(wo, q->meso);
     vm ok = vm_and(vf_gt(cos_out, zero), vf_gt(cos_in, zero));
@@ -144,7 +150,7 @@ HB_INLINE vf exit_value(const hb_huang *h, const fibre_point *q, v3 w, v3 wo)
     vf value = vf_mul(fresnel_transmittance(h, cos_out), ndf_huang(h, v3_one_minus_dot(wh, q->meso)));
     if (h->shadowing)
         value = vf_mul(value, vf_mul(smith_g1_huang(h, w_m), smith_g1_huang(h, wo_m)));
-    value = vf_div(vf_mul(value, vf_mul(cos_in, cos_out)), vf_max(vf_mul(w_m, vf_max(len2, vf_set1(1e-30f))), vf_set1(1e-30f)));
+    value = vf_div(vf_mul(value, vf_mul(cos_in, cos_out)), vf_max(vf_mul(w_m, len2), vf_set1(1e-30f)));
     return vf_select(ok, value, zero);
 }
 
@@ -155,22 +161,27 @@ HB_INLINE void absorption(const hb_huang *h, vf length, vf a[3])
         a[c] = vf_exp_flush(vf_max(vf_mul(vf_set1(-h->sigma_a[c]), length), vf_set1(-100.0f)));
 }
 
-/* Where an internal path leaves the fibre: the exit point, the direction inside, and the path's
- * weight up to the exit interface per channel (entry and bounce factors and absorption). */
+/* Where an internal path leaves the fibre: the exit point, the direction inside, the micronormal
+ * that sent the path along it (entry: outer side; bounce: inner side), and the path's weight up to
+ * the exit interface per channel (entry and bounce factors and absorption). */
 typedef struct internal_exit {
     fibre_point q;
     v3 w;
+    v3 normal;
     vf weight[3];
 } internal_exit;
 
 /* One internal path from the entry point p, u[0..3] the visible normals' numbers at interfaces 1
- * and 2: its TT exit (exits[0]) and TRT exit (exits[1], traced only when the plan has TRT), the
- * entry factor |w_i . w_m1| of eqs. 31, 32 included. */
-HB_INLINE void internal_exits(const hb_huang *h, const fibre_point *p, v3 wi, const vf u[4], internal_exit exits[2])
+ * and 2: its TT exit (exits[0]) and TRT exit (exits[1], traced only when `bounce` is set), the
+ * entry factor |w_i . w_m1| of eqs. 31, 32 included. The pdf of eq. 33 fixes one micronormal
+ * instead of drawing it: entry_normal (u[0], u[1] unused), or the bounce normal as the one whose
+ * exit refracts w_t into *tt_exit (u[2], u[3] unused); NULL draws them. */
+HB_INLINE void internal_exits(const hb_huang *h, const fibre_point *p, v3 wi, const vf u[4], internal_exit exits[2],
+                              int bounce, const v3 *entry_normal, const v3 *tt_exit)
 {
     vf zero = vf_set1(0.0f), one = vf_set1(1.0f), inv_eta = vf_set1(1.0f / h->ior.eta);
     /* interface 1: refraction into the fibre through a visible normal of w_i */
-    v3 h1 = visible_micronormal(h, p, wi, 1.0f, u[0], u[1]);
+    v3 h1 = entry_normal ? *entry_normal : visible_micronormal(h, p, wi, 1.0f, u[0], u[1]);
     vf c1 = vf_max(v3_dot(wi, h1), zero);
     vf cos_t = vf_sqrt(vf_max(vf_fnma(vf_mul(inv_eta, inv_eta), vf_fnma(c1, c1, one), one), zero));
     v3 wt = v3_axpy(vf_fnma(vf_set1(h->ior.eta), cos_t, c1), v3_scale(inv_eta, h1), v3_scale(vf_neg(inv_eta), wi));
@@ -182,26 +193,34 @@ HB_INLINE void internal_exits(const hb_huang *h, const fibre_point *p, v3 wi, co
     vf length, a[3];
     exits[0].q = chord_exit(h, p, wt, &length);
     exits[0].w = wt;
+    exits[0].normal = h1;
     absorption(h, length, a);
     for (int c = 0; c < 3; c++)
         exits[0].weight[c] = vf_mul(entry, a[c]);
-    if (!(h->lobes >> HB_LOBE_TRT & 1u))
+    if (!bounce)
         return; /* exits[1] is left unset: callers skip the lobes the plan leaves out */
     /* interface 2: internal reflection off a visible normal (inner side) of -w_t */
     const fibre_point *q = &exits[0].q;
-    v3 h2 = visible_micronormal(h, q, v3_scale(vf_set1(-1.0f), wt), -1.0f, u[2], u[3]);
+    v3 h2;
+    if (tt_exit) {
+        vf len2;
+        h2 = v3_scale(vf_set1(-1.0f), exit_half_vector(h, wt, *tt_exit, &len2));
+    } else {
+        h2 = visible_micronormal(h, q, v3_scale(vf_set1(-1.0f), wt), -1.0f, u[2], u[3]);
+    }
     vf c2 = vf_max(vf_neg(v3_dot(wt, h2)), zero);
     v3 wtr = v3_axpy(vf_add(c2, c2), h2, wt);
     vf wt_m2 = v3_dot(wt, q->meso), wtr_m2 = vf_neg(v3_dot(wtr, q->meso));
     vm back = vm_and(vf_gt(wtr_m2, zero), vf_lt(v3_dot(wtr, q->macro), zero));
-    vf bounce = vf_mul(fresnel_from_inside(h, c2), sampled_shadowing(h, wt_m2, wtr_m2));
-    bounce = vf_select(back, vf_mul(entry, bounce), zero);
+    vf bounce_factor = vf_mul(fresnel_from_inside(h, c2), sampled_shadowing(h, wt_m2, wtr_m2));
+    bounce_factor = vf_select(back, vf_mul(entry, bounce_factor), zero);
     vf length2, a2[3];
     exits[1].q = chord_exit(h, q, wtr, &length2);
     exits[1].w = wtr;
+    exits[1].normal = h2;
     absorption(h, length2, a2);
     for (int c = 0; c < 3; c++)
-        exits[1].weight[c] = vf_mul(bounce, vf_mul(a[c], a2[c]));
+        exits[1].weight[c] = vf_mul(bounce_factor, vf_mul(a[c], a2[c]));
 }
 
 /* The entry window of w_i, |phi_m1 - phi_i| <= pi/2 - cut_i, and composite Simpson over it with
@@ -260,7 +279,7 @@ HB_INLINE void huang_internal(const hb_huang *h, const huang_directions *d, vi i
         for (int k = 0; k < 4; k++)
             u[k] = rng_uniform(stream, h->rng_key2, 4 * j + k);
         internal_exit exits[2];
-        internal_exits(h, &p, e.wi, u, exits);
+        internal_exits(h, &p, e.wi, u, exits, h->lobes >> HB_LOBE_TRT & 1u, NULL, NULL);
         for (int l = 0; l < 2; l++) {
             if (!(h->lobes >> (HB_LOBE_TT + l) & 1u))
                 continue;

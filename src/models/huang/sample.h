@@ -169,15 +169,11 @@ HB_INLINE void beckmann_visible_normal(const hb_huang *h, const vf o[3], vf u1, 
     m[2] = norm;
 }
 
-/* Steps 1-3: the direction w_i = (theta_i, phi_i) for w_o and u[0..2]. */
-HB_INLINE void huang_sample_direction(const hb_huang *h, vf theta_o, vf phi_o, const vf u[3], vf *theta_i, vf *phi_i)
+/* Step 1: the azimuth psi = phi_m - phi_o of the mesonormal at an offset drawn uniformly (u0)
+ * across the part of the projected width that w_o's window w covers. */
+HB_INLINE void huang_sample_offset(const hb_huang *h, const huang_o_window *w, vf phi_o, vf u0, vf *sin_psi, vf *cos_psi)
 {
-    vf one = vf_set1(1.0f), sin_to, cos_to;
-    vf_sincos(theta_o, &sin_to, &cos_to);
-    cos_to = vf_max(cos_to, vf_set1(0.0f));
-    huang_o_window w = huang_o_window_of(h, cos_to, sin_to, phi_o);
-    /* step 1: the mesonormal's azimuth psi = phi_m - phi_o */
-    vf sin_psi, cos_psi;
+    vf one = vf_set1(1.0f);
     if (h->elliptical) {
         /* on the circle the ellipse is the image of, the point of projected offset s sits at
          * gamma = chi + asin(s / a), chi the view's azimuth there; its normal is (b sin g, cos g) */
@@ -185,19 +181,29 @@ HB_INLINE void huang_sample_direction(const hb_huang *h, vf theta_o, vf phi_o, c
         vf_sincos(wrap_angle(phi_o), &sin_po, &cos_po);
         vf b = vf_set1(h->b);
         vf a = vf_sqrt(vf_fnma(vf_set1(h->e2), vf_mul(sin_po, sin_po), one));
-        vf sin_d = vf_clamp(vf_div(vf_fma(u[0], w.projected, w.lo_projected), a), -1.0f, 1.0f);
+        vf sin_d = vf_clamp(vf_div(vf_fma(u0, w->projected, w->lo_projected), a), -1.0f, 1.0f);
         vf cos_d = vf_sqrt(vf_fnma(sin_d, sin_d, one));
         vf cos_chi = vf_div(cos_po, a), sin_chi = vf_div(vf_mul(b, sin_po), a);
         vf sin_g = vf_fma(sin_chi, cos_d, vf_mul(cos_chi, sin_d)), cos_g = vf_fnma(sin_chi, sin_d, vf_mul(cos_chi, cos_d));
         vf nx = vf_mul(b, sin_g), nz = cos_g, inv = vf_div(one, vf_sqrt(vf_fma(nx, nx, vf_mul(nz, nz))));
         nx = vf_mul(nx, inv);
         nz = vf_mul(nz, inv);
-        sin_psi = vf_fnma(nz, sin_po, vf_mul(nx, cos_po));
-        cos_psi = vf_fma(nz, cos_po, vf_mul(nx, sin_po));
+        *sin_psi = vf_fnma(nz, sin_po, vf_mul(nx, cos_po));
+        *cos_psi = vf_fma(nz, cos_po, vf_mul(nx, sin_po));
     } else {
-        sin_psi = vf_mul(vf_fma(vf_set1(2.0f), u[0], vf_set1(-1.0f)), w.sin_half);
-        cos_psi = vf_sqrt(vf_max(vf_fnma(sin_psi, sin_psi, one), vf_set1(0.0f)));
+        *sin_psi = vf_mul(vf_fma(vf_set1(2.0f), u0, vf_set1(-1.0f)), w->sin_half);
+        *cos_psi = vf_sqrt(vf_max(vf_fnma(*sin_psi, *sin_psi, one), vf_set1(0.0f)));
     }
+}
+
+/* Steps 1-3: the direction w_i = (theta_i, phi_i) for w_o and u[0..2]. */
+HB_INLINE void huang_sample_direction(const hb_huang *h, vf theta_o, vf phi_o, const vf u[3], vf *theta_i, vf *phi_i)
+{
+    vf sin_to, cos_to, sin_psi, cos_psi;
+    vf_sincos(theta_o, &sin_to, &cos_to);
+    cos_to = vf_max(cos_to, vf_set1(0.0f));
+    huang_o_window w = huang_o_window_of(h, cos_to, sin_to, phi_o);
+    huang_sample_offset(h, &w, phi_o, u[0], &sin_psi, &cos_psi);
     /* the mesonormal frame in the frame of w_o (phi_o = 0): w_m = (ct sin psi, st, ct cos psi),
      * t1 = (cos psi, 0, -sin psi), t2 = (-st sin psi, ct, -st cos psi) (eq. 39) */
     vf ct = vf_set1(h->cos_tilt), st = vf_set1(h->sin_tilt);

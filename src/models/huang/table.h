@@ -119,7 +119,7 @@ HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, int
             for (int k = 0; k < 4; k++)
                 u[k] = unit_fraction(vf_fma(index, vf_set1(r4_alpha[k]), rng_uniform(stream, h->rng_key2, k)));
             internal_exit exits[2];
-            internal_exits(h, &p, e.wi, u, exits);
+            internal_exits(h, &p, e.wi, u, exits, h->lobes >> HB_LOBE_TRT & 1u, NULL, NULL);
             for (int l = 0; l < 2; l++) {
                 if (!(h->lobes >> (HB_LOBE_TT + l) & 1u))
                     continue;
