@@ -88,6 +88,15 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, row
         t[k] = (now_ns() - t0) / BATCH;
     }
     qsort(t, (size_t)repeats, sizeof t[0], compare_double);
+    int traced = o->model == HB_MODEL_HUANG && (o->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT));
+    if (traced && op != OP_EVAL) { /* path weights and eq. 33's pdf are estimates: no reference */
+        r->min_ns = t[0];
+        r->median_ns = t[repeats / 2];
+        r->isa = hb_plan_isa(plan);
+        r->max_rel_err = NAN;
+        hb_plan_destroy(plan);
+        return 1;
+    }
     if (op == OP_SAMPLE) { /* the weight's error: f_ref / pdf at the sampled directions */
         hb_options ro = *o;
         ro.quality = HB_QUALITY_REFERENCE;
@@ -152,6 +161,8 @@ static int check_budgets(const char *path, const row *rows, int nrows)
     return over;
 }
 
+#define HB_LOBES_HUANG (1u << HB_LOBE_R | 1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)
+
 typedef struct config {
     const char *model, *term, *variant;
     hb_model model_enum;
@@ -163,6 +174,8 @@ typedef struct config {
     hb_r_integration r_integration; /* HHH22 */
     double r_step;                  /* HHH22: the paper's Simpson rule */
     bench_op op;
+    unsigned lobes; /* HHH22: 0 for R alone */
+    hb_tt_trt tt_trt;
 } config;
 
 /* What each row measures: dFH11's M_p alone and its full model (R..TRRT + residual, RGB) per
@@ -174,30 +187,44 @@ typedef struct config {
  * (against the reference quality's pdf: dFH11's procedure with the high-quality node set, HHH22's
  * by adaptive quadrature). */
 static const config configs[] = {
-    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
-    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
-    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
-    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
-    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
-    { "deon", "full", "nodes35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
+    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
+    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
+    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
+    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
+    { "deon", "full", "nodes35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
     { "marschner", "longitudinal", "gaussian", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0,
-      HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
-    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+      HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
+    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
     { "huang", "R", "analytic", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL },
-    { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
-    { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
-    { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL },
+      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
+    { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
+    { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
+    { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC },
     { "huang", "R", "G-paper-step", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7, OP_EVAL },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7, OP_EVAL, 0, HB_TT_TRT_MC },
     { "deon", "sample", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC },
     { "deon", "pdf", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC },
     { "huang", "sample", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC },
     { "huang", "pdf", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC },
+    { "huang", "all", "mc-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
+      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC },
+    { "huang", "all", "mc-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC },
+    { "huang", "all", "table-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE },
+    { "huang", "all", "table-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE },
+    { "huang", "TT+TRT", "table-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG & ~1u, HB_TT_TRT_TABLE },
+    { "huang", "sample-all", "balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, HB_LOBES_HUANG, HB_TT_TRT_MC },
+    { "huang", "pdf-all", "balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, HB_LOBES_HUANG, HB_TT_TRT_MC },
 };
 
 /* The options of a configuration (quality and ISA left to the caller where they differ). */
@@ -212,14 +239,59 @@ static void options_of(const config *c, hb_options *o)
     o->shadowing = c->shadowing;
     o->r_integration = c->r_integration;
     o->r_step = c->r_step;
-    if (c->model_enum == HB_MODEL_HUANG)
-        o->lobes = 1u << HB_LOBE_R;
+    if (c->model_enum == HB_MODEL_HUANG) {
+        o->lobes = c->lobes ? c->lobes : 1u << HB_LOBE_R;
+        o->tt_trt = c->tt_trt;
+    }
 }
 #define N_CONFIGS (sizeof configs / sizeof configs[0])
+
+enum { REFERENCE_SEEDS = 1024 };
+
+
+/* HHH22 with TT and TRT: the nested-quadrature reference takes seconds per pair, so the reference is
+ * the mean of the high-quality estimator over REFERENCE_SEEDS seeds (its own noise about 1.5% of a
+ * value), made once per lobe set. */
+static void internal_reference(const hb_material *m, const config *c)
+{
+    static unsigned made = 0;
+    static float cache[2][3][NREF];
+    int slot = c->lobes >> HB_LOBE_R & 1u;
+    if (!(made >> slot & 1u)) {
+        static double sum[3][NREF];
+        memset(sum, 0, sizeof sum);
+        for (int s = 0; s < REFERENCE_SEEDS; s++) {
+            hb_options o;
+            options_of(c, &o);
+            o.quality = HB_QUALITY_HIGH;
+            o.tt_trt = HB_TT_TRT_MC;
+            o.seed = (unsigned long long)s;
+            hb_plan *plan;
+            hb_plan_create(m, &o, &plan, NULL);
+            hb_eval_angles(plan, NREF, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
+                           (hb_rgb_soa){ out[0], out[1], out[2] }, NULL);
+            hb_plan_destroy(plan);
+            for (int ch = 0; ch < 3; ch++)
+                for (int k = 0; k < NREF; k++)
+                    sum[ch][k] += out[ch][k];
+        }
+        for (int ch = 0; ch < 3; ch++)
+            for (int k = 0; k < NREF; k++)
+                cache[slot][ch][k] = (float)(sum[ch][k] / REFERENCE_SEEDS);
+        made |= 1u << slot;
+    }
+    for (int ch = 0; ch < 3; ch++)
+        memcpy(ref[ch], cache[slot][ch], sizeof cache[slot][ch]);
+}
 
 /* The double reference of the plan's term for the first NREF samples (it is slow). */
 static void reference_of(const hb_material *m, const config *c)
 {
+    if (c->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)) {
+        if (c->op == OP_EVAL)
+            internal_reference(m, c);
+        return;
+    }
     hb_options o;
     options_of(c, &o);
     o.quality = HB_QUALITY_REFERENCE;
