@@ -283,6 +283,17 @@ void hb_uniforms(unsigned long long seed, unsigned long long first, size_t n, in
  * term T = f / N_p is integrated as T cos(theta_i) over theta_i (dFH11 eq. 5, Fig. 3). */
 hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3]);
 
+/* HHH22's energy by scattering order (its Fig. 16: what dropping the lobes beyond TRT loses): the
+ * energy leaving a fibre lit along w = (theta, 0), split into R, TT, TRT and every order beyond, by a
+ * random walk of `paths` paths through the rough fibre (visible normals at each interface, in double;
+ * README "Huang energy beyond TRT"); standard_error (may be NULL) gets each group's standard error
+ * of the channel mean. The first three groups equal hb_furnace of the R, TT and TRT lobes for
+ * alpha = 0 (where the model is reciprocal). HHH22 plans of circular fibres only (else
+ * HB_ERR_UNSUPPORTED); the walk's cost grows with paths, not with the plan's quality. */
+#define HB_ORDER_GROUPS 4
+hb_status hb_furnace_orders(const hb_plan *plan, double theta, long paths, unsigned long long seed,
+                            double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS]);
+
 /* Instruction sets: names as used by --isa and the HB_ISA environment variable
  * ("scalar", "sse4.1", "avx2", "avx512", "neon"). */
 const char *hb_isa_name(hb_isa isa);

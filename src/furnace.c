@@ -5,6 +5,7 @@
 
 #include "plan.h"
 #include "quadrature.h"
+#include "ref/reference.h"
 
 enum { CHUNK = 512, RULE = 8 };
 
@@ -47,6 +48,8 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
     double weight[CHUNK], x[RULE], w[RULE];
     double sum[3] = { 0.0, 0.0, 0.0 };
     int count = 0;
+    unsigned long long chunks = 0;
+    hb_plan varied = *plan; /* a shallow copy: it shares the plan's tables and is never destroyed */
     for (int panel = 0; panel < panels; panel++) {
         hb_gauss_legendre(RULE, -M_PI_2 + M_PI * panel / panels, -M_PI_2 + M_PI * (panel + 1) / panels, x, w);
         for (int j = 0; j < RULE; j++)
@@ -58,7 +61,10 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
                 weight[count] = w[j] * cos(x[j]) * (longitudinal ? 1.0 : 2.0 * M_PI / nphi); /* dw_i = cos dtheta dphi */
                 int last = panel == panels - 1 && j == RULE - 1 && q == nphi - 1;
                 if (++count == CHUNK || last) {
-                    hb_eval_angles(plan, (size_t)count, (hb_angles_soa){ ti, pi, to, po },
+                    /* HHH22's Monte-Carlo TT and TRT draw by sample index, which restarts with
+                     * every chunk: a key per chunk keeps the chunks' numbers independent */
+                    varied.huang.rng_key = plan->huang.rng_key ^ (uint32_t)hb_mix64((unsigned long long)++chunks);
+                    hb_eval_angles(&varied, (size_t)count, (hb_angles_soa){ ti, pi, to, po },
                                    (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
                     for (int c = 0; c < 3; c++)
                         for (int k = 0; k < count; k++)
@@ -69,5 +75,19 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
     }
     for (int c = 0; c < 3; c++)
         energy[c] = sum[c];
+    return HB_OK;
+}
+
+hb_status hb_furnace_orders(const hb_plan *plan, double theta, long paths, unsigned long long seed,
+                            double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS])
+{
+    if (!plan || !energy)
+        return HB_ERR_NULL;
+    if (plan->options.model != HB_MODEL_HUANG || plan->material.eccentricity != 0.0)
+        return HB_ERR_UNSUPPORTED;
+    if (!(fabs(theta) < M_PI_2) || paths < 1)
+        return HB_ERR_PARAM;
+    double unused[HB_ORDER_GROUPS];
+    hb_ref_huang_orders(plan, theta, paths, seed, energy, standard_error ? standard_error : unused);
     return HB_OK;
 }

@@ -256,6 +256,20 @@ static void test_marschner_commands(hb_test_ctx *t)
     CHECK(t, r.status == 0 && sscanf(strchr(r.out, '\n') + 1, "%lf,%lf,%lf,%lf", &theta, &e[0], &e[1], &e[2]) == 4 &&
                  e[0] > 1.5 && e[0] < 2.5,
           "marschner furnace: %s", r.out);
+    /* HHH22 Fig. 16: energy by order, the share beyond TRT falling from blond to black */
+    run_tool(t, "furnace --fig16 --theta-o 0 --paths 2000", "", &r);
+    double share[4] = { -1.0, -1.0, -1.0, -1.0 };
+    const char *line = r.out;
+    for (int k = 0; k < 4 && line && (line = strchr(line, '\n')); k++) {
+        char name[16];
+        double th, er, ett, etrt, eb, se;
+        if (sscanf(++line, "%15[a-z],%lf,%lf,%lf,%lf,%lf,%lf,%lf", name, &th, &er, &ett, &etrt, &eb, &se, &share[k]) != 8)
+            share[k] = -1.0;
+    }
+    CHECK(t, r.status == 0 && share[0] > share[1] && share[1] > share[2] && share[2] > share[3] && share[3] >= 0.0,
+          "furnace --fig16: %s", r.out);
+    run_tool(t, "furnace --model huang --eccentricity 0.5 --orders --theta-o 0", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "circular"), "elliptical --orders: %s", r.err);
 }
 
 /* hairbsdf sample and pdf: rows that are the library's samples, a summary whose mean weight is

@@ -299,10 +299,78 @@ static void test_internal_hard_cases(hb_test_ctx *t)
     }
 }
 
+/* HHH22 Fig. 16's random walk (hb_furnace_orders): its R, TT and TRT agree with hb_furnace of each
+ * lobe (quadrature of the table's f over w_i, alpha = 0 so the model is reciprocal) within 4 of the
+ * walk's standard errors plus 3% (the table's error integrated: README "Huang TT and TRT tables"); a lossless fibre
+ * sends at most all the light back out and some of it beyond TRT; a black fibre nothing beyond;
+ * elliptical fibres and other models are refused. */
+static void test_internal_orders(hb_test_ctx *t)
+{
+    long paths = t->emulated ? 20000 : 100000;
+    const internal_case absorbing = { HB_NDF_GGX, 0.3, 0.0, 0.0, 1, 0.1, 0, 0, 0, 0 };
+    static const double thetas[] = { 0.0, 0.8 };
+    for (int k = 0; k < 2; k++) {
+        hb_plan *plan = internal_plan(t, &absorbing, 1u << HB_LOBE_R | TT_TRT, HB_ISA_AUTO, 0);
+        if (!plan)
+            return;
+        double e[HB_ORDER_GROUPS][3], se[HB_ORDER_GROUPS];
+        CHECK(t, hb_furnace_orders(plan, thetas[k], paths, 7, e, se) == HB_OK, "hb_furnace_orders failed");
+        hb_plan_destroy(plan);
+        for (int lobe = 0; lobe < 3; lobe++) {
+            /* the furnace of the table (deterministic; the estimator's noise would swing TT by
+             * 5-10% at the furnace's few points inside the lobe) */
+            hb_material m;
+            hb_options o;
+            hb_material_default(&m);
+            hb_options_default(&o);
+            m.roughness = absorbing.roughness;
+            m.alpha = 0.0;
+            for (int c = 0; c < 3; c++)
+                m.sigma_a[c] = absorbing.sigma_a * (1 << c);
+            o.model = HB_MODEL_HUANG;
+            o.lobes = 1u << lobe;
+            o.tt_trt = HB_TT_TRT_TABLE;
+            hb_plan *one = NULL;
+            CHECK(t, hb_plan_create(&m, &o, &one, NULL) == HB_OK, "table plan");
+            double f[3] = { 0.0, 0.0, 0.0 };
+            hb_furnace(one, thetas[k], f);
+            hb_plan_destroy(one);
+            double walk = (e[lobe][0] + e[lobe][1] + e[lobe][2]) / 3.0, furnace = (f[0] + f[1] + f[2]) / 3.0;
+            hb_test_note(t, "theta %.1f lobe %d: walk %.5f +- %.5f, furnace %.5f", thetas[k], lobe, walk, se[lobe], furnace);
+            CHECK(t, fabs(walk - furnace) <= 4.0 * se[lobe] + 0.03 * furnace, "theta %.1f lobe %d: walk %.5f, furnace %.5f",
+                  thetas[k], lobe, walk, furnace);
+        }
+    }
+    const internal_case lossless = { HB_NDF_BECKMANN, 0.15, 2.0, 0.0, 1, 0.0, 0, 0, 0, 0 };
+    const internal_case black = { HB_NDF_BECKMANN, 0.15, 2.0, 0.0, 1, 30.0, 0, 0, 0, 0 };
+    hb_plan *clear = internal_plan(t, &lossless, TT_TRT, HB_ISA_AUTO, 0), *dark = internal_plan(t, &black, TT_TRT, HB_ISA_AUTO, 0);
+    if (!clear || !dark)
+        return;
+    double e[HB_ORDER_GROUPS][3], se[HB_ORDER_GROUPS], d[HB_ORDER_GROUPS][3];
+    hb_furnace_orders(clear, 1.2, paths / 10, 3, e, se);
+    hb_furnace_orders(dark, 1.2, paths / 10, 3, d, NULL);
+    double total = 0.0, spread = 0.0;
+    for (int g = 0; g < HB_ORDER_GROUPS; g++) {
+        total += e[g][0];
+        spread += se[g];
+    }
+    CHECK(t, total <= 1.0 + 4.0 * spread && total > 0.8, "lossless: %.5f leaves the fibre", total);
+    CHECK(t, e[3][0] > 0.05, "lossless at theta 1.2: only %.5f beyond TRT", e[3][0]);
+    CHECK(t, d[3][0] < 1e-6 && d[1][0] < 1e-6, "black: TT %.3g, beyond %.3g", d[1][0], d[3][0]);
+    CHECK(t, hb_furnace_orders(clear, M_PI_2, 10, 0, e, NULL) == HB_ERR_PARAM, "theta = pi/2 accepted");
+    hb_plan_destroy(clear);
+    hb_plan_destroy(dark);
+    const internal_case ellipse = { HB_NDF_GGX, 0.3, 0.0, 0.8, 1, 0.0, 0, 0, 0, 0 };
+    hb_plan *oval = internal_plan(t, &ellipse, TT_TRT, HB_ISA_AUTO, 0);
+    CHECK(t, hb_furnace_orders(oval, 0.0, 10, 0, e, NULL) == HB_ERR_UNSUPPORTED, "elliptical fibre accepted");
+    hb_plan_destroy(oval);
+}
+
 const hb_test hb_tests_huang_internal[] = {
     { "huang_internal_matches_double", test_internal_matches_double, 1 },
     { "huang_internal_unbiased", test_internal_unbiased, 0 },
     { "huang_internal_reciprocal", test_internal_reciprocal, 0 },
+    { "huang_internal_orders", test_internal_orders, 0 },
     { "huang_internal_seed", test_internal_seed, 1 },
     { "huang_internal_hard_cases", test_internal_hard_cases, 1 },
     { 0 },

@@ -1,5 +1,6 @@
 /* hairbsdf furnace: white-furnace energy E(w_o) (SPEC.md section 2) against theta_o, in total
  * or split by lobe (dFH11 Fig. 5: the share of TRRT and above). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,9 +9,14 @@
 
 static void furnace_usage(FILE *to)
 {
-    fprintf(to, "usage: hairbsdf furnace [options] [--theta-o A,B,...] [--by-lobe]\n"
+    fprintf(to, "usage: hairbsdf furnace [options] [--theta-o A,B,...] [--by-lobe | --orders [--paths N] | --fig16]\n"
                 "Prints theta_o,E_r,E_g,E_b: the integral of f over all w_i. With --by-lobe, the red\n"
-                "channel's energy per lobe (R..pmax, residual), the total, and the share of p >= 3.\n%s",
+                "channel's energy per lobe (R..pmax, residual), the total, and the share of p >= 3.\n"
+                "--orders (huang, circular): the energy leaving by order, R, TT, TRT and all beyond, by a\n"
+                "random walk of N paths (default 20000) per theta (channel mean, standard error of the\n"
+                "beyond column), and the share beyond TRT, which the model drops (HHH22 Fig. 16).\n"
+                "--fig16: --orders for HHH22 Fig. 16's fibres (alpha 2 deg, Beckmann 0.15, eumelanin\n"
+                "0.06 blond, 0.6 brown, 1.8 black) and a lossless one.\n%s",
             cli_model_options_help);
 }
 
@@ -31,12 +37,42 @@ static int energy(const cli_model_args *args, unsigned lobes, double theta_o, do
     return st == HB_OK;
 }
 
+/* --orders: one row per theta for the material (named `fibre`). */
+static int orders(const cli_model_args *args, const char *fibre, const double *thetas, int ntheta, long paths)
+{
+    hb_plan *plan;
+    hb_error err;
+    if (hb_plan_create(&args->material, &args->options, &plan, &err) != HB_OK) {
+        fprintf(stderr, "hairbsdf furnace: %s\n", err.message);
+        return 0;
+    }
+    for (int k = 0; k < ntheta; k++) {
+        double e[HB_ORDER_GROUPS][3], se[HB_ORDER_GROUPS], mean[HB_ORDER_GROUPS], total = 0.0;
+        hb_status st = hb_furnace_orders(plan, thetas[k], paths, 1, e, se);
+        if (st != HB_OK) {
+            fprintf(stderr, "hairbsdf furnace: --orders: %s (huang plans of circular fibres, |theta| < pi/2)\n",
+                    hb_status_string(st));
+            hb_plan_destroy(plan);
+            return 0;
+        }
+        for (int g = 0; g < HB_ORDER_GROUPS; g++) {
+            mean[g] = (e[g][0] + e[g][1] + e[g][2]) / 3.0;
+            total += mean[g];
+        }
+        printf("%s,%.4f,%.5f,%.5f,%.5f,%.5f,%.5f,%.4f\n", fibre, thetas[k], mean[0], mean[1], mean[2], mean[3],
+               se[3], total > 0.0 ? mean[3] / total : 0.0);
+    }
+    hb_plan_destroy(plan);
+    return 1;
+}
+
 int cmd_furnace(int argc, char **argv)
 {
     cli_model_args args;
     cli_model_args_default(&args);
     double thetas[64];
-    int ntheta = 0, by_lobe = 0;
+    int ntheta = 0, by_lobe = 0, by_order = 0, fig16 = 0;
+    long paths = 20000;
     char err[256];
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
@@ -45,6 +81,20 @@ int cmd_furnace(int argc, char **argv)
         }
         if (strcmp(argv[i], "--by-lobe") == 0) {
             by_lobe = 1;
+            continue;
+        }
+        if (strcmp(argv[i], "--orders") == 0 || strcmp(argv[i], "--fig16") == 0) {
+            by_order = 1;
+            fig16 |= strcmp(argv[i], "--fig16") == 0;
+            continue;
+        }
+        if (strcmp(argv[i], "--paths") == 0 && i + 1 < argc) {
+            char *end;
+            paths = strtol(argv[++i], &end, 10);
+            if (*end || paths < 1) {
+                fprintf(stderr, "hairbsdf furnace: --paths: '%s' is not a positive count\n", argv[i]);
+                return 2;
+            }
             continue;
         }
         if (strcmp(argv[i], "--theta-o") == 0 && i + 1 < argc) {
@@ -68,6 +118,28 @@ int cmd_furnace(int argc, char **argv)
     if (!ntheta)
         for (; ntheta < 13; ntheta++)
             thetas[ntheta] = -1.5 + 0.25 * ntheta;
+    if (by_order) {
+        printf("fibre,theta,E_R,E_TT,E_TRT,E_beyond,stderr_beyond,share_beyond\n");
+        if (!fig16)
+            return orders(&args, "material", thetas, ntheta, paths) ? 0 : 2;
+        /* HHH22 Fig. 16: alpha 2 degrees, Beckmann 0.15, e = 0; sigma_a = 0 and three melanin contents */
+        static const struct { const char *name; double eumelanin; } fibres[] = {
+            { "lossless", 0.0 }, { "blond", 0.06 }, { "brown", 0.6 }, { "black", 1.8 } };
+        for (int f = 0; f < 4; f++) {
+            cli_model_args fig = args;
+            fig.options.model = HB_MODEL_HUANG;
+            fig.material.alpha = 2.0 * M_PI / 180.0;
+            fig.material.ndf = HB_NDF_BECKMANN;
+            fig.material.roughness = 0.15;
+            fig.material.eccentricity = 0.0;
+            fig.material.sigma_a[0] = fig.material.sigma_a[1] = fig.material.sigma_a[2] = 0.0;
+            fig.material.eumelanin = fibres[f].eumelanin;
+            fig.material.pheomelanin = 0.0;
+            if (!orders(&fig, fibres[f].name, thetas, ntheta, paths))
+                return 2;
+        }
+        return 0;
+    }
     int pmax = args.options.pmax;
     if (by_lobe) {
         printf("theta_o");

@@ -285,3 +285,113 @@ void hb_ref_huang_internal(const hb_plan *plan, double theta_i, double phi_i, do
     if (plan->huang.lobes >> HB_LOBE_TRT & 1u)
         nested(plan, HB_LOBE_TRT, &s, n_phi, phi_x, phi_w, trt_points, trt);
 }
+
+/* The visible-normal sample's weight through an interface besides Fresnel (Heitz 2014): G1 of
+ * the outgoing direction with shadowing, 1 / G1 of the incoming one without. */
+static double sampled_shadowing(const hb_plan *plan, double cos_in, double cos_out)
+{
+    if (plan->options.shadowing == HB_SHADOWING_SMITH)
+        return g1(plan, cos_out);
+    return 1.0 / fmax(g1(plan, cos_in), 1e-300);
+}
+
+static double walk_uniform(unsigned long long *state)
+{
+    *state += 0x9e3779b97f4a7c15ull;
+    return (double)(hb_mix64(*state) >> 11) * 0x1p-53;
+}
+
+enum { WALK_ORDERS = 64 };
+
+/* HHH22 Fig. 16 by a random walk through the rough circular fibre, light arriving along
+ * w = (theta, phi = 0): the entry offset uniform across the part of the projected width whose
+ * mesonormal faces w (weight W w.w_m1 / (2 cos(theta) cos(psi)), as in the kernels' sampler), a
+ * visible normal at every interface, and at each internal hit the transmitted part leaving as order
+ * p (splitting) and the reflected part going on; energy[p][c] per order p = 0 (R), 1 (TT), 2 (TRT),
+ * 3 (everything beyond), the mean over `paths` walks, *standard_error[p] that of the channel mean. */
+void hb_ref_huang_orders(const hb_plan *plan, double theta, long paths, unsigned long long seed,
+                         double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS])
+{
+    const hb_material *m = &plan->material;
+    double sum[HB_ORDER_GROUPS][3] = { { 0.0 } }, sum2[HB_ORDER_GROUPS] = { 0.0 };
+    double half, lo, hi, eta = m->eta, wa[3] = { 0.0, sin(theta), cos(theta) };
+    int seen = hb_ref_huang_o_window(plan, theta, 0.0, &half, &lo, &hi);
+    unsigned long long state = hb_mix64(seed ^ 0x243f6a8885a308d3ull);
+    for (long n = 0; seen && n < paths; n++) {
+        double path[HB_ORDER_GROUPS][3] = { { 0.0 } };
+        double sin_psi = (2.0 * walk_uniform(&state) - 1.0) * sin(half), cos_psi = sqrt(1.0 - sin_psi * sin_psi);
+        point p, q;
+        entry_point(plan, atan2(sin_psi, cos_psi), &p);
+        double h1[3], wt[3], d[3];
+        double u1 = walk_uniform(&state), u2 = walk_uniform(&state);
+        micronormal(plan, &p, wa, 1.0, u1, u2, h1);
+        double c1 = dot3(wa, h1), wa_m = dot3(wa, p.meso);
+        double weight0 = 2.0 * sin(half) * wa_m / (2.0 * cos(theta) * fmax(cos_psi, 1e-300));
+        if (!(c1 > 0.0 && wa_m > 0.0 && cos_psi > 1e-9))
+            continue;
+        /* R: reflection off h1 */
+        for (int k = 0; k < 3; k++)
+            d[k] = 2.0 * c1 * h1[k] - wa[k];
+        double f1 = hb_ref_fresnel(eta, fmin(c1, 1.0)), d_m = dot3(d, p.meso);
+        if (d_m > 0.0 && dot3(d, p.macro) > 0.0)
+            for (int c = 0; c < 3; c++)
+                path[0][c] = weight0 * f1 * sampled_shadowing(plan, wa_m, d_m);
+        /* into the fibre */
+        double cos_t = sqrt(fmax(1.0 - (1.0 - c1 * c1) / (eta * eta), 0.0));
+        for (int k = 0; k < 3; k++)
+            wt[k] = (c1 / eta - cos_t) * h1[k] - wa[k] / eta;
+        double wt_m = -dot3(wt, p.meso), weight[3];
+        if (wt_m > 0.0 && dot3(wt, p.macro) < 0.0) {
+            for (int c = 0; c < 3; c++)
+                weight[c] = weight0 * (1.0 - f1) * sampled_shadowing(plan, wa_m, wt_m);
+            for (int order = 1; order < WALK_ORDERS; order++) {
+                double length, h[3], minus_w[3] = { -wt[0], -wt[1], -wt[2] };
+                chord_exit(plan, &p, wt, &q, &length);
+                for (int c = 0; c < 3; c++)
+                    weight[c] *= exp(-plan->sigma_a[c] * length);
+                u1 = walk_uniform(&state);
+                u2 = walk_uniform(&state);
+                micronormal(plan, &q, minus_w, -1.0, u1, u2, h); /* inner side: faces inward */
+                double c_in = -dot3(wt, h), w_m = dot3(wt, q.meso), sin2 = eta * eta * (1.0 - c_in * c_in);
+                if (sin2 < 1.0 && c_in > 0.0 && w_m > 0.0 && -dot3(h, q.meso) > 0.0) { /* out through -h */
+                    double cos_out = sqrt(1.0 - sin2);
+                    for (int k = 0; k < 3; k++)
+                        d[k] = eta * wt[k] - (cos_out - eta * c_in) * h[k];
+                    d_m = dot3(d, q.meso);
+                    if (d_m > 0.0 && dot3(d, q.macro) > 0.0) {
+                        double leave = (1.0 - hb_ref_fresnel(eta, fmin(cos_out, 1.0))) * sampled_shadowing(plan, w_m, d_m);
+                        int group = order < HB_ORDER_GROUPS - 1 ? order : HB_ORDER_GROUPS - 1;
+                        for (int c = 0; c < 3; c++)
+                            path[group][c] += weight[c] * leave;
+                    }
+                }
+                /* the reflected part goes on */
+                for (int k = 0; k < 3; k++)
+                    wt[k] += 2.0 * c_in * h[k];
+                double back_m = -dot3(wt, q.meso);
+                if (!(c_in > 0.0 && back_m > 0.0 && dot3(wt, q.macro) < 0.0))
+                    break;
+                double bounce = fresnel_inside(eta, c_in) * sampled_shadowing(plan, w_m, back_m), largest = 0.0;
+                for (int c = 0; c < 3; c++) {
+                    weight[c] *= bounce;
+                    largest = fmax(largest, weight[c]);
+                }
+                if (largest < 1e-9)
+                    break;
+                p = q;
+            }
+        }
+        for (int g = 0; g < HB_ORDER_GROUPS; g++) {
+            double mean = (path[g][0] + path[g][1] + path[g][2]) / 3.0;
+            sum2[g] += mean * mean;
+            for (int c = 0; c < 3; c++)
+                sum[g][c] += path[g][c];
+        }
+    }
+    for (int g = 0; g < HB_ORDER_GROUPS; g++) {
+        double mean = (sum[g][0] + sum[g][1] + sum[g][2]) / (3.0 * (double)paths);
+        standard_error[g] = paths > 1 ? sqrt(fmax(sum2[g] / (double)paths - mean * mean, 0.0) / (double)(paths - 1)) : 0.0;
+        for (int c = 0; c < 3; c++)
+            energy[g][c] = seen && paths > 0 ? sum[g][c] / (double)paths : 0.0;
+    }
+}

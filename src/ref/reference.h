@@ -92,6 +92,10 @@ void hb_ref_huang_visible_normal(const hb_plan *plan, const double o[3], double 
  * `counter` of sample `index` under the plan's keys. */
 float hb_ref_huang_uniform(const hb_plan *plan, unsigned index, unsigned counter);
 /* The kernels' estimator (eqs. 31, 32) in double with the same numbers: f_TT and f_TRT per channel. */
+/* HHH22 Fig. 16: energy leaving a circular fibre lit along (theta, 0) by scattering order (R, TT,
+ * TRT, beyond), by a random walk of `paths` paths; standard errors of the channel mean. */
+void hb_ref_huang_orders(const hb_plan *plan, double theta, long paths, unsigned long long seed,
+                         double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS]);
 void hb_ref_huang_internal_mc(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
                               unsigned index, double tt[3], double trt[3]);
 /* The same integrals by nested quadrature: over the entry azimuth phi_m1 either Simpson on the plan's
