@@ -97,8 +97,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             u[2][k] = a[0][k] * 0.25f;
         }
         hb_eval_report rep;
-        hb_sample_in in = { a[2], a[3], { u[0], u[1], u[2], a[0], a[1] } };
-        hb_sample_angles(plan, n, in, (hb_sample_out){ ti, pi, pdf, { f[0], f[1], f[2] } }, &rep);
+        /* every dimension a sampler may read (HHH22 with TT/TRT reads 8) */
+        hb_sample_in in = { a[2], a[3], { u[0], u[1], u[2], a[0], a[1], u[1], u[2], u[0] } };
+        if (hb_sample_angles(plan, n, in, (hb_sample_out){ ti, pi, pdf, { f[0], f[1], f[2] } }, &rep) != HB_OK)
+            abort();
         if (rep.invalid > n)
             abort();
         for (size_t k = 0; k < n; k++) {
