@@ -7,7 +7,7 @@
 #include "quadrature.h"
 #include "ref/reference.h"
 
-enum { CHUNK = 512, RULE = 8 };
+enum { CHUNK = 512, RULE = 8, MC_PASSES = 16 };
 
 hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
 {
@@ -50,6 +50,13 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
     int count = 0;
     unsigned long long chunks = 0;
     hb_plan varied = *plan; /* a shallow copy: it shares the plan's tables and is never destroyed */
+    /* HHH22's Monte-Carlo TT and TRT: few of the quadrature's points fall inside the narrow TT
+     * lobe, so one pass would carry 5-10% of the estimator's noise; MC_PASSES passes with
+     * independent numbers bring it to about a quarter of that */
+    int internal = plan->options.model == HB_MODEL_HUANG && plan->kernels && !plan->huang.table.values &&
+                   (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT));
+    int passes = internal ? MC_PASSES : 1;
+    for (int pass = 0; pass < passes; pass++)
     for (int panel = 0; panel < panels; panel++) {
         hb_gauss_legendre(RULE, -M_PI_2 + M_PI * panel / panels, -M_PI_2 + M_PI * (panel + 1) / panels, x, w);
         for (int j = 0; j < RULE; j++)
@@ -59,6 +66,7 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
                 to[count] = (float)theta_o;
                 po[count] = 0.0f;
                 weight[count] = w[j] * cos(x[j]) * (longitudinal ? 1.0 : 2.0 * M_PI / nphi); /* dw_i = cos dtheta dphi */
+                weight[count] /= passes;
                 int last = panel == panels - 1 && j == RULE - 1 && q == nphi - 1;
                 if (++count == CHUNK || last) {
                     /* HHH22's Monte-Carlo TT and TRT draw by sample index, which restarts with

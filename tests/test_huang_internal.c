@@ -317,8 +317,7 @@ static void test_internal_orders(hb_test_ctx *t)
         CHECK(t, hb_furnace_orders(plan, thetas[k], paths, 7, e, se) == HB_OK, "hb_furnace_orders failed");
         hb_plan_destroy(plan);
         for (int lobe = 0; lobe < 3; lobe++) {
-            /* the furnace of the table (deterministic; the estimator's noise would swing TT by
-             * 5-10% at the furnace's few points inside the lobe) */
+            /* the furnace of the table: deterministic (the estimator's furnace carries ~1.5% noise) */
             hb_material m;
             hb_options o;
             hb_material_default(&m);
