@@ -252,8 +252,8 @@ hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_r
  * (dFH11 with alpha = 0; README).
  * HHH22 plans with TT or TRT (not HB_QUALITY_REFERENCE) read 8 numbers and trace one path through
  * the fibre from w_o (sec. 3.4.1): the weight is that path's throughput over the lobe choice, whose
- * mean is the mean of f / pdf (unbiased; exact for alpha = 0, where the model is reciprocal: README
- * "Huang sampling with TT and TRT"); the pdf is eq. 33 estimated with one path per Simpson node from
+ * mean is the mean of f / pdf (unbiased, with the cuticle tilt too: README "Huang sampling with TT
+ * and TRT"); the pdf is eq. 33 estimated with one path per Simpson node from
  * the seed and the sample's index, so hb_pdf_angles at the same index returns the sampled pdf. */
 #define HB_SAMPLE_DIMENSIONS 8 /* the most numbers any sampler reads */
 

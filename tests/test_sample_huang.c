@@ -234,9 +234,9 @@ static void test_huang_sample_hard_cases(hb_test_ctx *t)
 }
 
 /* With TT and TRT: paths traced from w_o (sec. 3.4.1) and the pdf of eq. 33 (README "Huang
- * sampling with TT and TRT"). Without tilt, where the model is reciprocal (with it, eqs. 23-32 are
- * not: README), across roughness 0.1..0.4, both NDFs, circular and elliptical, with and without G
- * and absorption. */
+ * sampling with TT and TRT"), across roughness 0.1..0.4, both NDFs, circular and elliptical, with
+ * and without G, absorption and tilt (where eqs. 23-32 are not reciprocal and the paths carry the
+ * reversal factor). */
 #define HB_ALL_HUANG_LOBES (1u << HB_LOBE_R | 1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)
 static const huang_case path_cases[] = {
     { HB_NDF_GGX, 0.3, 0.0, 0.0, 1, 0.4, 0.3, 0.0, HB_ALL_HUANG_LOBES, 0.0 },
@@ -244,8 +244,10 @@ static const huang_case path_cases[] = {
     { HB_NDF_GGX, 0.1, 0.0, 0.0, 0, 1.3, -2.0, 0.0, HB_ALL_HUANG_LOBES, 0.0 },
     { HB_NDF_GGX, 0.15, 0.0, 0.0, 1, 0.0, 0.0, 0.0, HB_ALL_HUANG_LOBES, 0.5 },
     { HB_NDF_BECKMANN, 0.4, 0.0, 0.6, 1, -1.3, 0.5, 0.0, 1u << HB_LOBE_TT | 1u << HB_LOBE_TRT, 0.2 },
+    { HB_NDF_GGX, 0.2, 3.0, 0.0, 1, -0.7, 1.0, 0.0, HB_ALL_HUANG_LOBES, 0.3 },
+    { HB_NDF_GGX, 0.3, -5.0, 0.6, 1, -1.3, 0.5, 0.0, 1u << HB_LOBE_TRT, 0.0 },
 };
-enum { PATH_CASES = sizeof path_cases / sizeof path_cases[0], PATH_NT = 16, PATH_NP = 32, PATH_JITTER = 8 };
+enum { PATH_CASES = sizeof path_cases / sizeof path_cases[0], PATH_NT = 16, PATH_NP = 32, PATH_JITTER = 16 };
 
 /* Sampled w_i against eq. 33's pdf. The pdf is itself an unbiased estimate (one path per Simpson
  * node), so each cell's probability is the mean of PATH_JITTER^2 jittered points of it, each with its

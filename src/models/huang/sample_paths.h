@@ -8,8 +8,9 @@
  * absorption; zero where its direction leaves through the fibre), and L is chosen with probability
  * mean(w_L) / sum mean(w_L): the paper's attenuation-proportional choice, with the shadowing
  * included so that the choice carries no variance for grey fibres. The weight w_L / P(L) times
- * W |w_o . w_m1| / (2 a cos(theta_o) cos(psi) |w_o . w_m1|) (the entry point's density against the
- * eval's measure, eqs. 29-32) is an unbiased estimate of f / pdf: its mean times L_i estimates L_o.
+ * W / (2 a cos(theta_o) cos(psi)) (the entry point's density against the eval's measure, eqs. 29-32)
+ * and the reversal factor of trace_path is an unbiased estimate of f / pdf: its mean times L_i
+ * estimates L_o.
  *
  * The pdf is eq. 33 made exact in expectation: Simpson over the entry azimuth of the density of the
  * entry point times, for each lobe, the density of its last micronormal given the ones before it
@@ -132,6 +133,20 @@ HB_INLINE void trace_path(const hb_huang *h, const fibre_point *p, v3 wa, const 
         v3 h3 = visible_micronormal(h, &exits[1].q, v3_scale(vf_set1(-1.0f), exits[1].w), -1.0f, u[4], u[5]);
         trt = exit_drawn(h, &exits[1], v3_scale(vf_set1(-1.0f), h3), &path->dir[PATH_TRT]);
     }
+    /* The path runs from w_o, but f(w_i, w_o) weighs it from w_i's side: eqs. 23-32 take each
+     * interface's cosines against the tilted mesonormal w_m while a chord's entry and exit points
+     * correspond through the macronormal n (ds_q |w.n_q| = ds_p |w.n_p|), so reversing a segment
+     * p -> q scales its weight by (|w.w_m,q| / |w.n_q|) / (|w.w_m,p| / |w.n_p|): exactly 1 without
+     * tilt, and with it what makes the mean weight f(w_i, w_o)'s albedo (README). */
+    vf tiny = vf_set1(1e-30f);
+    const fibre_point *q2 = &exits[0].q, *q3 = &exits[1].q;
+    v3 wt = exits[0].w, wtr = exits[1].w;
+    vf reverse_tt = vf_div(vf_mul(vf_max(v3_dot(wt, q2->meso), tiny), vf_max(vf_neg(v3_dot(wt, p->macro)), tiny)),
+                           vf_mul(vf_max(v3_dot(wt, q2->macro), tiny), vf_max(vf_neg(v3_dot(wt, p->meso)), tiny)));
+    vf reverse_bounce = vf_div(vf_mul(vf_max(v3_dot(wtr, q3->meso), tiny), vf_max(vf_neg(v3_dot(wtr, q2->macro)), tiny)),
+                               vf_mul(vf_max(v3_dot(wtr, q3->macro), tiny), vf_max(vf_neg(v3_dot(wtr, q2->meso)), tiny)));
+    tt = vf_mul(tt, reverse_tt);
+    trt = vf_mul(trt, vf_mul(reverse_tt, reverse_bounce));
     vf lobe[PATH_LOBES] = { r, tt, trt };
     for (int l = 0; l < PATH_LOBES; l++) {
         if (!(h->lobes >> l & 1u))
