@@ -256,11 +256,15 @@ enum { PATH_CASES = sizeof path_cases / sizeof path_cases[0], PATH_NT = 16, PATH
  * not counted: the pdf's mass is that of the others. */
 static void test_huang_path_chi_square(hb_test_ctx *t)
 {
-    enum { CELLS = PATH_NT * PATH_NP, POINTS = CELLS * PATH_JITTER * PATH_JITTER };
-    static double mean[CELLS], var[CELLS], count[CELLS];
+    enum { MAX_CELLS = PATH_NT * PATH_NP };
+    static double mean[MAX_CELLS], var[MAX_CELLS], count[MAX_CELLS];
+    /* under qemu (a pdf takes ~6 ms there): one GGX case on a 8 x 16 grid, 16 points a cell */
     size_t n = t->emulated ? 20000 : 100000;
+    int nt = t->emulated ? PATH_NT / 2 : PATH_NT, np = t->emulated ? PATH_NP / 2 : PATH_NP;
+    int jitter = t->emulated ? PATH_JITTER / 4 : PATH_JITTER, per_cell = jitter * jitter, cells_all = nt * np;
+    int points = cells_all * per_cell;
     for (int c = 0; c < PATH_CASES; c++) {
-        if (t->emulated && c != 1)
+        if (t->emulated && c != 0)
             continue;
         const huang_case *pc = &path_cases[c];
         hb_plan *plan = huang_plan(t, pc, HB_QUALITY_HIGH, HB_ISA_AUTO);
@@ -273,35 +277,35 @@ static void test_huang_path_chi_square(hb_test_ctx *t)
         for (size_t i = 0; i < n; i++) {
             if (buf->w[0][i] + buf->w[1][i] + buf->w[2][i] <= 0.0f)
                 continue;
-            int a = (int)floor((sin((double)buf->ti[i]) + 1.0) * PATH_NT / 2.0);
-            int b = (int)floor((buf->pi[i] + M_PI) * PATH_NP / (2.0 * M_PI));
-            a = a < 0 ? 0 : a >= PATH_NT ? PATH_NT - 1 : a;
-            b = b < 0 ? 0 : b >= PATH_NP ? PATH_NP - 1 : b;
-            count[a * PATH_NP + b]++;
+            int a = (int)floor((sin((double)buf->ti[i]) + 1.0) * nt / 2.0);
+            int b = (int)floor((buf->pi[i] + M_PI) * np / (2.0 * M_PI));
+            a = a < 0 ? 0 : a >= nt ? nt - 1 : a;
+            b = b < 0 ? 0 : b >= np ? np - 1 : b;
+            count[a * np + b]++;
             kept++;
         }
         /* jittered points: sin(theta) and phi uniform in each cell (equal solid angle per point) */
-        for (int k = 0; k < POINTS; k++) {
-            int cell = k / (PATH_JITTER * PATH_JITTER), j = k % (PATH_JITTER * PATH_JITTER);
-            double x = (cell / PATH_NP + (j / PATH_JITTER + hb_test_uniform(t)) / PATH_JITTER) / PATH_NT;
-            double y = (cell % PATH_NP + (j % PATH_JITTER + hb_test_uniform(t)) / PATH_JITTER) / PATH_NP;
+        for (int k = 0; k < points; k++) {
+            int cell = k / (per_cell), j = k % (per_cell);
+            double x = (cell / np + (j / jitter + hb_test_uniform(t)) / jitter) / nt;
+            double y = (cell % np + (j % jitter + hb_test_uniform(t)) / jitter) / np;
             buf->ti[k] = (float)asin(fmin(fmax(2.0 * x - 1.0, -1.0), 1.0));
             buf->pi[k] = (float)(M_PI * (2.0 * y - 1.0));
             buf->to[k] = (float)pc->theta_o;
             buf->po[k] = (float)pc->phi_o;
         }
-        hb_pdf_angles(plan, POINTS, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, buf->pdf2, NULL);
-        double cell_area = 4.0 * M_PI / CELLS, total = 0.0, chi2 = 0.0, pooled_e = 0.0, pooled_o = 0.0, pooled_v = 0.0;
+        hb_pdf_angles(plan, points, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, buf->pdf2, NULL);
+        double cell_area = 4.0 * M_PI / cells_all, total = 0.0, chi2 = 0.0, pooled_e = 0.0, pooled_o = 0.0, pooled_v = 0.0;
         int cells = 0, bad = 0;
-        for (int cell = 0; cell < CELLS; cell++) {
+        for (int cell = 0; cell < cells_all; cell++) {
             double s = 0.0, s2 = 0.0;
-            for (int j = 0; j < PATH_JITTER * PATH_JITTER; j++) {
-                double v = buf->pdf2[cell * PATH_JITTER * PATH_JITTER + j];
+            for (int j = 0; j < per_cell; j++) {
+                double v = buf->pdf2[cell * per_cell + j];
                 bad += !(isfinite(v) && v >= 0.0);
                 s += v;
                 s2 += v * v;
             }
-            double m = PATH_JITTER * PATH_JITTER;
+            double m = per_cell;
             mean[cell] = s / m * cell_area;
             var[cell] = fmax(s2 / m - (s / m) * (s / m), 0.0) / (m - 1.0) * cell_area * cell_area;
             total += mean[cell];
@@ -403,6 +407,7 @@ static void test_huang_path_isa(hb_test_ctx *t)
     static const float phis[] = { 0.0f, 3.14159274f, -3.14159274f, 2.0f };
     static const float edges[] = { 0.0f, 0.99999994f, 1e-30f, 0.5f };
     static float ref_ti[N], ref_pi[N], ref_pdf[N], ref_w[3][N];
+    const size_t n = t->emulated ? N / 4 : N; /* under qemu a sample takes milliseconds */
     for (size_t k = 0; k < sizeof materials / sizeof materials[0]; k++) {
         hb_plan *plan = huang_plan(t, &materials[k], HB_QUALITY_FAST, t->isa);
         hb_plan *scalar = huang_plan(t, &materials[k], HB_QUALITY_FAST, HB_ISA_SCALAR);
@@ -412,9 +417,9 @@ static void test_huang_path_isa(hb_test_ctx *t)
         float *u[HB_SAMPLE_DIMENSIONS];
         for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
             u[d] = buf->u[d];
-        hb_uniforms(k, 0, N, 8, u);
-        for (size_t i = 0; i < N; i++) {
-            int hard = i < N / 4;
+        hb_uniforms(k, 0, n, 8, u);
+        for (size_t i = 0; i < n; i++) {
+            int hard = i < n / 4;
             buf->to[i] = hard ? thetas[i % 6] : (float)hb_test_range(t, -1.5, 1.5);
             buf->po[i] = hard ? phis[i / 6 % 4] : (float)hb_test_range(t, -M_PI, M_PI);
             if (hard)
@@ -423,12 +428,12 @@ static void test_huang_path_isa(hb_test_ctx *t)
         }
         hb_sample_in in = { buf->to, buf->po, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
         hb_eval_report report;
-        hb_sample_angles(plan, N, in, (hb_sample_out){ buf->ti, buf->pi, buf->pdf, { buf->w[0], buf->w[1], buf->w[2] } },
+        hb_sample_angles(plan, n, in, (hb_sample_out){ buf->ti, buf->pi, buf->pdf, { buf->w[0], buf->w[1], buf->w[2] } },
                          &report);
-        hb_sample_angles(scalar, N, in, (hb_sample_out){ ref_ti, ref_pi, ref_pdf, { ref_w[0], ref_w[1], ref_w[2] } }, NULL);
-        hb_pdf_angles(plan, N, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, buf->pdf2, NULL);
+        hb_sample_angles(scalar, n, in, (hb_sample_out){ ref_ti, ref_pi, ref_pdf, { ref_w[0], ref_w[1], ref_w[2] } }, NULL);
+        hb_pdf_angles(plan, n, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, buf->pdf2, NULL);
         int bad = 0, differ = 0, pdf_bits = 0;
-        for (size_t i = 0; i < N; i++) {
+        for (size_t i = 0; i < n; i++) {
             bad += !(isfinite(buf->pdf[i]) && buf->pdf[i] >= 0.0f && fabsf(buf->ti[i]) <= 1.57079637f &&
                      fabsf(buf->pi[i]) <= 3.14159274f);
             for (int c = 0; c < 3; c++)
@@ -437,15 +442,18 @@ static void test_huang_path_isa(hb_test_ctx *t)
             double angle = fabs(buf->ti[i] - ref_ti[i]) + fabs(remainder(buf->pi[i] - ref_pi[i], 2.0 * M_PI));
             double weight = fabs(buf->w[0][i] - ref_w[0][i]) / fmax(ref_w[0][i], 1e-3);
             double pdf = fabs(buf->pdf[i] - ref_pdf[i]) / fmax(ref_pdf[i], 1e-3);
-            differ += i >= N / 4 && (angle > 1e-3 || weight > 1e-2 || pdf > 1e-2); /* the hard inputs sit on edges */
+            differ += i >= n / 4 && (angle > 1e-3 || weight > 1e-2 || pdf > 1e-2); /* the hard inputs sit on edges */
         }
         CHECK(t, report.invalid == 0, "material %zu: %zu invalid", k, report.invalid);
         CHECK(t, bad == 0, "material %zu: %d samples not finite, negative or out of range", k, bad);
         CHECK(t, pdf_bits == 0, "material %zu: hb_pdf_angles differs from the sampled pdf at %d samples", k, pdf_bits);
-        CHECK(t, differ <= N / 100, "material %zu: %d of %d random samples differ from the scalar kernel's", k, differ,
-              3 * N / 4);
+        /* about 1% flip (7 of 768 measured): 2%, and at least 8, keeps a chance failure below 1e-2 */
+        int allowed = (int)(3 * n / 4 / 50) > 8 ? (int)(3 * n / 4 / 50) : 8;
+        CHECK(t, differ <= allowed, "material %zu: %d of %d random samples differ from the scalar kernel's", k, differ,
+              (int)(3 * n / 4));
         if (differ)
-            hb_test_note(t, "material %zu: %d of %d random samples differ from the scalar kernel's", k, differ, 3 * N / 4);
+            hb_test_note(t, "material %zu: %d of %d random samples differ from the scalar kernel's", k, differ,
+                         (int)(3 * n / 4));
         hb_plan_destroy(plan);
         hb_plan_destroy(scalar);
     }
