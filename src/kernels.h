@@ -69,6 +69,9 @@ typedef struct hb_huang_table_build {
 } hb_huang_table_build;
 #define HB_HUANG_EXIT_FLOATS 11
 
+/* Numbers HHH22 sampling with TT or TRT reads per sample (sec. 3.4.1; src/models/huang/sample_paths.h). */
+#define HB_HUANG_PATH_DIMENSIONS 8
+
 /* Everything the HHH22 kernel reads, fixed at plan creation (README, "Huang"). The flags are
  * the same for every sample of a batch, so branching on them never depends on the data. */
 typedef struct hb_huang {

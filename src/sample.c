@@ -7,7 +7,6 @@
 
 #define HB_DEON_DIMENSIONS 5
 #define HB_HUANG_DIMENSIONS 3
-#define HB_HUANG_PATH_DIMENSIONS 8 /* with TT or TRT: HHH22 sec. 3.4.1 */
 #define HB_MOST_DIMENSIONS HB_DEON_DIMENSIONS
 
 int hb_plan_sample_dimensions(const hb_plan *plan)

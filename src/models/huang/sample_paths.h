@@ -22,8 +22,6 @@
 
 #include "internal.h"
 
-#define HB_HUANG_PATH_DIMENSIONS 8
-
 enum { PATH_R, PATH_TT, PATH_TRT, PATH_LOBES, PATH_DRAWN = PATH_LOBES };
 
 /* One traced path: each lobe's direction out of the fibre and throughput per channel. */
