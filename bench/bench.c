@@ -88,16 +88,9 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, row
         t[k] = (now_ns() - t0) / BATCH;
     }
     qsort(t, (size_t)repeats, sizeof t[0], compare_double);
-    int traced = o->model == HB_MODEL_HUANG && (o->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT));
-    if (traced && op != OP_EVAL) { /* path weights and eq. 33's pdf are estimates: no reference */
-        r->min_ns = t[0];
-        r->median_ns = t[repeats / 2];
-        r->isa = hb_plan_isa(plan);
-        r->max_rel_err = NAN;
-        hb_plan_destroy(plan);
-        return 1;
-    }
-    if (op == OP_SAMPLE) { /* the weight's error: f_ref / pdf at the sampled directions */
+    /* HHH22 path weights and eq. 33's pdf are estimates themselves: no reference */
+    int traced = o->model == HB_MODEL_HUANG && (o->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)) && op != OP_EVAL;
+    if (op == OP_SAMPLE && !traced) { /* the weight's error: f_ref / pdf at the sampled directions */
         hb_options ro = *o;
         ro.quality = HB_QUALITY_REFERENCE;
         hb_plan *reference;
@@ -119,7 +112,7 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, row
     for (int c = 0; c < 3; c++)
         for (int k = 0; k < NREF; k++)
             worst = fmax(worst, fabs((double)out[c][k] - ref[c][k]) / fmax(ref[c][k], 1e-3 * peak));
-    r->max_rel_err = worst;
+    r->max_rel_err = traced ? NAN : worst;
     hb_plan_destroy(plan);
     return 1;
 }

@@ -113,13 +113,12 @@ HB_INLINE void trace_path(const hb_huang *h, const fibre_point *p, v3 wa, const 
     }
     /* TT: out through the bounce normal h2 (exits[1].normal faces inward) */
     vf tt, tt_density;
-    v3 out2 = v3_scale(vf_set1(-1.0f), exits[1].normal);
     if (fixed == PATH_TT) {
         path->dir[PATH_TT] = d;
         tt = exit_toward(h, &exits[0], d, &tt_density);
         *density = tt_density;
     } else {
-        tt = exit_drawn(h, &exits[0], out2, &path->dir[PATH_TT]);
+        tt = exit_drawn(h, &exits[0], v3_scale(vf_set1(-1.0f), exits[1].normal), &path->dir[PATH_TT]);
     }
     /* TRT: out through h3, a visible normal (inner side) of -w_tr */
     vf trt, trt_density;
