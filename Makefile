@@ -60,6 +60,14 @@ endif
 ALL_CFLAGS = $(BASE_CFLAGS) $(CFLAGS)
 LDLIBS := -lm
 
+# OpenEXR (optional, Debian's libopenexr-dev) for `hairbsdf dump -o FILE.exr`: found by
+# pkg-config on native builds only; OPENEXR=0 builds without it even when it is installed.
+OPENEXR ?= $(if $(CROSS),0,$(shell pkg-config --exists OpenEXR 2>/dev/null && echo 1 || echo 0))
+ifeq ($(OPENEXR),1)
+  $(B)/tools/image_exr.o: ALL_CFLAGS += -DHB_HAVE_OPENEXR $(shell pkg-config --cflags OpenEXR)
+  EXR_LIBS := $(shell pkg-config --libs OpenEXR)
+endif
+
 LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/quadrature.c src/furnace.c src/sample.c src/sample_plan.c src/huang_table.c src/ref/deon_ref.c src/ref/deon_sample_ref.c src/ref/marschner_ref.c src/ref/huang_ref.c src/ref/huang_sample_ref.c src/ref/huang_internal_ref.c
 LIB_OBJS := $(LIB_SRCS:%.c=$(B)/%.o) $(ISAS:%=$(B)/kernel_%.o)
 TOOL_SRCS := $(wildcard tools/*.c)
@@ -99,13 +107,13 @@ $(SHARED_LIB): $(LIB_OBJS)
 HB_SO_MAJOR := 0
 
 $(TOOL): $(TOOL_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
-	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
+	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) $(EXR_LIBS)
 
 $(EXAMPLE): $(B)/examples/minimal.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
 
-$(TEST_BIN): $(TEST_SRCS:%.c=$(B)/%.o) $(B)/tools/image.o $(STATIC_LIB)
-	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
+$(TEST_BIN): $(TEST_SRCS:%.c=$(B)/%.o) $(B)/tools/image.o $(B)/tools/image_exr.o $(STATIC_LIB)
+	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) $(EXR_LIBS)
 
 $(BENCH_BIN): $(BENCH_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) -lpthread

@@ -1,5 +1,6 @@
 /* The CLI's image writers, read back: PFM floats, PNG chunks (CRC-32), stored deflate blocks,
  * Adler-32 and pixels; and `hairbsdf dump` against the library. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -120,46 +121,123 @@ static void test_png_round_trip(hb_test_ctx *t)
     CHECK(t, px[0] == 0 && px[1] == 188 && px[2] == 255, "tone map: %d %d %d", px[0], px[1], px[2]);
 }
 
-/* hairbsdf dump: the PFM's pixels are the library's f at the pixel centres. */
-static void test_dump_matches_library(hb_test_ctx *t)
+/* OpenEXR, when built with it: float RGB read back bit for bit through OpenEXR's own decoder,
+ * over more rows than one ZIP chunk (16 lines); without it the writer refuses with -2. */
+static void test_exr_round_trip(hb_test_ctx *t)
+{
+    enum { W = 37, H = 41 };
+    static float rgb[W * H * 3];
+    for (int k = 0; k < W * H * 3; k++)
+        rgb[k] = (float)((k % 97) * 0.37 - 2.0) * (k % 5 == 0 ? 1e-30f : 1.0f);
+    rgb[5] = 3.4e38f, rgb[6] = 1e-40f; /* the largest float, a denormal */
+    char path[] = "/tmp/hb_exr_XXXXXX.exr";
+    close(mkstemps(path, 4));
+    if (!image_exr_available()) {
+        CHECK(t, image_write_exr(path, W, H, rgb) == -2, "without OpenEXR the writer must refuse");
+        hb_test_note(t, "built without OpenEXR: EXR round trip not run");
+        unlink(path);
+        return;
+    }
+    CHECK(t, image_write_exr(path, W, H, rgb) == 0, "write");
+    int w = 0, h = 0;
+    float *back = image_read_exr(path, &w, &h);
+    CHECK(t, back && w == W && h == H && memcmp(back, rgb, sizeof rgb) == 0, "EXR read back differs (%dx%d)", w, h);
+    free(back);
+    unlink(path);
+}
+
+/* Runs `hairbsdf dump ARGS -o FILE.EXT` and reads the image back (PFM, or EXR). */
+static float *run_dump(hb_test_ctx *t, const char *args, const char *ext, int *w, int *h)
 {
     const char *tool = getenv("HB_TOOL");
     if (!tool || !*tool) {
         CHECK(t, 0, "HB_TOOL is not set");
-        return;
+        return NULL;
     }
-    char path[] = "/tmp/hb_dump_XXXXXX.pfm", cmd[512];
-    close(mkstemps(path, 4));
-    snprintf(cmd, sizeof cmd, "%s dump --theta-i 0.3 --phi-i 0.2 --eumelanin 0.3 --width 16 --height 8 -o %s", tool,
-             path);
+    char path[64], cmd[768];
+    snprintf(path, sizeof path, "/tmp/hb_dump_XXXXXX.%s", ext);
+    close(mkstemps(path, (int)strlen(ext) + 1));
+    snprintf(cmd, sizeof cmd, "%s dump %s -o %s 2>/dev/null", tool, args, path);
     CHECK(t, system(cmd) == 0, "dump failed: %s", cmd);
-    int w = 0, h = 0;
-    float *img = read_pfm(path, &w, &h);
-    CHECK(t, img && w == 16 && h == 8, "PFM %dx%d", w, h);
-    hb_material m;
-    hb_options o;
-    hb_material_default(&m);
-    hb_options_default(&o);
-    m.eumelanin = 0.3;
+    float *img = strcmp(ext, "exr") == 0 ? image_read_exr(path, w, h) : read_pfm(path, w, h);
+    unlink(path);
+    return img;
+}
+
+/* Whether columns [x0, x0 + w) of an image `stride` wide hold the library's f at the pixel centres
+ * for w_i = (0.3, 0.2) under the given material and options. */
+static void check_panel(hb_test_ctx *t, const float *img, int stride, int x0, int w, int h, const hb_material *m,
+                        const hb_options *o)
+{
     hb_plan *plan;
-    hb_plan_create(&m, &o, &plan, NULL);
+    CHECK(t, hb_plan_create(m, o, &plan, NULL) == HB_OK, "plan");
     for (int y = 0; img && y < h; y++)
         for (int x = 0; x < w; x++) {
             float ti = 0.3f, pi = 0.2f, f[3];
             float to = (float)(M_PI_2 - M_PI * (y + 0.5) / h), po = (float)(-M_PI + 2 * M_PI * (x + 0.5) / w);
             hb_eval_angles(plan, 1, (hb_angles_soa){ &ti, &pi, &to, &po }, (hb_rgb_soa){ &f[0], &f[1], &f[2] }, NULL);
-            const float *px = img + ((size_t)y * w + x) * 3;
-            CHECK(t, px[0] == f[0] && px[1] == f[1] && px[2] == f[2], "pixel (%d, %d): %g vs %g", x, y, px[0], f[0]);
+            const float *px = img + ((size_t)y * stride + x0 + x) * 3;
+            CHECK(t, px[0] == f[0] && px[1] == f[1] && px[2] == f[2], "panel at %d, pixel (%d, %d): %g vs %g", x0, x, y,
+                  px[0], f[0]);
         }
     hb_plan_destroy(plan);
+}
+
+/* hairbsdf dump: the PFM's pixels are the library's f at the pixel centres, and so are the EXR's. */
+static void test_dump_matches_library(hb_test_ctx *t)
+{
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.eumelanin = 0.3;
+    int w = 0, h = 0;
+    float *img = run_dump(t, "--theta-i 0.3 --phi-i 0.2 --eumelanin 0.3 --width 16 --height 8", "pfm", &w, &h);
+    CHECK(t, img && w == 16 && h == 8, "PFM %dx%d", w, h);
+    check_panel(t, img, w, 0, w, h, &m, &o);
+    if (image_exr_available()) {
+        int we = 0, he = 0;
+        float *exr = run_dump(t, "--theta-i 0.3 --phi-i 0.2 --eumelanin 0.3 --width 16 --height 8", "exr", &we, &he);
+        CHECK(t, img && exr && we == w && he == h && memcmp(exr, img, (size_t)w * h * 12) == 0, "EXR differs from PFM");
+        free(exr);
+    }
     free(img);
-    unlink(path);
+}
+
+/* Side by side: the first panel is the options, the second the options with --compare applied,
+ * the third their absolute difference. */
+static void test_dump_side_by_side(hb_test_ctx *t)
+{
+    int w = 0, h = 0;
+    float *img = run_dump(t, "--model deon --theta-i 0.3 --phi-i 0.2 --width 12 --height 6 --compare model=marschner "
+                             "--compare quality=fast", "pfm", &w, &h);
+    CHECK(t, img && w == 36 && h == 6, "PFM %dx%d: three panels of 12x6", w, h);
+    hb_material m;
+    hb_options first, second;
+    hb_material_default(&m);
+    hb_options_default(&first);
+    second = first;
+    second.model = HB_MODEL_MARSCHNER, second.quality = HB_QUALITY_FAST;
+    check_panel(t, img, w, 0, 12, h, &m, &first);
+    check_panel(t, img, w, 12, 12, h, &m, &second);
+    for (int y = 0; img && y < h; y++)
+        for (int k = 0; k < 36; k++) {
+            const float *line = img + (size_t)y * w * 3;
+            CHECK(t, line[72 + k] == fabsf(line[k] - line[36 + k]), "difference at row %d, value %d", y, k);
+        }
+    free(img);
+    const char *tool = getenv("HB_TOOL");
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "%s dump --compare nosuch=1 -o /tmp/hb_never.pfm 2>/dev/null", tool ? tool : "false");
+    CHECK(t, system(cmd) != 0, "an unknown --compare option must fail");
 }
 
 const hb_test hb_tests_images[] = {
     { "image_checksums", test_checksums, 0 },
     { "image_pfm_round_trip", test_pfm_round_trip, 0 },
     { "image_png_round_trip", test_png_round_trip, 0 },
+    { "image_exr_round_trip", test_exr_round_trip, 0 },
     { "image_dump_matches_library", test_dump_matches_library, 0 },
+    { "image_dump_side_by_side", test_dump_side_by_side, 0 },
     { NULL, NULL, 0 },
 };
