@@ -115,7 +115,9 @@ $(EXAMPLE): $(B)/examples/minimal.o $(STATIC_LIB)
 $(TEST_BIN): $(TEST_SRCS:%.c=$(B)/%.o) $(B)/tools/image.o $(B)/tools/image_exr.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) $(EXR_LIBS)
 
-$(BENCH_BIN): $(BENCH_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
+$(B)/bench/%.o: ALL_CFLAGS += -Itools
+
+$(BENCH_BIN): $(BENCH_SRCS:%.c=$(B)/%.o) $(B)/tools/plot.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) -lpthread
 
 # The runner loops over every ISA this CPU has (or only $HB_ISA when it is set)

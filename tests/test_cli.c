@@ -1,6 +1,7 @@
 /* The hairbsdf tool, driven through $HB_TOOL (set by make test; under qemu it
  * includes the emulator): eval's output equals the library's, headers and blank
  * lines are skipped, malformed rows, bad options and bad values are clear errors. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -354,6 +355,77 @@ static void test_sample_commands(hb_test_ctx *t)
     }
 }
 
+/* Counts the occurrences of needle in haystack. */
+static int count_of(const char *haystack, const char *needle)
+{
+    int n = 0;
+    for (const char *p = strstr(haystack, needle); p; p = strstr(p + 1, needle))
+        n++;
+    return n;
+}
+
+/* The points of the k-th polyline of an SVG: returns their count, up to max. */
+static int polyline_points(const char *svg, int k, double *x, double *y, int max)
+{
+    const char *p = svg;
+    for (int j = 0; j <= k && p; j++)
+        p = strstr(p + (j > 0), "<polyline");
+    p = p ? strstr(p, "points='") : NULL;
+    int n = 0;
+    for (p = p ? p + 8 : NULL; p && *p != '\'' && n < max; n++) {
+        char *end;
+        x[n] = strtod(p, &end);
+        if (end == p || *end != ',')
+            break;
+        y[n] = strtod(end + 1, &end);
+        p = end + (*end == ' ');
+    }
+    return n;
+}
+
+/* hairbsdf plot: a table's series become polylines whose points lie on the data (y = 2x - 1 is a
+ * straight line in pixels, one polyline per numeric column and per value of the text column); a
+ * bench results file draws each ISA's Pareto front only; furnace --svg plots what it prints. */
+static void test_plot_commands(hb_test_ctx *t)
+{
+    char svg_path[] = "/tmp/hb_plot_XXXXXX.svg", args[256], svg[65536];
+    close(mkstemps(svg_path, 4));
+    run_result r;
+    snprintf(args, sizeof args, "plot - -o %s --title lines", svg_path);
+    if (!run_tool(t, args, "fibre,x,line,square\na,0,-1,0\na,1,1,1\na,2,3,4\nb,0,5,0\nb,3,5,9\n", &r))
+        return;
+    slurp(svg_path, svg, sizeof svg);
+    CHECK(t, r.status == 0 && count_of(svg, "<polyline") == 4 && strstr(svg, "a line") && strstr(svg, "b square"),
+          "two columns for two fibres: %d polylines, %s", count_of(svg, "<polyline"), r.err);
+    double x[8], y[8];
+    int n = polyline_points(svg, 0, x, y, 8);
+    CHECK(t, n == 3 && x[1] > x[0] && y[1] < y[0], "series 'a line' has 3 points, rising: %d", n);
+    if (n == 3) {
+        double slope0 = (y[1] - y[0]) / (x[1] - x[0]), slope1 = (y[2] - y[1]) / (x[2] - x[1]);
+        CHECK(t, fabs(slope0 - slope1) < 1e-2 * fabs(slope0), "y = 2x - 1 is straight in pixels: %g vs %g", slope0,
+              slope1);
+    }
+    snprintf(args, sizeof args, "plot - -o %s", svg_path);
+    run_tool(t, args, "configuration,isa,ns_per_sample,max_error\nfast,avx2,10,1e-2\nslow,avx2,20,1e-4\n"
+                      "dominated,avx2,30,1e-3\nfast,scalar,80,1e-2\n", &r);
+    slurp(svg_path, svg, sizeof svg);
+    CHECK(t, r.status == 0 && count_of(svg, "<polyline") == 2, "bench file: one front per ISA (%s)", r.err);
+    CHECK(t, polyline_points(svg, 0, x, y, 8) == 2, "the dominated configuration is off avx2's front");
+    CHECK(t, count_of(svg, "<circle") == 4 + 2, "every configuration is marked, plus a legend dot per ISA");
+    run_tool(t, "plot - -o /tmp/hb_never.svg", "a,b\nx,y\n", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "numeric"), "a table without numbers is refused: %s", r.err);
+
+    snprintf(args, sizeof args, "furnace --model deon --by-lobe --theta-o 0,0.5,1 --svg %s", svg_path);
+    run_tool(t, args, "", &r);
+    run_result plain;
+    run_tool(t, "furnace --model deon --by-lobe --theta-o 0,0.5,1", "", &plain);
+    slurp(svg_path, svg, sizeof svg);
+    CHECK(t, r.status == 0 && strcmp(r.out, plain.out) == 0, "--svg prints the same table");
+    CHECK(t, count_of(svg, "<polyline") == 7 && count_of(svg, "<circle") == 21,
+          "7 columns of 3 rows: %d polylines, %d points", count_of(svg, "<polyline"), count_of(svg, "<circle"));
+    unlink(svg_path);
+}
+
 const hb_test hb_tests_cli[] = {
     { "cli_deon_commands", test_deon_commands, 0 },
     { "cli_marschner_commands", test_marschner_commands, 0 },
@@ -361,5 +433,6 @@ const hb_test hb_tests_cli[] = {
     { "cli_eval_errors", test_eval_errors, 0 },
     { "cli_help", test_help, 0 },
     { "cli_sample_commands", test_sample_commands, 0 },
+    { "cli_plot_commands", test_plot_commands, 0 },
     { NULL, NULL, 0 },
 };

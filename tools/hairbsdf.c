@@ -12,8 +12,9 @@ static void usage(FILE *to)
             "  eval      evaluate f for CSV rows theta_i,phi_i,theta_o,phi_o on stdin\n"
             "  sample    importance-sample w_i given w_o: directions, pdfs and weights f/pdf\n"
             "  pdf       the sampling pdf for CSV rows theta_i,phi_i,theta_o,phi_o on stdin\n"
-            "  furnace   white-furnace energy against theta_o, in total or by lobe\n"
-            "  dump      a lat-long image of f over all w_o for one w_i (PFM or PNG)\n"
+            "  furnace   white-furnace energy against theta_o, in total, by lobe or by order (--svg plots it)\n"
+            "  dump      a lat-long image of f over all w_o for one w_i (PFM, EXR or PNG), or two side by side\n"
+            "  plot      an SVG plot of a CSV table: bench results (error vs time) or furnace curves\n"
             "  isa       list the instruction sets, which this CPU has, and which auto picks\n"
             "  version   print the library version\n"
             "Run 'hairbsdf <command> --help' for a command's options.\n\n%s",
@@ -50,6 +51,8 @@ int main(int argc, char **argv)
         return cmd_dump(argc - 1, argv + 1);
     if (strcmp(cmd, "furnace") == 0)
         return cmd_furnace(argc - 1, argv + 1);
+    if (strcmp(cmd, "plot") == 0)
+        return cmd_plot(argc - 1, argv + 1);
     if (strcmp(cmd, "isa") == 0)
         return cmd_isa();
     if (strcmp(cmd, "version") == 0) {

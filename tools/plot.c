@@ -4,12 +4,16 @@
 
 #include "plot.h"
 
+static const char *const colours[] = { "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                       "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf" };
+#define COLOURS ((int)(sizeof colours / sizeof colours[0]))
+
 int bench_write_csv(const char *path, const bench_point *p, int n)
 {
     FILE *f = fopen(path, "w");
     if (!f)
         return -1;
-    fprintf(f, "configuration,isa,ns_per_sample,max_error\n");
+    fprintf(f, BENCH_CSV_HEADER "\n");
     for (int k = 0; k < n; k++)
         fprintf(f, "%s,%s,%.3f,%.3e\n", p[k].label, p[k].isa, p[k].ns, p[k].error);
     return fclose(f);
@@ -19,7 +23,6 @@ int bench_write_csv(const char *path, const bench_point *p, int n)
  * (no other point of that ISA is both faster and more accurate) is joined by a line. */
 int bench_write_svg(const char *path, const char *title, const bench_point *p, int n)
 {
-    static const char *const colours[] = { "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd" };
     const double W = 720, H = 460, left = 70, right = 170, top = 40, bottom = 50;
     double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
     for (int k = 0; k < n; k++) {
@@ -60,7 +63,7 @@ int bench_write_svg(const char *path, const char *title, const bench_point *p, i
             isas[nisa++] = p[k].isa;
     }
     for (int j = 0; j < nisa; j++) {
-        const char *c = colours[j % 5];
+        const char *c = colours[j % COLOURS];
         fprintf(f, "<polyline fill='none' stroke='%s' stroke-width='1.5' points='", c);
         for (;;) { /* Pareto front: walk from the fastest point to ever more accurate ones */
             double last_ns = -1.0, best_err = INFINITY;
@@ -92,5 +95,64 @@ int bench_write_svg(const char *path, const char *title, const bench_point *p, i
     fprintf(f, "</svg>\n");
 #undef PX
 #undef PY
+    return fclose(f);
+}
+
+/* A round step of about a fifth of the range (1, 2 or 5 times a power of ten). */
+static double tick_step(double range)
+{
+    double raw = range / 5.0, decade = pow(10.0, floor(log10(raw))), m = raw / decade;
+    return decade * (m < 1.5 ? 1.0 : m < 3.5 ? 2.0 : m < 7.5 ? 5.0 : 10.0);
+}
+
+int plot_write_lines_svg(const char *path, const char *title, const char *x_label, const plot_series *s, int count)
+{
+    const double W = 760, H = 460, left = 70, right = 190, top = 40, bottom = 50;
+    double x0 = INFINITY, x1 = -INFINITY, y0 = 0.0, y1 = -INFINITY; /* y from 0: energies and shares */
+    for (int j = 0; j < count; j++)
+        for (int k = 0; k < s[j].n; k++) {
+            x0 = fmin(x0, s[j].x[k]), x1 = fmax(x1, s[j].x[k]);
+            y0 = fmin(y0, s[j].y[k]), y1 = fmax(y1, s[j].y[k]);
+        }
+    if (!(x1 > x0))
+        x0 -= 0.5, x1 = x0 + 1.0;
+    if (!(y1 > y0))
+        y1 = y0 + 1.0;
+    double dx = tick_step(x1 - x0), dy = tick_step(y1 - y0);
+    x0 = floor(x0 / dx) * dx, x1 = ceil(x1 / dx) * dx, y0 = floor(y0 / dy) * dy, y1 = ceil(y1 / dy) * dy;
+#define LX(v) (left + ((v) - x0) / (x1 - x0) * (W - left - right))
+#define LY(v) (top + (y1 - (v)) / (y1 - y0) * (H - top - bottom))
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return -1;
+    fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' width='%.0f' height='%.0f' font-family='sans-serif' "
+               "font-size='11'>\n<rect width='100%%' height='100%%' fill='white'/>\n", W, H);
+    fprintf(f, "<text x='%.0f' y='20' font-size='13'>%s</text>\n", left, title);
+    for (double v = x0; v <= x1 + 0.5 * dx; v += dx)
+        fprintf(f, "<line x1='%.1f' y1='%.0f' x2='%.1f' y2='%.0f' stroke='#ddd'/><text x='%.1f' y='%.0f' "
+                   "text-anchor='middle'>%g</text>\n", LX(v), top, LX(v), H - bottom, LX(v), H - bottom + 15,
+                fabs(v) < 1e-9 * dx ? 0.0 : v);
+    for (double v = y0; v <= y1 + 0.5 * dy; v += dy)
+        fprintf(f, "<line x1='%.0f' y1='%.1f' x2='%.0f' y2='%.1f' stroke='#ddd'/><text x='%.0f' y='%.1f' "
+                   "text-anchor='end'>%g</text>\n", left, LY(v), W - right, LY(v), left - 5, LY(v) + 4,
+                fabs(v) < 1e-9 * dy ? 0.0 : v);
+    fprintf(f, "<text x='%.0f' y='%.0f' text-anchor='middle'>%s</text>\n", (left + W - right) / 2, H - 12, x_label);
+    for (int j = 0; j < count; j++) {
+        const char *c = colours[j % COLOURS];
+        fprintf(f, "<polyline fill='none' stroke='%s' stroke-width='1.5'%s points='", c,
+                j >= COLOURS ? " stroke-dasharray='5,3'" : "");
+        for (int k = 0; k < s[j].n; k++)
+            fprintf(f, "%.1f,%.1f ", LX(s[j].x[k]), LY(s[j].y[k]));
+        fprintf(f, "'/>\n");
+        for (int k = 0; k < s[j].n; k++)
+            fprintf(f, "<circle cx='%.1f' cy='%.1f' r='2.5' fill='%s'><title>%s: %g, %g</title></circle>\n",
+                    LX(s[j].x[k]), LY(s[j].y[k]), c, s[j].name, s[j].x[k], s[j].y[k]);
+        fprintf(f, "<line x1='%.0f' y1='%.0f' x2='%.0f' y2='%.0f' stroke='%s' stroke-width='2'/><text x='%.0f' "
+                   "y='%.0f'>%s</text>\n", W - right + 12, top + 16.0 * j, W - right + 28, top + 16.0 * j, c,
+                W - right + 34, top + 16.0 * j + 4, s[j].name);
+    }
+    fprintf(f, "</svg>\n");
+#undef LX
+#undef LY
     return fclose(f);
 }
