@@ -68,7 +68,7 @@ ifeq ($(OPENEXR),1)
   EXR_LIBS := $(shell pkg-config --libs OpenEXR)
 endif
 
-LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/quadrature.c src/furnace.c src/sample.c src/sample_plan.c src/huang_table.c src/ref/deon_ref.c src/ref/deon_sample_ref.c src/ref/marschner_ref.c src/ref/huang_ref.c src/ref/huang_sample_ref.c src/ref/huang_internal_ref.c
+LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/quadrature.c src/furnace.c src/sample.c src/sample_plan.c src/huang_table.c src/deon_table.c src/ref/deon_ref.c src/ref/deon_sample_ref.c src/ref/marschner_ref.c src/ref/huang_ref.c src/ref/huang_sample_ref.c src/ref/huang_internal_ref.c
 LIB_OBJS := $(LIB_SRCS:%.c=$(B)/%.o) $(ISAS:%=$(B)/kernel_%.o)
 TOOL_SRCS := $(wildcard tools/*.c)
 TEST_SRCS := $(wildcard tests/*.c)

@@ -158,6 +158,16 @@ typedef enum hb_tt_trt {
                             TRT tables" gives both and the error); not with HB_QUALITY_REFERENCE */
 } hb_tt_trt;
 
+/* How dFH11's azimuthal terms N_p (eq. 10) are evaluated. */
+typedef enum hb_azimuthal {
+    HB_AZIMUTHAL_QUADRATURE, /* the plan's Gauss-Legendre rule at every sample (the default) */
+    HB_AZIMUTHAL_TABLE       /* bilinear in a table over (sqrt(cos(theta_d)), |phi|) per group of lobes sharing one M_p
+                                (dFH11 sec. 6), built at plan creation with that rule; its resolution is refined
+                                until the interpolation error at cell midpoints is below table_tolerance of each
+                                group's peak (hb_plan_table). Evaluation only: sampling keeps the quadrature.
+                                With the default R Fresnel (HB_R_FRESNEL_OFFSET) only */
+} hb_azimuthal;
+
 typedef struct hb_options {
     size_t struct_size; /* sizeof(hb_options), set by hb_options_default */
     hb_model model;     /* default HB_MODEL_DEON */
@@ -187,6 +197,8 @@ typedef struct hb_options {
     hb_tt_trt tt_trt;
     int tt_panels;
     unsigned long long seed;
+    hb_azimuthal azimuthal;  /* dFH11, default HB_AZIMUTHAL_QUADRATURE */
+    double table_tolerance;  /* dFH11 N_p table: 0 = from quality (1e-2, 1e-3, 1e-4), else in [1e-6, 0.5] */
 } hb_options;
 
 #define HB_MAX_TT_PANELS 2048
@@ -276,6 +288,28 @@ hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *
 /* Counter-based uniform numbers in [0, 1) (24 bits): u[d][k] for sample index first + k and
  * dimension d < dimensions, a pure function of (seed, index, d), the same on every machine. */
 void hb_uniforms(unsigned long long seed, unsigned long long first, size_t n, int dimensions, float *const *u);
+
+/* A plan's precomputed table, for engines that bake it into a texture (`hairbsdf bake`, README
+ * "Tables for engines"): dFH11 N_p (HB_AZIMUTHAL_TABLE) or HHH22 f_TT + f_TRT (HB_TT_TRT_TABLE).
+ * Nodes are uniform from lo to hi on each axis; values are row-major over the axes, then the slot,
+ * then the channel (RGB innermost). The view points into the plan and lives as long as it. */
+#define HB_TABLE_MAX_AXES 4
+typedef struct hb_table_view {
+    hb_model model;
+    int axes;
+    int size[HB_TABLE_MAX_AXES];
+    double lo[HB_TABLE_MAX_AXES], hi[HB_TABLE_MAX_AXES];
+    const char *axis[HB_TABLE_MAX_AXES]; /* what the axis is, as a formula of the directions */
+    int slots;                            /* dFH11: one per M_p group; HHH22: 1 */
+    unsigned slot_lobes[HB_MAX_LOBES + 1]; /* the lobes (bits (1u << p), HB_LOBE_RESIDUAL) summed in each slot */
+    const float *values;
+    size_t count;                         /* floats: product of sizes x slots x 3 */
+    double error;  /* dFH11: the largest midpoint interpolation error relative to its slot's peak, measured
+                      at build; HHH22: NaN (README "Huang TT and TRT tables" gives its measured error) */
+} hb_table_view;
+
+/* HB_ERR_UNSUPPORTED when the plan has no table. */
+hb_status hb_plan_table(const hb_plan *plan, hb_table_view *view);
 
 /* White furnace: E(w_o) = integral over the sphere of f(w_i, w_o) dw_i per channel, by
  * quadrature fine enough for the plan's roughness (SPEC.md section 2). A lossless fibre with

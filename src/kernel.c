@@ -377,6 +377,7 @@ const hb_kernels HB_TABLE = {
     .huang_sample = huang_sample_kernel,
     .huang_pdf = huang_pdf_kernel,
     .huang_table_row = huang_table_row,
+    .deon_np_row = deon_np_row,
     .cubic_map = cubic_map,
     .math_map = math_map,
     .detector_map = detector_map,

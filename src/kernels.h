@@ -136,6 +136,11 @@ typedef struct hb_deon {
      * lobes that are not group leaders), tabulated at |theta_o| = k pi / (2 HB_LOBE_CHOICE_STEPS) */
     float lobe_choice[HB_MAX_LOBES + 1][HB_LOBE_CHOICE_STEPS + 2];
     float exp_minus_two_inv_v[HB_MAX_LOBES + 1]; /* e^(-2/v) per lobe, for sampling M_p */
+    /* HB_AZIMUTHAL_TABLE (src/deon_table.c): N of each M_p group, [sqrt(cos(theta_d)) node][|phi| node][slot][rgb],
+     * NULL for the quadrature; slot s holds group leader table_leader[s] */
+    const float *np_table;
+    int table_cd, table_phi, table_slots;
+    int table_leader[HB_MAX_LOBES + 1];
 } hb_deon;
 
 /* Whether lobe p (an order up to pmax, or the residual) is in the plan's dFH11 sum, and whether it
@@ -184,6 +189,8 @@ typedef void (*hb_huang_pdf_fn)(const hb_huang *huang, size_t n, hb_angles_soa i
 typedef void (*hb_huang_table_row_fn)(const hb_huang *huang, float theta_i, float phi_i, const hb_huang_table_build *build,
                                       float *row);
 
+typedef void (*hb_deon_np_row_fn)(const hb_deon *deon, float cos_theta_d, size_t n, const float *phi, float *out);
+
 typedef struct hb_kernels {
     hb_isa isa;
     int width; /* float lanes */
@@ -193,6 +200,7 @@ typedef struct hb_kernels {
     hb_deon_vectors_fn deon_vectors[2];
     hb_deon_sample_fn deon_sample[2];                   /* indexed by hb_i0 */
     hb_deon_pdf_fn deon_pdf[2];
+    hb_deon_np_row_fn deon_np_row; /* one row of the N_p table, out[(k * slots + s) * 3 + c] */
     hb_gaussian_angles_fn marschner_longitudinal_angles;
     hb_gaussian_vectors_fn marschner_longitudinal_vectors;
     hb_marschner_angles_fn marschner_angles;

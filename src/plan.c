@@ -158,6 +158,22 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
         return fail(error, HB_ERR_PARAM, "absorption = %d is not an absorption variant", (int)o->absorption);
     if (o->r_fresnel != HB_R_FRESNEL_HALF_ANGLE && o->r_fresnel != HB_R_FRESNEL_OFFSET)
         return fail(error, HB_ERR_PARAM, "r_fresnel = %d is not a variant", (int)o->r_fresnel);
+    if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE && o->azimuthal != HB_AZIMUTHAL_TABLE)
+        return fail(error, HB_ERR_PARAM, "azimuthal = %d is not a variant", (int)o->azimuthal);
+    if (!(o->table_tolerance == 0.0 || in_range(o->table_tolerance, 1e-6, 0.5)))
+        return fail(error, HB_ERR_PARAM, "table_tolerance = %g must be 0 (from quality) or in [1e-6, 0.5]",
+                    o->table_tolerance);
+    if (o->azimuthal == HB_AZIMUTHAL_TABLE) {
+        if (o->model != HB_MODEL_DEON)
+            return fail(error, HB_ERR_UNSUPPORTED, "the N_p table is dFH11's (model deon); huang tabulates TT/TRT "
+                        "with tt_trt = table, marschner has none");
+        if (o->term != HB_TERM_FULL || o->quality == HB_QUALITY_REFERENCE)
+            return fail(error, HB_ERR_UNSUPPORTED, "the N_p table is a float fast path of the full model: not with "
+                        "the longitudinal term or the reference quality");
+        if (o->r_fresnel != HB_R_FRESNEL_OFFSET)
+            return fail(error, HB_ERR_UNSUPPORTED, "the N_p table needs the offset R Fresnel: eq. 12's half-angle "
+                        "factor is not a function of (phi, theta_d)");
+    }
     if (o->quadrature_order < 0 || o->quadrature_order > HB_MAX_NODES)
         return fail(error, HB_ERR_PARAM, "quadrature_order = %d must be 0 (from quality) or in [1, %d]",
                     o->quadrature_order, HB_MAX_NODES);
@@ -529,13 +545,14 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
     derive_huang(plan);
     if (options->model == HB_MODEL_DEON)
         hb_plan_derive_sampling(plan);
-    if (options->model == HB_MODEL_HUANG && options->tt_trt == HB_TT_TRT_TABLE &&
-        (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT))) {
+    if (options->model == HB_MODEL_DEON && options->azimuthal == HB_AZIMUTHAL_TABLE)
+        st = hb_plan_build_deon_table(plan, error);
+    if (st == HB_OK && options->model == HB_MODEL_HUANG && options->tt_trt == HB_TT_TRT_TABLE &&
+        (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)))
         st = hb_plan_build_huang_table(plan, error);
-        if (st != HB_OK) {
-            hb_plan_destroy(plan);
-            return st;
-        }
+    if (st != HB_OK) {
+        hb_plan_destroy(plan);
+        return st;
     }
     *out = plan;
     return HB_OK;
@@ -543,8 +560,10 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
 
 void hb_plan_destroy(hb_plan *plan)
 {
-    if (plan)
+    if (plan) {
         free(plan->huang_table);
+        free(plan->deon_table);
+    }
     free(plan);
 }
 

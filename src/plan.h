@@ -21,6 +21,8 @@ struct hb_plan {
     double huang_tilt;                           /* HHH22 mesonormal inclination tau (eq. 39) */
     hb_huang huang;                              /* float constants of the SIMD kernels */
     float *huang_table;                          /* owns huang.table.values (HB_TT_TRT_TABLE) */
+    float *deon_table;                           /* owns deon.np_table (HB_AZIMUTHAL_TABLE) */
+    double table_error;                          /* the N_p table's measured midpoint error */
 };
 
 /* SplitMix64's finaliser: a bijective 64-bit mix (src/sample.c). */
@@ -28,6 +30,9 @@ unsigned long long hb_mix64(unsigned long long x);
 
 /* HHH22's TT/TRT table for HB_TT_TRT_TABLE (src/huang_table.c). */
 hb_status hb_plan_build_huang_table(hb_plan *plan, hb_error *error);
+
+/* dFH11's N_p table for HB_AZIMUTHAL_TABLE (src/deon_table.c). */
+hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error);
 
 /* The sampler's constants (src/sample_plan.c). */
 void hb_plan_derive_sampling(hb_plan *plan);

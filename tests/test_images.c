@@ -122,7 +122,7 @@ static void test_png_round_trip(hb_test_ctx *t)
 }
 
 /* OpenEXR, when built with it: float RGB read back bit for bit through OpenEXR's own decoder,
- * over more rows than one ZIP chunk (16 lines); without it the writer refuses with -2. */
+ * over several chunks; without it the writer refuses with -2. */
 static void test_exr_round_trip(hb_test_ctx *t)
 {
     enum { W = 37, H = 41 };

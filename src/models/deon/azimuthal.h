@@ -174,6 +174,68 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
         N[0][c] = vf_mul(N[0][c], fresnel_r);
 }
 
+/* N_p from a table (HB_AZIMUTHAL_TABLE; dFH11 sec. 6 suggests tabulating N_p per lobe over
+ * (phi, theta_d)): for circular fibres N_p depends on the directions only through |phi| and
+ * theta_d (eta' of sec. 5, mu_a' of sec. 6, Fresnel at cos(theta_d) cos(gamma_i)), and smoothly
+ * in sqrt(cos(theta_d)), the table's other axis. One slot per group of lobes sharing an M_p;
+ * lookup is bilinear. */
+/* One table row: N summed per M_p group at one cos(theta_d) and n azimuths phi,
+ * out[(k * slots + s) * 3 + c]. */
+HB_INLINE void deon_np_row(const hb_deon *d, float cos_theta_d, size_t n, const float *phi, float *out)
+{
+    for (size_t first = 0; first < n; first += HB_W) {
+        float lane_phi[HB_W];
+        for (size_t l = 0; l < HB_W; l++)
+            lane_phi[l] = phi[first + l < n ? first + l : n - 1];
+        deon_geometry g;
+        g.phi = vf_loadu(lane_phi);
+        g.cos_phi = vf_cos(g.phi);
+        g.cos_theta_d = vf_set1(cos_theta_d);
+        g.sin2_theta_d = vf_set1(1.0f - cos_theta_d * cos_theta_d);
+        g.cos_half_io = vf_set1(1.0f); /* eq. 12's factor: the table is for the offset Fresnel only */
+        vf N[HB_MAX_LOBES + 1][3];
+        azimuthal_deon(d, &g, N, NULL);
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) /* non-leaders into their group's leader */
+            if (hb_deon_lobe_on(d, p) && d->m_group[p] != p)
+                for (int c = 0; c < 3; c++)
+                    N[d->m_group[p]][c] = vf_add(N[d->m_group[p]][c], N[p][c]);
+        for (int s = 0; s < d->table_slots; s++)
+            for (int c = 0; c < 3; c++) {
+                float lanes[HB_W];
+                vf_storeu(lanes, N[d->table_leader[s]][c]);
+                for (size_t l = 0; l < HB_W && first + l < n; l++)
+                    out[((first + l) * (size_t)d->table_slots + (size_t)s) * 3 + (size_t)c] = lanes[l];
+            }
+    }
+}
+
+/* N per M_p group leader, bilinear in (sqrt(cos(theta_d)), |phi|); every other N is 0, so
+ * HB_DEON_SUM adds nothing for the non-leaders. */
+HB_INLINE void azimuthal_deon_table(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3])
+{
+    vf zero = vf_set1(0.0f), one = vf_set1(1.0f);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        N[p][0] = N[p][1] = N[p][2] = zero;
+    vf x = vf_clamp(vf_mul(vf_sqrt(g->cos_theta_d), vf_set1((float)(d->table_cd - 1))), 0.0f, (float)(d->table_cd - 1));
+    vf y = vf_clamp(vf_mul(vf_abs(g->phi), vf_set1((float)(d->table_phi - 1) / HB_PI_F)), 0.0f,
+                    (float)(d->table_phi - 1));
+    vf row = vf_min(vf_from_vi(vi_from_vf(x)), vf_set1((float)(d->table_cd - 2)));
+    vf column = vf_min(vf_from_vi(vi_from_vf(y)), vf_set1((float)(d->table_phi - 2)));
+    vf fx = vf_sub(x, row), fy = vf_sub(y, column);
+    int texel = 3 * d->table_slots, row_stride = texel * d->table_phi;
+    vi base = vi_add(vi_mul(vi_from_vf(row), vi_set1(row_stride)), vi_mul(vi_from_vf(column), vi_set1(texel)));
+    vf weight[4] = { vf_mul(vf_sub(one, fx), vf_sub(one, fy)), vf_mul(vf_sub(one, fx), fy),
+                     vf_mul(fx, vf_sub(one, fy)), vf_mul(fx, fy) };
+    int offset[4] = { 0, texel, row_stride, row_stride + texel };
+    for (int corner = 0; corner < 4; corner++) {
+        vi index = vi_add(base, vi_set1(offset[corner]));
+        for (int s = 0; s < d->table_slots; s++)
+            for (int c = 0; c < 3; c++)
+                N[d->table_leader[s]][c] =
+                    vf_fma(weight[corner], vf_gather(d->np_table + 3 * s + c, index), N[d->table_leader[s]][c]);
+    }
+}
+
 /* f = sum_p M_p N_p over the plan's lobes, with lobes of equal M_p summed first so each
  * distinct M_p is evaluated once; M_p from a caller-supplied evaluator so the angle and
  * vector entry points share everything else. */
@@ -217,7 +279,10 @@ HB_INLINE void deon_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, v
     deon_geometry g;
     deon_geometry_angles(theta_i, phi_i, theta_o, phi_o, &g);
     vf N[HB_MAX_LOBES + 1][3];
-    azimuthal_deon(d, &g, N, NULL);
+    if (d->np_table)
+        azimuthal_deon_table(d, &g, N);
+    else
+        azimuthal_deon(d, &g, N, NULL);
 #define HB_M_ANGLES(lobe) longitudinal_deon_angles((lobe), theta_i, theta_o, i0)
     HB_DEON_SUM(d, N, out, HB_M_ANGLES);
 #undef HB_M_ANGLES
@@ -243,7 +308,10 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     vf dot = vf_mul(vf_mul(inv_i, inv_o), vf_fma(wi[0], wo[0], vf_fma(wi[1], wo[1], vf_mul(wi[2], wo[2]))));
     g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
     vf N[HB_MAX_LOBES + 1][3];
-    azimuthal_deon(d, &g, N, NULL);
+    if (d->np_table)
+        azimuthal_deon_table(d, &g, N);
+    else
+        azimuthal_deon(d, &g, N, NULL);
 #define HB_M_VECTORS(lobe) longitudinal_deon_vectors((lobe), wi, wo, i0)
     HB_DEON_SUM(d, N, out, HB_M_VECTORS);
 #undef HB_M_VECTORS

@@ -1,0 +1,165 @@
+/* dFH11 N_p table (HB_AZIMUTHAL_TABLE): its resolution refined from the tolerance, rows built by
+ * the plan's kernel (src/models/deon/azimuthal.h); and hb_plan_table, the view engines bake. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "plan.h"
+
+static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
+
+/* The largest table: 4097 azimuths x 513 values of cos(theta_d) (a beta_n near 0.01 at 1e-4). */
+#define MAX_PHI 4097
+#define MAX_CD 513
+
+/* N rows at cos(theta_d) = cd[j] for the azimuths phi[0..n_phi), into out (n_cd rows). */
+static void build_rows(const hb_plan *plan, int n_cd, const double *cd, int n_phi, const float *phi, float *out)
+{
+    size_t row = (size_t)n_phi * (size_t)plan->deon.table_slots * 3;
+    for (int j = 0; j < n_cd; j++)
+        plan->kernels->deon_np_row(&plan->deon, (float)cd[j], (size_t)n_phi, phi, out + (size_t)j * row);
+}
+
+/* Uniform node coordinates in [0, hi]; with `half`, the midpoints. */
+static void axis_nodes(int n, double hi, int half, double *nodes)
+{
+    for (int k = 0; k < n - half; k++)
+        nodes[k] = hi * (k + 0.5 * half) / (n - 1);
+}
+
+/* The largest |interpolated - direct| / peak of the slot and channel, over the midpoints of one
+ * axis: mid[a][b] holds direct values at `lines` x `mids` midpoints (row a of `values`, `line_stride`
+ * floats long, azimuth node b); the interpolant there is the mean of node (a, b) and the node
+ * `step` floats after it (the next azimuth or the next row). */
+static double midpoint_error(const float *values, const float *mid, int lines, int mids, size_t line_stride,
+                             size_t step, size_t mid_line_stride, int texel, const double *peak)
+{
+    double worst = 0.0;
+    for (int a = 0; a < lines; a++)
+        for (int b = 0; b < mids; b++)
+            for (int v = 0; v < texel; v++) {
+                const float *node = values + (size_t)a * line_stride + (size_t)b * (size_t)texel + (size_t)v;
+                double interpolated = 0.5 * ((double)node[0] + (double)node[step]);
+                double direct = mid[(size_t)a * mid_line_stride + (size_t)b * (size_t)texel + (size_t)v];
+                double e = fabs(interpolated - direct) / fmax(peak[v], 1e-30);
+                worst = fmax(worst, e);
+            }
+    return worst;
+}
+
+static hb_status table_fail(hb_error *error, hb_status status, const char *message, double a, double b)
+{
+    if (error) {
+        error->status = status;
+        snprintf(error->message, sizeof error->message, message, a, b);
+    }
+    return status;
+}
+
+hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error)
+{
+    hb_deon *d = &plan->deon;
+    d->table_slots = 0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        if (hb_deon_group_leader(d, p))
+            d->table_leader[d->table_slots++] = p;
+    double tol = plan->options.table_tolerance > 0.0 ? plan->options.table_tolerance
+                                                     : tolerance_of_quality[plan->options.quality];
+    int texel = 3 * d->table_slots, n_phi = 33, n_cd = 9;
+    for (;;) {
+        size_t nodes = (size_t)n_phi * (size_t)n_cd;
+        float *values = malloc(nodes * (size_t)texel * sizeof *values);
+        float *mid_phi = malloc((size_t)n_cd * (size_t)n_phi * (size_t)texel * sizeof *mid_phi);
+        float *mid_cd = malloc((size_t)n_cd * (size_t)n_phi * (size_t)texel * sizeof *mid_cd);
+        float *phi = malloc(2 * (size_t)n_phi * sizeof *phi);
+        double *cd = malloc(2 * (size_t)n_cd * sizeof *cd), *angle = malloc((size_t)n_phi * sizeof *angle);
+        double *peak = calloc((size_t)texel, sizeof *peak);
+        if (!values || !mid_phi || !mid_cd || !phi || !cd || !angle || !peak) {
+            free(values), free(mid_phi), free(mid_cd), free(phi), free(cd), free(angle), free(peak);
+            return table_fail(error, HB_ERR_NOMEM, "could not allocate the deon N_p table (%g x %g nodes)", n_cd,
+                              n_phi);
+        }
+        axis_nodes(n_cd, 1.0, 0, cd);
+        axis_nodes(n_cd, 1.0, 1, cd + n_cd);
+        /* nodes uniform in sqrt(cos(theta_d)): near theta_d = pi/2 the Fresnel factors rise like
+         * cos^2(theta_d) over a narrow range (measured: 4x less error per halving, against 2x in cos) */
+        for (int k = 0; k < 2 * n_cd - 1; k++)
+            cd[k] *= cd[k];
+        axis_nodes(n_phi, M_PI, 0, angle);
+        for (int k = 0; k < n_phi; k++)
+            phi[k] = (float)angle[k];
+        axis_nodes(n_phi, M_PI, 1, angle);
+        for (int k = 0; k + 1 < n_phi; k++)
+            phi[n_phi + k] = (float)angle[k];
+        build_rows(plan, n_cd, cd, n_phi, phi, values);
+        build_rows(plan, n_cd, cd, n_phi - 1, phi + n_phi, mid_phi);
+        build_rows(plan, n_cd - 1, cd + n_cd, n_phi, phi, mid_cd);
+        for (size_t k = 0; k < nodes; k++)
+            for (int v = 0; v < texel; v++)
+                peak[v] = fmax(peak[v], values[k * (size_t)texel + (size_t)v]);
+        size_t row = (size_t)n_phi * (size_t)texel;
+        double error_phi = midpoint_error(values, mid_phi, n_cd, n_phi - 1, row, (size_t)texel,
+                                          (size_t)(n_phi - 1) * (size_t)texel, texel, peak);
+        double error_cd = midpoint_error(values, mid_cd, n_cd - 1, n_phi, row, row, row, texel, peak);
+        free(mid_phi), free(mid_cd), free(phi), free(cd), free(angle), free(peak);
+        /* bilinear error at a cell's centre is about the sum of the two axes' midpoint errors */
+        if (error_phi + error_cd <= tol) {
+            plan->deon_table = values;
+            d->np_table = values;
+            d->table_cd = n_cd, d->table_phi = n_phi;
+            plan->table_error = error_phi + error_cd;
+            return HB_OK;
+        }
+        free(values);
+        int refine_phi = error_phi >= error_cd ? n_phi < MAX_PHI : n_cd >= MAX_CD;
+        if (refine_phi ? n_phi >= MAX_PHI : n_cd >= MAX_CD)
+            return table_fail(error, HB_ERR_UNSUPPORTED,
+                              "table_tolerance %g is not reached by the largest N_p table (midpoint error %.2g): "
+                              "loosen it or use the quadrature", tol, error_phi + error_cd);
+        if (refine_phi)
+            n_phi = 2 * n_phi - 1;
+        else
+            n_cd = 2 * n_cd - 1;
+    }
+}
+
+hb_status hb_plan_table(const hb_plan *plan, hb_table_view *v)
+{
+    if (!plan || !v)
+        return HB_ERR_NULL;
+    *v = (hb_table_view){ .model = plan->options.model };
+    if (plan->deon_table) {
+        const hb_deon *d = &plan->deon;
+        *v = (hb_table_view){ .model = HB_MODEL_DEON, .axes = 2, .size = { d->table_cd, d->table_phi },
+                              .lo = { 0.0, 0.0 }, .hi = { 1.0, M_PI },
+                              .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]" },
+                              .slots = d->table_slots, .values = plan->deon_table, .error = plan->table_error };
+        for (int s = 0; s < d->table_slots; s++)
+            for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+                if (hb_deon_lobe_on(d, p) && d->m_group[p] == d->table_leader[s])
+                    v->slot_lobes[s] |= 1u << p;
+    } else if (plan->huang_table) {
+        const hb_huang_table *t = &plan->huang.table;
+        int k = 0;
+        v->model = HB_MODEL_HUANG;
+        v->size[k] = t->n_theta_i, v->lo[k] = -M_PI_2, v->hi[k] = M_PI_2, v->axis[k++] = "theta_i";
+        if (t->n_phi_i > 1)
+            v->size[k] = t->n_phi_i, v->lo[k] = 0.0, v->hi[k] = M_PI_2,
+            v->axis[k++] = "phi_i folded into [0, pi/2] by the fibre's symmetries (delta's sign follows)";
+        v->size[k] = t->n_sum, v->lo[k] = t->u_lo, v->hi[k] = t->u_lo + (t->n_sum - 1) / t->u_scale,
+        v->axis[k++] = "asinh((theta_i + theta_o) / roughness)";
+        v->size[k] = t->n_delta, v->lo[k] = t->delta_lo, v->hi[k] = t->delta_lo + (t->n_delta - 1) / t->delta_scale,
+        v->axis[k++] = t->n_phi_i > 1 ? "phi_o - phi_i in [-pi, pi]" : "|phi_o - phi_i| in [0, pi]";
+        v->axes = k;
+        v->slots = 1;
+        v->slot_lobes[0] = plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT);
+        v->values = plan->huang_table;
+        v->error = NAN;
+    } else {
+        return HB_ERR_UNSUPPORTED;
+    }
+    v->count = (size_t)v->slots * 3;
+    for (int k = 0; k < v->axes; k++)
+        v->count *= (size_t)v->size[k];
+    return HB_OK;
+}

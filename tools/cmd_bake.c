@@ -1,0 +1,159 @@
+/* hairbsdf bake: the table a shader or engine bakes for a material (README "Tables for engines"):
+ * dFH11 N_p per M_p group over (sqrt(cos(theta_d)), |phi|), or HHH22 f_TT + f_TRT; as the binary
+ * layout below, or as float RGB EXR (one image row per line of the table, slots stacked). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "image.h"
+
+static void bake_usage(FILE *to)
+{
+    fprintf(to, "usage: hairbsdf bake [options] [--tolerance X] -o FILE.hbt|FILE.exr\n"
+                "deon: N_p per group of lobes sharing an M_p, over (sqrt(cos(theta_d)), |phi|), refined until the\n"
+                "midpoint interpolation error is below X of each group's peak (default: from --quality);\n"
+                "huang: its TT + TRT table (resolution from --quality and the roughness). Prints the axes.\n"
+                "FILE.hbt layout (little-endian): \"HBTABLE1\", u32 model (1 deon, 2 huang), u32 axes, u32 slots,\n"
+                "u32 channels (3); per axis u32 nodes, f64 lo, f64 hi, char[64] what it is; per slot u32 lobe\n"
+                "mask; f64 measured error (NaN if not measured); then f32 values, axes row-major, then slot,\n"
+                "then RGB. FILE.exr (with OpenEXR): width = the last axis, one row per node of the other axes,\n"
+                "slots stacked top to bottom.\n%s",
+            cli_model_options_help);
+}
+
+static void put(FILE *f, const void *bytes, size_t n) { fwrite(bytes, 1, n, f); }
+
+static void put_u32(FILE *f, unsigned v)
+{
+    unsigned char b[4] = { (unsigned char)v, (unsigned char)(v >> 8), (unsigned char)(v >> 16), (unsigned char)(v >> 24) };
+    put(f, b, 4);
+}
+
+static void put_bits(FILE *f, const void *value, size_t n) /* a float or double, little-endian */
+{
+    unsigned char b[8];
+    memcpy(b, value, n);
+    const unsigned one = 1;
+    if (*(const unsigned char *)&one == 0) /* big-endian host: reverse */
+        for (size_t k = 0; k < n / 2; k++) {
+            unsigned char t = b[k];
+            b[k] = b[n - 1 - k], b[n - 1 - k] = t;
+        }
+    put(f, b, n);
+}
+
+static int write_hbt(const char *path, const hb_table_view *v)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return -1;
+    put(f, "HBTABLE1", 8);
+    put_u32(f, (unsigned)v->model), put_u32(f, (unsigned)v->axes), put_u32(f, (unsigned)v->slots), put_u32(f, 3);
+    for (int k = 0; k < v->axes; k++) {
+        char name[64] = { 0 };
+        snprintf(name, sizeof name, "%s", v->axis[k]);
+        put_u32(f, (unsigned)v->size[k]);
+        put_bits(f, &v->lo[k], 8), put_bits(f, &v->hi[k], 8);
+        put(f, name, sizeof name);
+    }
+    for (int s = 0; s < v->slots; s++)
+        put_u32(f, v->slot_lobes[s]);
+    put_bits(f, &v->error, 8);
+    for (size_t k = 0; k < v->count; k++)
+        put_bits(f, &v->values[k], 4);
+    return fclose(f) == 0 ? 0 : -1;
+}
+
+static int write_exr(const char *path, const hb_table_view *v)
+{
+    int width = v->size[v->axes - 1], lines = (int)(v->count / (size_t)(3 * v->slots * width));
+    float *rgb = malloc(v->count * sizeof *rgb);
+    if (!rgb)
+        return -1;
+    for (int s = 0; s < v->slots; s++)
+        for (int y = 0; y < lines; y++)
+            for (int x = 0; x < width; x++)
+                memcpy(rgb + (((size_t)s * lines + y) * width + x) * 3,
+                       v->values + (((size_t)y * width + x) * v->slots + s) * 3, 3 * sizeof *rgb);
+    int st = image_write_exr(path, width, lines * v->slots, rgb);
+    free(rgb);
+    return st;
+}
+
+int cmd_bake(int argc, char **argv)
+{
+    cli_model_args args;
+    cli_model_args_default(&args);
+    double tolerance = 0.0;
+    const char *path = NULL;
+    char err[256];
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            bake_usage(stdout);
+            return 0;
+        }
+        if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
+            path = argv[++i];
+        } else if (strcmp(argv[i], "--tolerance") == 0 && i + 1 < argc) {
+            char *end;
+            tolerance = strtod(argv[++i], &end);
+            if (*end || end == argv[i] || !(tolerance > 0.0)) {
+                fprintf(stderr, "hairbsdf bake: --tolerance: '%s' is not a positive number\n", argv[i]);
+                return 2;
+            }
+        } else {
+            int r = cli_parse_model_option(argc, argv, &i, &args, err, sizeof err);
+            if (r <= 0) {
+                fprintf(stderr, "hairbsdf bake: %s\n", r < 0 ? err : "unknown option (see hairbsdf bake --help)");
+                return 2;
+            }
+        }
+    }
+    size_t n = path ? strlen(path) : 0;
+    int exr = n > 4 && strcmp(path + n - 4, ".exr") == 0;
+    if (!path || !(exr || (n > 4 && strcmp(path + n - 4, ".hbt") == 0))) {
+        fprintf(stderr, "hairbsdf bake: -o FILE.hbt or FILE.exr is required\n");
+        return 2;
+    }
+    if (exr && !image_exr_available()) {
+        fprintf(stderr, "hairbsdf bake: this build has no OpenEXR (install libopenexr-dev and rebuild); use .hbt\n");
+        return 2;
+    }
+    hb_options *o = &args.options;
+    if (o->model == HB_MODEL_DEON) {
+        o->azimuthal = HB_AZIMUTHAL_TABLE;
+        o->table_tolerance = tolerance;
+    } else if (o->model == HB_MODEL_HUANG && tolerance == 0.0) {
+        o->tt_trt = HB_TT_TRT_TABLE;
+    } else {
+        fprintf(stderr, "hairbsdf bake: %s\n", o->model == HB_MODEL_HUANG
+                                                     ? "the huang table's resolution follows --quality, not --tolerance"
+                                                     : "the marschner model has no tables (deon and huang do)");
+        return 2;
+    }
+    hb_plan *plan;
+    hb_error error;
+    if (hb_plan_create(&args.material, o, &plan, &error) != HB_OK) {
+        fprintf(stderr, "hairbsdf bake: %s\n", error.message);
+        return 2;
+    }
+    hb_table_view v;
+    int st = hb_plan_table(plan, &v) == HB_OK ? 0 : 2;
+    if (st)
+        fprintf(stderr, "hairbsdf bake: this plan has no table (huang without TT and TRT?)\n");
+    if (!st && (exr ? write_exr(path, &v) : write_hbt(path, &v)) != 0) {
+        fprintf(stderr, "hairbsdf bake: cannot write %s\n", path);
+        st = 1;
+    }
+    for (int k = 0; !st && k < v.axes; k++)
+        printf("axis %d: %d nodes, %g to %g, %s\n", k, v.size[k], v.lo[k], v.hi[k], v.axis[k]);
+    for (int s = 0; !st && s < v.slots; s++)
+        printf("slot %d: lobes 0x%x\n", s, v.slot_lobes[s]);
+    if (!st)
+        printf("%zu floats (%.1f KiB), measured midpoint error %.3g of each slot's peak\n", v.count,
+               (double)v.count * 4.0 / 1024.0, v.error);
+    hb_plan_destroy(plan);
+    return st;
+}
