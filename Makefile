@@ -79,11 +79,12 @@ STATIC_LIB := $(B)/libhairbsdf.a
 SHARED_LIB := $(B)/libhairbsdf.so
 TOOL := $(B)/hairbsdf
 EXAMPLE := $(B)/example_minimal
+ENGINE_EXAMPLE := $(B)/example_engine
 TEST_BIN := $(B)/hairbsdf_tests
 BENCH_BIN := $(B)/hairbsdf_bench
 
 .PHONY: all test bench bench-instr demo images fuzz fuzz-run install clean
-all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LIB)) $(TOOL) $(EXAMPLE)
+all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LIB)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE)
 
 $(B)/%.o: %.c
 	@mkdir -p $(dir $@)
@@ -110,6 +111,9 @@ $(TOOL): $(TOOL_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) $(EXR_LIBS)
 
 $(EXAMPLE): $(B)/examples/minimal.o $(STATIC_LIB)
+	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
+
+$(ENGINE_EXAMPLE): $(B)/examples/engine.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
 
 $(TEST_BIN): $(TEST_SRCS:%.c=$(B)/%.o) $(B)/tools/image.o $(B)/tools/image_exr.o $(STATIC_LIB)
@@ -145,6 +149,7 @@ DEMO_ROWS := theta_i,phi_i,theta_o,phi_o\n0.3,0,-0.37,0.5\n0.3,0,-0.2,3.0\n-1,0,
 demo: all $(BENCH_BIN)
 	$(RUN) $(TOOL) isa
 	$(RUN) $(EXAMPLE)
+	$(RUN) $(ENGINE_EXAMPLE)
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model deon --eumelanin 0.3
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model deon --eumelanin 0.3 --quality reference
 	$(RUN) $(TOOL) furnace --model deon --by-lobe --theta-o 0,0.8,1.45
@@ -179,6 +184,14 @@ images: $(TOOL)
 	  -o docs/images/deon_white_theta-1.0.png
 	$(TOOL) dump --model marschner --eumelanin 0.3 --theta-i 0.3 --exposure 2 --width 384 --height 192 \
 	  -o docs/images/marschner_brown_theta0.3.png
+	$(TOOL) dump --model huang --tt-trt table --eumelanin 0.3 --theta-i 0.3 --exposure 2 --width 384 --height 192 \
+	  -o docs/images/huang_brown_theta0.3.png
+	$(TOOL) dump --model deon --eumelanin 0.3 --theta-i 0.3 --exposure 2 --width 256 --height 128 \
+	  --compare model=huang --compare tt-trt=table -o docs/images/deon_vs_huang_theta0.3.png
+	$(TOOL) furnace --model deon --by-lobe --theta-o -1.5,-1.25,-1,-0.75,-0.5,-0.25,0,0.25,0.5,0.75,1,1.25,1.5 \
+	  --svg docs/images/deon_energy_by_lobe.svg > /dev/null
+	$(TOOL) furnace --fig16 --paths 20000 --theta-o -1.4,-1.2,-1,-0.8,-0.6,-0.4,-0.2,0,0.2,0.4,0.6,0.8,1,1.2,1.4 \
+	  --svg docs/images/huang_fig16_beyond_trt.svg > /dev/null
 
 # The pkg-config file is written at install time, so it always names this PREFIX.
 install: all
