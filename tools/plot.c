@@ -8,6 +8,18 @@ static const char *const colours[] = { "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728
                                        "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf" };
 #define COLOURS ((int)(sizeof colours / sizeof colours[0]))
 
+/* An SVG of W x H on white with the title at the top left; NULL if the file cannot be opened. */
+static FILE *svg_open(const char *path, double W, double H, double left, const char *title)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return NULL;
+    fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' width='%.0f' height='%.0f' font-family='sans-serif' "
+               "font-size='11'>\n<rect width='100%%' height='100%%' fill='white'/>\n", W, H);
+    fprintf(f, "<text x='%.0f' y='20' font-size='13'>%s</text>\n", left, title);
+    return f;
+}
+
 int bench_write_csv(const char *path, const bench_point *p, int n)
 {
     FILE *f = fopen(path, "w");
@@ -35,12 +47,9 @@ int bench_write_svg(const char *path, const char *title, const bench_point *p, i
     if (y1 <= y0) y1 = y0 + 1;
 #define PX(v) (left + (log10(v) - x0) / (x1 - x0) * (W - left - right))
 #define PY(e) (top + (y1 - log10(fmax(e, 1e-8))) / (y1 - y0) * (H - top - bottom))
-    FILE *f = fopen(path, "w");
+    FILE *f = svg_open(path, W, H, left, title);
     if (!f)
         return -1;
-    fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' width='%.0f' height='%.0f' font-family='sans-serif' "
-               "font-size='11'>\n<rect width='100%%' height='100%%' fill='white'/>\n", W, H);
-    fprintf(f, "<text x='%.0f' y='20' font-size='13'>%s</text>\n", left, title);
     for (double d = x0; d <= x1; d += 1) /* decades */
         fprintf(f, "<line x1='%.1f' y1='%.0f' x2='%.1f' y2='%.0f' stroke='#ddd'/><text x='%.1f' y='%.0f' "
                    "text-anchor='middle'>%g ns</text>\n", PX(pow(10, d)), top, PX(pow(10, d)), H - bottom,
@@ -122,12 +131,9 @@ int plot_write_lines_svg(const char *path, const char *title, const char *x_labe
     x0 = floor(x0 / dx) * dx, x1 = ceil(x1 / dx) * dx, y0 = floor(y0 / dy) * dy, y1 = ceil(y1 / dy) * dy;
 #define LX(v) (left + ((v) - x0) / (x1 - x0) * (W - left - right))
 #define LY(v) (top + (y1 - (v)) / (y1 - y0) * (H - top - bottom))
-    FILE *f = fopen(path, "w");
+    FILE *f = svg_open(path, W, H, left, title);
     if (!f)
         return -1;
-    fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' width='%.0f' height='%.0f' font-family='sans-serif' "
-               "font-size='11'>\n<rect width='100%%' height='100%%' fill='white'/>\n", W, H);
-    fprintf(f, "<text x='%.0f' y='20' font-size='13'>%s</text>\n", left, title);
     for (double v = x0; v <= x1 + 0.5 * dx; v += dx)
         fprintf(f, "<line x1='%.1f' y1='%.0f' x2='%.1f' y2='%.0f' stroke='#ddd'/><text x='%.1f' y='%.0f' "
                    "text-anchor='middle'>%g</text>\n", LX(v), top, LX(v), H - bottom, LX(v), H - bottom + 15,
