@@ -170,6 +170,8 @@ typedef struct config {
     unsigned lobes; /* HHH22: 0 for R alone */
     hb_tt_trt tt_trt;
     hb_azimuthal azimuthal; /* dFH11: N_p by quadrature or from the plan's table */
+    int untilted;           /* the effect rows: alpha = 0 (dFH11: one M_p for lobes of equal roughness) */
+    double eccentricity;    /* an elliptical fibre (MJC03, HHH22) */
 } config;
 
 /* What each row measures: dFH11's M_p alone and its full model (R..TRRT + residual, RGB) per
@@ -181,47 +183,67 @@ typedef struct config {
  * (against the reference quality's pdf: dFH11's procedure with the high-quality node set, HHH22's
  * by adaptive quadrature). */
 static const config configs[] = {
-    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "deon", "full", "nodes35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "deon", "full", "table-fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE },
-    { "deon", "full", "table-balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE },
-    { "deon", "full", "table-high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE },
+    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "deon", "full", "nodes35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "deon", "full", "table-fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0 },
+    { "deon", "full", "table-balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0 },
+    { "deon", "full", "table-high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0 },
     { "marschner", "longitudinal", "gaussian", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0,
-      HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "R", "analytic", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
-    { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "R", "G-paper-step", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "deon", "sample", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "deon", "pdf", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "sample", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "pdf", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "all", "mc-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
-      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "all", "mc-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "all", "table-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "all", "table-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "TT+TRT", "table-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG & ~1u, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG & ~1u, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "sample-all", "balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
     { "huang", "pdf-all", "balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    /* what each effect costs: the balanced dFH11 row without TRT and above (dark hair), without the tilt,
+     * R alone; MJC03 R alone and R + TT; HHH22's R lobe on an elliptical fibre */
+    { "deon", "effects", "R+TT", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
+      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "deon", "effects", "untilted", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0 },
+    { "deon", "effects", "R+TT-untilted", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0 },
+    { "deon", "effects", "R", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
+      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "marschner", "effects", "R", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "marschner", "effects", "R+TT", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+    { "marschner", "effects", "elliptical", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.5 },
+    { "huang", "effects", "G-balanced-elliptical", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.5 },
+    { "huang", "effects", "G-balanced-untilted", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0 },
 };
 
 /* The options of a configuration (quality and ISA left to the caller where they differ). */
@@ -240,7 +262,19 @@ static void options_of(const config *c, hb_options *o)
     if (c->model_enum == HB_MODEL_HUANG) {
         o->lobes = c->lobes ? c->lobes : 1u << HB_LOBE_R;
         o->tt_trt = c->tt_trt;
+    } else if (c->lobes) {
+        o->lobes = c->lobes;
     }
+}
+
+/* The bench's material, blond hair, with the configuration's effect changes. */
+static void material_of(const config *c, hb_material *m)
+{
+    hb_material_default(m);
+    m->sigma_a[0] = 0.1, m->sigma_a[1] = 0.25, m->sigma_a[2] = 0.6;
+    if (c->untilted)
+        m->alpha = 0.0;
+    m->eccentricity = c->eccentricity;
 }
 #define N_CONFIGS (sizeof configs / sizeof configs[0])
 
@@ -285,7 +319,7 @@ static void internal_reference(const hb_material *m, const config *c)
 /* The double reference of the plan's term for the first NREF samples (it is slow). */
 static void reference_of(const hb_material *m, const config *c)
 {
-    if (c->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)) {
+    if (c->model_enum == HB_MODEL_HUANG && (c->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT))) {
         if (c->op == OP_EVAL)
             internal_reference(m, c);
         return;
@@ -320,8 +354,7 @@ static int run_once(const char *name)
         if (strcmp(label, name) != 0)
             continue;
         hb_material m;
-        hb_material_default(&m);
-        m.sigma_a[0] = 0.1, m.sigma_a[1] = 0.25, m.sigma_a[2] = 0.6;
+        material_of(&configs[ci], &m);
         make_inputs(m.beta_m * m.beta_m);
         hb_options o;
         options_of(&configs[ci], &o);
@@ -376,8 +409,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench: could not pin to core 0; timings may be noisier\n");
 
     hb_material m;
-    hb_material_default(&m);
-    m.sigma_a[0] = 0.1, m.sigma_a[1] = 0.25, m.sigma_a[2] = 0.6; /* blond */
+    material_of(&configs[0], &m); /* blond */
     make_inputs(m.beta_m * m.beta_m);
     float *streams[HB_SAMPLE_DIMENSIONS];
     for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
@@ -392,7 +424,9 @@ int main(int argc, char **argv)
         snprintf(label, sizeof label, "%s/%s/%s", c->model, c->term, c->variant);
         if (strncmp(label, only, strlen(only)) != 0)
             continue;
-        reference_of(&m, c);
+        hb_material mc;
+        material_of(c, &mc);
+        reference_of(&mc, c);
         for (int isa = HB_ISA_SCALAR; isa < HB_ISA_COUNT; isa++) {
             if (!hb_isa_available((hb_isa)isa) || (only_isa && strcmp(only_isa, hb_isa_name((hb_isa)isa))))
                 continue;
@@ -400,7 +434,7 @@ int main(int argc, char **argv)
             options_of(c, &o);
             o.isa = (hb_isa)isa;
             row r = { c->model, c->term, c->variant, HB_ISA_SCALAR, 0, 0, 0 };
-            if (time_plan(&m, &o, c->op, &r))
+            if (time_plan(&mc, &o, c->op, &r))
                 rows[nrows++] = r;
         }
     }
@@ -445,6 +479,21 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench: cannot write %s or %s\n", csv, svg);
         else
             printf("wrote %s and %s\n", csv, svg);
+    }
+    if (results_dir && !partial) { /* what tolerance and budget plans choose from (options.calibration) */
+        char path[512];
+        snprintf(path, sizeof path, "%s/calibration.csv", results_dir);
+        FILE *f = fopen(path, "w");
+        if (f) {
+            fprintf(f, "model,configuration,isa,ns_per_sample,max_error\n");
+            for (int k = 0; k < nrows; k++)
+                fprintf(f, "%s,%s/%s,%s,%.3f,%.3e\n", rows[k].model, rows[k].term, rows[k].variant,
+                        hb_isa_name(rows[k].isa), rows[k].min_ns, rows[k].max_rel_err);
+        }
+        if (!f || fclose(f) != 0)
+            fprintf(stderr, "bench: cannot write %s\n", path);
+        else
+            printf("wrote %s\n", path);
     }
     return budgets && check_budgets(budgets, rows, nrows) ? 1 : 0;
 }

@@ -199,6 +199,17 @@ typedef struct hb_options {
     unsigned long long seed;
     hb_azimuthal azimuthal;  /* dFH11, default HB_AZIMUTHAL_QUADRATURE */
     double table_tolerance;  /* dFH11 N_p table: 0 = from quality (1e-2, 1e-3, 1e-4), else in [1e-6, 0.5] */
+    /* Plans that choose their own configuration (README "Plans from a tolerance or a time budget";
+     * hb_plan_describe says what was chosen and why). tolerance > 0: the cheapest configuration whose
+     * expected error, relative to the material's peak f, is at most this; lobes whose largest value
+     * (measured at plan creation on a grid of directions) cannot matter are dropped (dFH11, MJC03).
+     * budget_ns > 0: the most accurate configuration whose calibrated cost per sample on the plan's ISA
+     * fits. The two exclude each other; each overrides quality, quadrature_order and azimuthal (and
+     * tt_trt for HHH22). Costs and errors come from `calibration`, a CSV written by `make bench`
+     * (bench/results/calibration.csv), or from the table built in (NULL). */
+    double tolerance;
+    double budget_ns;
+    const char *calibration;
 } hb_options;
 
 #define HB_MAX_TT_PANELS 2048
@@ -217,6 +228,12 @@ typedef struct hb_plan hb_plan;
 hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **plan,
                          hb_error *error);
 void hb_plan_destroy(hb_plan *plan);
+
+/* What the plan simulates and what it skipped, in plain words: model, lobes, quadrature, detector,
+ * tables, ISA; for a tolerance or budget plan also the lobes dropped (with their measured share of
+ * the peak), the configuration chosen, its expected error and expected ns per sample. Writes at most
+ * size bytes (always terminated); returns the length the whole text needs, like snprintf. */
+size_t hb_plan_describe(const hb_plan *plan, char *text, size_t size);
 
 /* The instruction set the plan's kernel uses (never HB_ISA_AUTO). */
 hb_isa hb_plan_isa(const hb_plan *plan);

@@ -158,6 +158,15 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
         return fail(error, HB_ERR_PARAM, "absorption = %d is not an absorption variant", (int)o->absorption);
     if (o->r_fresnel != HB_R_FRESNEL_HALF_ANGLE && o->r_fresnel != HB_R_FRESNEL_OFFSET)
         return fail(error, HB_ERR_PARAM, "r_fresnel = %d is not a variant", (int)o->r_fresnel);
+    if (!(o->tolerance == 0.0 || in_range(o->tolerance, 1e-6, 0.5)))
+        return fail(error, HB_ERR_PARAM, "tolerance = %g must be 0 (none) or in [1e-6, 0.5]", o->tolerance);
+    if (!(o->budget_ns == 0.0 || in_range(o->budget_ns, 1e-3, 1e9)))
+        return fail(error, HB_ERR_PARAM, "budget_ns = %g must be 0 (none) or in [0.001, 1e9]", o->budget_ns);
+    if (o->tolerance > 0.0 && o->budget_ns > 0.0)
+        return fail(error, HB_ERR_PARAM, "tolerance and budget_ns exclude each other: a plan meets one or the other");
+    if ((o->tolerance > 0.0 || o->budget_ns > 0.0) && (o->quality == HB_QUALITY_REFERENCE || o->term != HB_TERM_FULL))
+        return fail(error, HB_ERR_UNSUPPORTED, "a tolerance or budget plan chooses among the float configurations of "
+                    "the full model: not with the reference quality or the longitudinal term");
     if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE && o->azimuthal != HB_AZIMUTHAL_TABLE)
         return fail(error, HB_ERR_PARAM, "azimuthal = %d is not a variant", (int)o->azimuthal);
     if (!(o->table_tolerance == 0.0 || in_range(o->table_tolerance, 1e-6, 0.5)))
@@ -507,6 +516,9 @@ static void derive_huang(hb_plan *plan)
     h->b2 = (float)(1.0 - m->eccentricity * m->eccentricity);
 }
 
+static hb_status build_plan(const hb_material *material, const hb_options *options, hb_isa isa,
+                            const hb_selection *selection, hb_plan **out, hb_error *error);
+
 hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **out, hb_error *error)
 {
     if (error) {
@@ -531,11 +543,38 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
         st = resolve_isa(options->isa, &isa, error);
     if (st != HB_OK)
         return st;
+    if (options->tolerance == 0.0 && options->budget_ns == 0.0)
+        return build_plan(material, options, isa, NULL, out, error);
+    /* a tolerance or budget plan: the best configuration, or the next when its table cannot be built */
+    hb_selection selection = { 0 };
+    for (;;) {
+        hb_options chosen;
+        st = hb_plan_select(material, options, isa, &chosen, &selection, error);
+        if (st != HB_OK)
+            return st;
+        st = build_plan(material, &chosen, isa, &selection, out, error);
+        if (st == HB_OK && error) /* an earlier attempt's message is not this call's */
+            error->status = HB_OK, error->message[0] = '\0';
+        if (st != HB_ERR_UNSUPPORTED || selection.preset >= 32)
+            return st;
+        selection.refused |= 1u << selection.preset;
+        snprintf(selection.refusal, sizeof selection.refusal, "%s: %.120s", selection.configuration,
+                 error ? error->message : "could not be built");
+    }
+}
+
+/* The plan of concrete options; selection (NULL for a plain plan) is what chose them. */
+static hb_status build_plan(const hb_material *material, const hb_options *options, hb_isa isa,
+                            const hb_selection *selection, hb_plan **out, hb_error *error)
+{
+    hb_status st = HB_OK;
     hb_plan *plan = calloc(1, sizeof *plan);
     if (!plan)
         return fail(error, HB_ERR_NOMEM, "could not allocate a plan");
     plan->material = *material;
     plan->options = *options;
+    if (selection)
+        plan->selection = *selection;
     plan->isa = isa;
     int reference = options->quality == HB_QUALITY_REFERENCE ||
                     (options->model == HB_MODEL_HUANG && options->tt_trt == HB_TT_TRT_REFERENCE);

@@ -5,6 +5,22 @@
 #include "hairbsdf.h"
 #include "kernels.h"
 
+/* What a tolerance or budget plan chose and why (src/plan_select.c), for hb_plan_describe. */
+typedef struct hb_selection {
+    int active;
+    double tolerance, budget_ns;
+    unsigned measured, dropped;         /* lobes measured at creation, lobes dropped */
+    double share[HB_MAX_LOBES + 1];     /* each measured lobe's largest value over the peak of f */
+    double dropped_bound;               /* twice the dropped lobes' summed shares */
+    char configuration[32];             /* the chosen preset, as the bench names it */
+    int preset;                         /* its index; bit k of refused: preset k failed to build */
+    unsigned refused;
+    char refusal[160];                  /* why the last refused preset failed */
+    double expected_error, expected_ns; /* calibrated error plus dropped_bound; ns on the plan's ISA */
+    int ranked_by_scalar;               /* the ISA has no calibration: figures are scalar x86's */
+    char calibration[128];              /* "built in" or the file */
+} hb_selection;
+
 struct hb_plan {
     hb_material material;
     hb_options options;
@@ -23,6 +39,7 @@ struct hb_plan {
     float *huang_table;                          /* owns huang.table.values (HB_TT_TRT_TABLE) */
     float *deon_table;                           /* owns deon.np_table (HB_AZIMUTHAL_TABLE) */
     double table_error;                          /* the N_p table's measured midpoint error */
+    hb_selection selection;                      /* tolerance and budget plans */
 };
 
 /* SplitMix64's finaliser: a bijective 64-bit mix (src/sample.c). */
@@ -33,6 +50,12 @@ hb_status hb_plan_build_huang_table(hb_plan *plan, hb_error *error);
 
 /* dFH11's N_p table for HB_AZIMUTHAL_TABLE (src/deon_table.c). */
 hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error);
+
+/* A tolerance or budget plan's options (src/plan_select.c); the calibrated figures of any plan's
+ * configuration (0 when it has none). */
+hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa, hb_options *out, hb_selection *sel,
+                         hb_error *error);
+int hb_plan_expected(const hb_plan *plan, char *configuration, size_t size, double *ns, double *err);
 
 /* The sampler's constants (src/sample_plan.c). */
 void hb_plan_derive_sampling(hb_plan *plan);

@@ -65,6 +65,7 @@ extern const hb_test hb_tests_api[];
 extern const hb_test hb_tests_cli[];
 extern const hb_test hb_tests_images[];
 extern const hb_test hb_tests_deon_table[];
+extern const hb_test hb_tests_plan_select[];
 extern const hb_test hb_tests_corpus[];
 extern const hb_test hb_tests_sample[];
 extern const hb_test hb_tests_sample_huang[];

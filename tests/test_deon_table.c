@@ -111,7 +111,7 @@ static void test_bake_files(hb_test_ctx *t)
         CHECK(t, 0, "HB_TOOL is not set");
         return;
     }
-    static const char *const models[] = { "--model deon --eumelanin 0.3 --tolerance 1e-2",
+    static const char *const models[] = { "--model deon --eumelanin 0.3 --table-tolerance 1e-2",
                                           "--model huang --quality fast --roughness 0.3" };
     for (int which = 0; which < 2; which++) {
         char path[] = "/tmp/hb_bake_XXXXXX.hbt", cmd[512];

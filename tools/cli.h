@@ -27,5 +27,6 @@ int cmd_furnace(int argc, char **argv);
 int cmd_dump(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_bake(int argc, char **argv);
+int cmd_plan(int argc, char **argv);
 
 #endif

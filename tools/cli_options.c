@@ -29,6 +29,12 @@ const char cli_model_options_help[] =
     "  --tt-panels N                  huang TT/TRT: Simpson panels over the entry azimuth (default: from quality)\n"
     "  --seed S                       huang TT/TRT: key of the Monte-Carlo numbers (with the row index; default 0)\n"
     "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
+    "  --azimuthal quadrature|table   dFH11 N_p per sample, or from a table built at plan creation\n"
+    "  --table-tolerance X            dFH11 N_p table: midpoint error bound (default: from quality)\n"
+    "  --tolerance X                  choose the configuration: the cheapest whose error (of the peak f) is at most X,\n"
+    "                                 dropping lobes that cannot matter (see hairbsdf plan)\n"
+    "  --budget-ns X                  choose the most accurate configuration that takes at most X ns per sample\n"
+    "  --calibration FILE             costs and errors for those choices (bench/results/calibration.csv; default built in)\n"
     "Material options:\n"
     "  --eta X  --sigma-a R,G,B  --eumelanin X  --pheomelanin X\n"
     "  --beta-m X  --beta-n X  --alpha X  --ndf ggx|beckmann  --roughness X  --eccentricity X\n"
@@ -127,16 +133,17 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     static const char *const numeric[] = { "--eta", "--eumelanin", "--pheomelanin", "--beta-m", "--beta-n",
                                            "--alpha", "--roughness", "--eccentricity", "--detector-tolerance",
                                            "--glint-scale", "--caustic-width", "--caustic-fade", "--caustic-limit",
-                                           "--r-step", NULL };
+                                           "--r-step", "--tolerance", "--budget-ns", "--table-tolerance", NULL };
     static const char *const with_value[] = { "--model", "--term", "--lobes", "--quality", "--isa", "--i0",
                                               "--ndf", "--sigma-a", "--pmax", "--quadrature", "--absorption",
                                               "--r-fresnel", "--r-integration", "--r-panels", "--tt-trt",
-                                              "--tt-panels", "--seed", NULL };
+                                              "--tt-panels", "--seed", "--calibration", "--azimuthal", NULL };
     static const char *const per_lobe[] = { "--lobe-beta-m", "--lobe-beta-n", "--lobe-alpha", NULL };
     static const char *const absorptions[] = { "corrected", "paper", NULL };
     static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
     static const char *const r_integrations[] = { "auto", "analytic", "numeric", NULL };
     static const char *const tt_trts[] = { "mc", "reference", "table", NULL };
+    static const char *const azimuthals[] = { "quadrature", "table", NULL };
     static const char *const models[] = { "marschner", "deon", "huang", NULL };
     static const char *const terms[] = { "full", "longitudinal", NULL };
     static const char *const qualities[] = { "fast", "balanced", "high", "reference", NULL };
@@ -177,7 +184,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         double *const fields[] = { &m->eta, &m->eumelanin, &m->pheomelanin, &m->beta_m, &m->beta_n,
                                    &m->alpha, &m->roughness, &m->eccentricity, &o->detector_tolerance,
                                    &m->glint_scale, &m->caustic_width, &m->caustic_fade, &m->caustic_limit,
-                                   &o->r_step };
+                                   &o->r_step, &o->tolerance, &o->budget_ns, &o->table_tolerance };
         *fields[num] = x;
         return 1;
     }
@@ -233,9 +240,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     } else if (strcmp(name, "--r-panels") == 0) {
         if (!parse_int(value, 2, HB_MAX_R_PANELS, &o->r_panels) || o->r_panels % 2) expected = "an even panel count";
     } else if (strcmp(name, "--tt-trt") == 0) {
-        if ((k = pick(value, tt_trts)) >= 0) o->tt_trt = (hb_tt_trt)k;
-        else expected = strcmp(value, "table") == 0 ? "available yet (tables are issue #6's next step): use mc or reference"
-                                                     : "mc, table or reference";
+        if ((k = pick(value, tt_trts)) >= 0) o->tt_trt = (hb_tt_trt)k; else expected = "mc, table or reference";
     } else if (strcmp(name, "--tt-panels") == 0) {
         if (!parse_int(value, 2, HB_MAX_TT_PANELS, &o->tt_panels) || o->tt_panels % 2) expected = "an even panel count";
     } else if (strcmp(name, "--seed") == 0) {
@@ -246,6 +251,10 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         if (!parse_int(value, 0, HB_MAX_LOBES - 1, &o->pmax)) expected = "an order from 0 to 7";
     } else if (strcmp(name, "--quadrature") == 0) {
         if (!parse_int(value, 1, HB_MAX_NODES, &o->quadrature_order)) expected = "a node count from 1 to 256";
+    } else if (strcmp(name, "--calibration") == 0) {
+        o->calibration = value;
+    } else if (strcmp(name, "--azimuthal") == 0) {
+        if ((k = pick(value, azimuthals)) >= 0) o->azimuthal = (hb_azimuthal)k; else expected = "quadrature or table";
     } else if (strcmp(name, "--sigma-a") == 0) {
         if (!parse_triple(value, m->sigma_a)) expected = "three finite numbers R,G,B";
     }

@@ -11,7 +11,7 @@
 
 static void bake_usage(FILE *to)
 {
-    fprintf(to, "usage: hairbsdf bake [options] [--tolerance X] -o FILE.hbt|FILE.exr\n"
+    fprintf(to, "usage: hairbsdf bake [options] [--table-tolerance X] -o FILE.hbt|FILE.exr\n"
                 "deon: N_p per group of lobes sharing an M_p, over (sqrt(cos(theta_d)), |phi|), refined until the\n"
                 "midpoint interpolation error is below X of each group's peak (default: from --quality);\n"
                 "huang: its TT + TRT table (resolution from --quality and the roughness). Prints the axes.\n"
@@ -86,7 +86,6 @@ int cmd_bake(int argc, char **argv)
 {
     cli_model_args args;
     cli_model_args_default(&args);
-    double tolerance = 0.0;
     const char *path = NULL;
     char err[256];
     for (int i = 1; i < argc; i++) {
@@ -96,13 +95,6 @@ int cmd_bake(int argc, char **argv)
         }
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
             path = argv[++i];
-        } else if (strcmp(argv[i], "--tolerance") == 0 && i + 1 < argc) {
-            char *end;
-            tolerance = strtod(argv[++i], &end);
-            if (*end || end == argv[i] || !(tolerance > 0.0)) {
-                fprintf(stderr, "hairbsdf bake: --tolerance: '%s' is not a positive number\n", argv[i]);
-                return 2;
-            }
         } else {
             int r = cli_parse_model_option(argc, argv, &i, &args, err, sizeof err);
             if (r <= 0) {
@@ -124,12 +116,11 @@ int cmd_bake(int argc, char **argv)
     hb_options *o = &args.options;
     if (o->model == HB_MODEL_DEON) {
         o->azimuthal = HB_AZIMUTHAL_TABLE;
-        o->table_tolerance = tolerance;
-    } else if (o->model == HB_MODEL_HUANG && tolerance == 0.0) {
+    } else if (o->model == HB_MODEL_HUANG && o->table_tolerance == 0.0) {
         o->tt_trt = HB_TT_TRT_TABLE;
     } else {
         fprintf(stderr, "hairbsdf bake: %s\n", o->model == HB_MODEL_HUANG
-                                                     ? "the huang table's resolution follows --quality, not --tolerance"
+                                                     ? "the huang table's resolution follows --quality, not --table-tolerance"
                                                      : "the marschner model has no tables (deon and huang do)");
         return 2;
     }

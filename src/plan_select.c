@@ -1,0 +1,277 @@
+/* Plans that choose their own configuration (options.tolerance, options.budget_ns): which lobes a
+ * material needs, measured at plan creation, and which named configuration (quality, quadrature
+ * order, N_p table) meets the tolerance most cheaply or the budget most accurately, from the
+ * calibration that `make bench` measures (src/calibration.c). README "Plans from a tolerance or a
+ * time budget". */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "calibration.h"
+#include "plan.h"
+
+/* The named configurations, as the bench names its rows. */
+typedef struct preset {
+    hb_model model;
+    const char *name;
+    hb_quality quality;
+    int quadrature_order;
+    hb_azimuthal azimuthal;
+} preset;
+
+static const preset presets[] = {
+    { HB_MODEL_DEON, "full/fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE },
+    { HB_MODEL_DEON, "full/balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE },
+    { HB_MODEL_DEON, "full/high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE },
+    { HB_MODEL_DEON, "full/nodes35", HB_QUALITY_HIGH, 35, HB_AZIMUTHAL_QUADRATURE },
+    { HB_MODEL_DEON, "full/table-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_TABLE },
+    { HB_MODEL_DEON, "full/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_TABLE },
+    { HB_MODEL_DEON, "full/table-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_TABLE },
+    { HB_MODEL_MARSCHNER, "full/closed-form", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE },
+    { HB_MODEL_HUANG, "R/analytic", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE },
+    { HB_MODEL_HUANG, "R/G-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE },
+    { HB_MODEL_HUANG, "R/G-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE },
+    { HB_MODEL_HUANG, "R/G-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE },
+};
+#define N_PRESETS ((int)(sizeof presets / sizeof presets[0]))
+
+/* HHH22's R lobe has App. A's closed form for GGX without shadowing on circular fibres. */
+static int huang_analytic(const hb_material *m, const hb_options *o)
+{
+    return m->ndf == HB_NDF_GGX && o->shadowing == HB_SHADOWING_NONE && m->eccentricity == 0.0 &&
+           o->r_integration != HB_R_INTEGRATION_NUMERIC;
+}
+
+/* Whether a preset computes the same model as the options (only its accuracy and cost differ). */
+static int preset_applies(const preset *p, const hb_material *m, const hb_options *o, unsigned lobes)
+{
+    if (p->model != o->model)
+        return 0;
+    if (p->azimuthal == HB_AZIMUTHAL_TABLE && o->r_fresnel != HB_R_FRESNEL_OFFSET)
+        return 0;
+    if (o->model == HB_MODEL_HUANG)
+        return lobes == 1u << HB_LOBE_R && (strcmp(p->name, "R/analytic") == 0) == huang_analytic(m, o);
+    return 1;
+}
+
+/* The preset the options amount to, for describing any plan; NULL if none. */
+static const preset *preset_of(const hb_material *m, const hb_options *o, unsigned lobes)
+{
+    for (int k = 0; k < N_PRESETS; k++) {
+        const preset *p = &presets[k];
+        if (preset_applies(p, m, o, lobes) && (o->model == HB_MODEL_MARSCHNER || huang_analytic(m, o) ||
+                                               (p->quality == o->quality && p->quadrature_order == o->quadrature_order &&
+                                                p->azimuthal == o->azimuthal)))
+            return p;
+    }
+    return NULL;
+}
+
+/* The calibration entry of a preset on the ISA, else on scalar (ranked by scalar timings). */
+static const hb_calibration_entry *entry_for(const hb_calibration *c, const preset *p, hb_isa isa, int *fallback)
+{
+    static const char *const model_names[] = { "marschner", "deon", "huang" };
+    const hb_calibration_entry *e = hb_calibration_find(c, model_names[p->model], p->name, hb_isa_name(isa));
+    *fallback = !e;
+    return e ? e : hb_calibration_find(c, model_names[p->model], p->name, "scalar");
+}
+
+/* All lobes the options ask for, as a mask. */
+static unsigned requested_lobes(const hb_options *o)
+{
+    if (o->model == HB_MODEL_DEON)
+        return o->lobes == HB_LOBES_DEFAULT ? ((2u << o->pmax) - 1u) | 1u << HB_LOBE_RESIDUAL : o->lobes;
+    return o->lobes == HB_LOBES_DEFAULT ? 7u : o->lobes;
+}
+
+enum { PROBE_THETA_I = 17, PROBE_THETA_O = 61, PROBE_CONE = 15, PROBE_PHI = 32 };
+#define PROBES (PROBE_THETA_I * (PROBE_THETA_O + PROBE_CONE) * PROBE_PHI)
+
+/* The directions lobes are measured at: theta_i on a grid, theta_o on a grid and on the specular cone
+ * -theta_i shifted by multiples of beta_m / 2 and by the tilt's shifts, phi over [0, pi]. */
+static void probe_directions(const hb_material *m, float *ti, float *pi, float *to, float *po)
+{
+    size_t k = 0;
+    for (int a = 0; a < PROBE_THETA_I; a++) {
+        double theta_i = -1.5 + 3.0 * a / (PROBE_THETA_I - 1);
+        for (int b = 0; b < PROBE_THETA_O + PROBE_CONE; b++) {
+            double theta_o = b < PROBE_THETA_O ? -1.55 + 3.1 * b / (PROBE_THETA_O - 1)
+                           : b < PROBE_THETA_O + 9 ? -theta_i + 0.5 * m->beta_m * (b - PROBE_THETA_O - 4)
+                                                   : -theta_i + m->alpha * ((b - PROBE_THETA_O - 9) % 3 + 1) *
+                                                                    ((b - PROBE_THETA_O) % 2 ? 1.0 : -1.0);
+            theta_o = fmax(-1.5707, fmin(1.5707, theta_o));
+            for (int c = 0; c < PROBE_PHI; c++, k++) {
+                ti[k] = (float)theta_i, to[k] = (float)theta_o, pi[k] = 0.0f;
+                po[k] = (float)(M_PI * c / (PROBE_PHI - 1));
+            }
+        }
+    }
+}
+
+/* share[p]: the largest value of lobe p over the probe directions and channels, over the peak of
+ * the sum of the lobes there. */
+static hb_status measure_lobes(const hb_material *m, const hb_options *base, unsigned lobes, double *share,
+                               hb_error *error)
+{
+    float *buffer = malloc((size_t)PROBES * 8 * sizeof *buffer);
+    double *sum = calloc((size_t)PROBES * 3, sizeof *sum), *lobe_max = calloc(HB_MAX_LOBES + 1, sizeof *lobe_max);
+    hb_status st = buffer && sum && lobe_max ? HB_OK : HB_ERR_NOMEM;
+    if (st == HB_OK) {
+        float *ti = buffer, *pi = buffer + PROBES, *to = buffer + 2 * PROBES, *po = buffer + 3 * PROBES;
+        float *f[3] = { buffer + 4 * PROBES, buffer + 5 * PROBES, buffer + 6 * PROBES };
+        probe_directions(m, ti, pi, to, po);
+        for (int p = 0; p <= HB_LOBE_RESIDUAL && st == HB_OK; p++) {
+            if (!(lobes >> p & 1u))
+                continue;
+            hb_options o = *base;
+            o.lobes = 1u << p;
+            hb_plan *plan;
+            st = hb_plan_create(m, &o, &plan, error);
+            if (st != HB_OK)
+                break;
+            hb_eval_angles(plan, PROBES, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+            hb_plan_destroy(plan);
+            for (size_t k = 0; k < PROBES; k++)
+                for (int c = 0; c < 3; c++) {
+                    sum[3 * k + (size_t)c] += f[c][k];
+                    lobe_max[p] = fmax(lobe_max[p], f[c][k]);
+                }
+        }
+    }
+    double peak = 0.0;
+    for (size_t k = 0; st == HB_OK && k < (size_t)PROBES * 3; k++)
+        peak = fmax(peak, sum[k]);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL && st == HB_OK; p++)
+        share[p] = peak > 0.0 ? lobe_max[p] / peak : 0.0;
+    free(buffer), free(sum), free(lobe_max);
+    if (st == HB_ERR_NOMEM && error) {
+        error->status = st;
+        snprintf(error->message, sizeof error->message, "could not allocate the lobe probes");
+    }
+    return st;
+}
+
+static hb_status refuse(hb_error *error, hb_calibration *c, const char *fmt, ...)
+{
+    hb_calibration_close(c);
+    if (error) {
+        va_list ap;
+        va_start(ap, fmt);
+        error->status = HB_ERR_UNSUPPORTED;
+        vsnprintf(error->message, sizeof error->message, fmt, ap);
+        va_end(ap);
+    }
+    return HB_ERR_UNSUPPORTED;
+}
+
+hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa, hb_options *out, hb_selection *sel,
+                         hb_error *error)
+{
+    *out = *in;
+    int again = sel->active; /* a later attempt: the lobes are measured, sel->refused presets are out */
+    if (!again) {
+        memset(sel, 0, sizeof *sel);
+        sel->active = 1;
+        sel->tolerance = in->tolerance, sel->budget_ns = in->budget_ns;
+    }
+    unsigned lobes = requested_lobes(in) & ~sel->dropped;
+    static const char *const model_names[] = { "marschner", "deon", "huang" };
+    hb_calibration calibration;
+    hb_status st = hb_calibration_open(in->calibration, &calibration, error);
+    if (st != HB_OK)
+        return st;
+    snprintf(sel->calibration, sizeof sel->calibration, "%s", in->calibration ? in->calibration : "built in");
+    double allowed = in->tolerance; /* what the configuration may still spend after dropped lobes */
+    if (in->tolerance > 0.0 && in->model != HB_MODEL_HUANG && !again) {
+        hb_options base = *in;
+        base.tolerance = 0.0, base.budget_ns = 0.0, base.quality = HB_QUALITY_BALANCED, base.quadrature_order = 0;
+        base.azimuthal = HB_AZIMUTHAL_QUADRATURE, base.isa = isa;
+        st = measure_lobes(m, &base, lobes, sel->share, error);
+        if (st != HB_OK) {
+            hb_calibration_close(&calibration);
+            return st;
+        }
+        sel->measured = lobes;
+        /* drop the smallest lobes while twice their summed maxima (a margin for peaks between the
+         * probe directions) stays within half the tolerance; keep the largest lobe */
+        for (;;) {
+            int smallest = -1;
+            for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+                if ((lobes >> p & 1u) && (smallest < 0 || sel->share[p] < sel->share[smallest]))
+                    smallest = p;
+            if (smallest < 0 || (lobes & (lobes - 1u)) == 0 ||
+                sel->dropped_bound + 2.0 * sel->share[smallest] > 0.5 * in->tolerance)
+                break;
+            sel->dropped_bound += 2.0 * sel->share[smallest];
+            sel->dropped |= 1u << smallest;
+            lobes &= ~(1u << smallest);
+        }
+    }
+    if (in->tolerance > 0.0)
+        allowed = in->tolerance - sel->dropped_bound;
+    const preset *best = NULL;
+    const hb_calibration_entry *best_entry = NULL, *fastest = NULL, *most_accurate = NULL;
+    int candidates = 0;
+    for (int k = 0; k < N_PRESETS; k++) {
+        int fallback;
+        const hb_calibration_entry *e;
+        if (!preset_applies(&presets[k], m, in, lobes) || !(e = entry_for(&calibration, &presets[k], isa, &fallback)) ||
+            (sel->refused >> k & 1u))
+            continue;
+        candidates++;
+        fastest = !fastest || e->ns < fastest->ns ? e : fastest;
+        most_accurate = !most_accurate || e->error < most_accurate->error ? e : most_accurate;
+        int fits = in->tolerance > 0.0 ? e->error <= allowed : e->ns <= in->budget_ns;
+        int better = !best_entry || (in->tolerance > 0.0 ? e->ns < best_entry->ns
+                                                          : e->error < best_entry->error ||
+                                                                (e->error == best_entry->error && e->ns < best_entry->ns));
+        if (fits && better) {
+            best = &presets[k], best_entry = e;
+            sel->ranked_by_scalar = fallback;
+        }
+    }
+    if (!candidates)
+        return refuse(error, &calibration,
+                      "no calibrated configuration of the %s model for these options: tolerance and budget plans "
+                      "cover deon, marschner and the huang R lobe (TT/TRT not calibrated yet)", model_names[in->model]);
+    if (!best && in->tolerance > 0.0)
+        return refuse(error, &calibration,
+                      "tolerance %g leaves %.3g for the configuration after dropped lobes, below every calibrated "
+                      "one (the most accurate, %s, measured %.3g)", in->tolerance, allowed,
+                      most_accurate->configuration, most_accurate->error);
+    if (!best)
+        return refuse(error, &calibration, "budget %g ns: no configuration fits on %s (the fastest, %s, takes %.3g ns)",
+                      in->budget_ns, hb_isa_name(isa), fastest->configuration, fastest->ns);
+    snprintf(sel->configuration, sizeof sel->configuration, "%s", best->name);
+    sel->preset = (int)(best - presets);
+    sel->expected_error = best_entry->error + sel->dropped_bound;
+    sel->expected_ns = best_entry->ns;
+    out->quality = best->quality;
+    out->quadrature_order = best->quadrature_order;
+    out->azimuthal = best->azimuthal;
+    out->table_tolerance = 0.0;
+    out->lobes = lobes;
+    hb_calibration_close(&calibration);
+    return HB_OK;
+}
+
+/* The calibrated figures of a plain plan's configuration, for hb_plan_describe. */
+int hb_plan_expected(const hb_plan *plan, char *configuration, size_t size, double *ns, double *err)
+{
+    unsigned lobes = requested_lobes(&plan->options);
+    const preset *p = preset_of(&plan->material, &plan->options, lobes);
+    hb_calibration c;
+    int fallback = 0, found = 0;
+    if (p && hb_calibration_open(NULL, &c, NULL) == HB_OK) {
+        const hb_calibration_entry *e = entry_for(&c, p, plan->isa, &fallback);
+        if (e && !fallback) {
+            snprintf(configuration, size, "%s", p->name);
+            *ns = e->ns, *err = e->error;
+            found = 1;
+        }
+        hb_calibration_close(&c);
+    }
+    return found;
+}
