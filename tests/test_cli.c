@@ -426,6 +426,35 @@ static void test_plot_commands(hb_test_ctx *t)
     unlink(svg_path);
 }
 
+/* hairbsdf plan describes the plan of the same options eval would use; --tolerance and --budget-ns reach
+ * the library through every command. */
+static void test_plan_commands(hb_test_ctx *t)
+{
+    run_result r;
+    if (!run_tool(t, "plan --eumelanin 8 --tolerance 1e-2", "", &r))
+        return;
+    CHECK(t, r.status == 0 && strstr(r.out, "lobes: R\n") && strstr(r.out, "TT: largest value") &&
+             strstr(r.out, "expected error"), "plan for black hair at 1e-2: %s%s", r.out, r.err);
+    run_tool(t, "eval --budget-ns 1", "0.3,0,-0.3,0\n", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "fastest"), "a budget nothing meets: %s", r.err);
+    run_tool(t, "eval --eumelanin 8 --tolerance 1e-2", "0.3,0,-0.3,0\n", &r);
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.eumelanin = 8.0, o.tolerance = 1e-2;
+    hb_plan *plan;
+    float ti = 0.3f, pi = 0.0f, to = -0.3f, po = 0.0f, f[3];
+    CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "plan");
+    hb_eval_angles(plan, 1, (hb_angles_soa){ &ti, &pi, &to, &po }, (hb_rgb_soa){ &f[0], &f[1], &f[2] }, NULL);
+    hb_plan_destroy(plan);
+    char expected[128];
+    snprintf(expected, sizeof expected, "%.9g,%.9g,%.9g\n", f[0], f[1], f[2]);
+    CHECK(t, r.status == 0 && strcmp(r.out, expected) == 0, "eval --tolerance: %s vs %s", r.out, expected);
+    run_tool(t, "plan --tolerance 1e-2 --budget-ns 50", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "exclude"), "tolerance and budget together: %s", r.err);
+}
+
 const hb_test hb_tests_cli[] = {
     { "cli_deon_commands", test_deon_commands, 0 },
     { "cli_marschner_commands", test_marschner_commands, 0 },
@@ -434,5 +463,6 @@ const hb_test hb_tests_cli[] = {
     { "cli_help", test_help, 0 },
     { "cli_sample_commands", test_sample_commands, 0 },
     { "cli_plot_commands", test_plot_commands, 0 },
+    { "cli_plan_commands", test_plan_commands, 0 },
     { NULL, NULL, 0 },
 };
