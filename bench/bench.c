@@ -3,11 +3,13 @@
  * Batches are SoA, warm in cache, timed many times on one pinned core; the minimum
  * is what the budget applies to, the median is printed beside it. */
 #include <math.h>
+#include <pthread.h>
 #include <sched.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "hairbsdf.h"
 #include "plot.h"
@@ -376,6 +378,60 @@ static int run_once(const char *name)
     return 2;
 }
 
+/* Multi-core scaling: threads in the bench only (the library never starts any), each pinned to its
+ * core, evaluating the same immutable plan into its own output. */
+enum { SCALING_REPEATS = 20, MAX_THREADS = 64 };
+
+typedef struct worker {
+    const hb_plan *plan;
+    int core;
+} worker;
+
+static void *worker_run(void *arg)
+{
+    const worker *w = arg;
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(w->core, &set);
+    pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+    float *planes = malloc(3 * BATCH * sizeof *planes);
+    for (int r = 0; planes && r < SCALING_REPEATS; r++)
+        hb_eval_angles(w->plan, BATCH, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
+                       (hb_rgb_soa){ planes, planes + BATCH, planes + 2 * BATCH }, NULL);
+    free(planes);
+    return NULL;
+}
+
+/* Samples per second of the balanced dFH11 plan on 1..cores threads. */
+static void scaling(const hb_material *m)
+{
+    hb_options o;
+    hb_options_default(&o);
+    hb_plan *plan;
+    if (hb_plan_create(m, &o, &plan, NULL) != HB_OK)
+        return;
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    cores = cores < 1 ? 1 : cores > MAX_THREADS ? MAX_THREADS : cores;
+    double one = 0.0;
+    printf("Multi-core scaling (dFH11 full model, balanced, %s, batches of %d per thread):\n", hb_isa_name(hb_plan_isa(plan)),
+           BATCH);
+    for (long n = 1; n <= cores; n++) {
+        pthread_t threads[MAX_THREADS];
+        worker workers[MAX_THREADS];
+        double t0 = now_ns();
+        for (long k = 0; k < n; k++) {
+            workers[k] = (worker){ plan, (int)k };
+            pthread_create(&threads[k], NULL, worker_run, &workers[k]);
+        }
+        for (long k = 0; k < n; k++)
+            pthread_join(threads[k], NULL);
+        double rate = (double)n * SCALING_REPEATS * BATCH / ((now_ns() - t0) * 1e-9) / 1e6;
+        one = n == 1 ? rate : one;
+        printf("  %ld thread%s: %.2f Msamples/s (%.2fx one thread)\n", n, n > 1 ? "s" : "", rate, rate / one);
+    }
+    hb_plan_destroy(plan);
+}
+
 int main(int argc, char **argv)
 {
     const char *budgets = NULL, *results_dir = NULL, *only = "", *only_isa = NULL;
@@ -480,6 +536,8 @@ int main(int argc, char **argv)
         else
             printf("wrote %s and %s\n", csv, svg);
     }
+    if (!partial)
+        scaling(&m);
     if (results_dir && !partial) { /* what tolerance and budget plans choose from (options.calibration) */
         char path[512];
         snprintf(path, sizeof path, "%s/calibration.csv", results_dir);
