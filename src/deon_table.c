@@ -8,9 +8,12 @@
 
 static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
 
-/* The largest table: 4097 azimuths x 513 values of cos(theta_d) (a beta_n near 0.01 at 1e-4). */
+/* The largest table: 4097 azimuths x 513 values of cos(theta_d) (a beta_n near 0.01 at 1e-4), and the
+ * most quadrature-node evaluations one build attempt may make (3 grids of nodes x quadrature nodes):
+ * about 0.2 s on one AVX2 core. */
 #define MAX_PHI 4097
 #define MAX_CD 513
+#define MAX_WORK 1e8
 
 /* N rows at cos(theta_d) = cd[j] for the azimuths phi[0..n_phi), into out (n_cd rows). */
 static void build_rows(const hb_plan *plan, int n_cd, const double *cd, int n_phi, const float *phi, float *out)
@@ -67,6 +70,11 @@ hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error)
                                                      : tolerance_of_quality[plan->options.quality];
     int texel = 3 * d->table_slots, n_phi = 33, n_cd = 9;
     for (;;) {
+        double work = 3.0 * n_phi * n_cd * d->nodes;
+        if (work > MAX_WORK)
+            return table_fail(error, HB_ERR_UNSUPPORTED,
+                              "table_tolerance %g needs a finer N_p table than %.3g node evaluations allow (this "
+                              "beta_n and quality): loosen it or use the quadrature", tol, work);
         size_t nodes = (size_t)n_phi * (size_t)n_cd;
         float *values = malloc(nodes * (size_t)texel * sizeof *values);
         float *mid_phi = malloc((size_t)n_cd * (size_t)n_phi * (size_t)texel * sizeof *mid_phi);
