@@ -40,7 +40,8 @@ static void say_lobes(text *t, unsigned lobes)
 static void describe_deon(text *t, const hb_plan *plan)
 {
     const hb_deon *d = &plan->deon;
-    say(t, "model: d'Eon 2011 (dFH11), f = sum_p M_p N_p, RGB; lobes: ");
+    say(t, "model: d'Eon 2011 (dFH11), f = sum_p M_p N_p, %s; lobes: ",
+        d->channels == 1 ? "grey (one channel computed, copied to RGB)" : "RGB");
     say_lobes(t, d->lobes);
     say(t, d->lobes >> HB_LOBE_RESIDUAL & 1u ? " (residual: every order above %d in closed form)\n" : "\n", d->pmax);
     int groups = 0;

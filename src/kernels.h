@@ -115,6 +115,7 @@ typedef struct hb_detector {
 typedef struct hb_deon {
     unsigned lobes; /* bits p <= pmax, and HB_LOBE_RESIDUAL */
     int pmax;
+    int channels;   /* 3, or 1 for a grey fibre (sigma_a the same in every channel: one computed, copied) */
     int nodes;
     int absorption_paper;
     int r_fresnel_offset; /* R uses eq. 14 per node instead of eq. 12 */

@@ -371,6 +371,7 @@ static void derive_deon(hb_plan *plan)
     d->ior = dielectric_of(m->eta);
     for (int c = 0; c < 3; c++)
         d->sigma_a[c] = absorption_float(plan->sigma_a[c]);
+    d->channels = d->sigma_a[0] == d->sigma_a[1] && d->sigma_a[1] == d->sigma_a[2] ? 1 : 3;
     /* eq. 10 over h in [0, 1] with h = sin(gamma_i): the h^(1/2) behaviour of gamma_i at h = 1
      * becomes smooth, and detection at phi and -phi covers h < 0 (A even, Phi odd mod 2 pi). */
     double beta_min = HUGE_VAL;

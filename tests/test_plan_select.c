@@ -201,7 +201,8 @@ static double instructions(hb_test_ctx *t, const char *args)
     return count / 1024.0;
 }
 
-/* What a dark scene skips costs nothing: fewer lobes and a merged M_p are fewer instructions. */
+/* What a scene skips costs nothing: fewer lobes, a merged M_p and a grey fibre's one channel are fewer
+ * instructions. */
 static void test_effects_cost(hb_test_ctx *t)
 {
     const char *tool = getenv("HB_TOOL");
@@ -213,14 +214,17 @@ static void test_effects_cost(hb_test_ctx *t)
     double all = instructions(t, "--model deon --quality fast --eumelanin 8");
     double dark = instructions(t, "--model deon --quality fast --eumelanin 8 --lobes R,TT");
     double untilted = instructions(t, "--model deon --quality fast --eumelanin 8 --lobes R,TT --alpha 0");
+    double colour = instructions(t, "--model deon --quality fast --sigma-a 0.3,0.31,0.32");
+    double grey = instructions(t, "--model deon --quality fast --sigma-a 0.3,0.3,0.3");
     double marschner = instructions(t, "--model marschner --eumelanin 8");
     double marschner_r = instructions(t, "--model marschner --eumelanin 8 --lobes R");
-    CHECK(t, all > 0.0 && dark < all && untilted < dark && marschner_r < marschner,
-          "instructions per sample: all lobes %.0f, R+TT %.0f, untilted %.0f; marschner %.0f, R only %.0f", all, dark,
-          untilted, marschner, marschner_r);
+    CHECK(t, all > 0.0 && dark < all && untilted < dark && grey < colour && marschner_r < marschner,
+          "instructions per sample: all lobes %.0f, R+TT %.0f, untilted %.0f; RGB %.0f, grey %.0f; marschner %.0f, "
+          "R only %.0f", all, dark, untilted, colour, grey, marschner, marschner_r);
     hb_test_note(t, "instructions per sample (AVX2): dFH11 fast all lobes %.0f, R+TT %.0f (%.0f%%), and untilted %.0f "
-                    "(%.0f%%); MJC03 %.0f, R only %.0f (%.0f%%)", all, dark, 100.0 * dark / all, untilted,
-                 100.0 * untilted / all, marschner, marschner_r, 100.0 * marschner_r / marschner);
+                    "(%.0f%%); coloured %.0f, grey %.0f (%.0f%%); MJC03 %.0f, R only %.0f (%.0f%%)", all, dark,
+                 100.0 * dark / all, untilted, 100.0 * untilted / all, colour, grey, 100.0 * grey / colour, marschner,
+                 marschner_r, 100.0 * marschner_r / marschner);
 }
 
 const hb_test hb_tests_plan_select[] = {

@@ -66,12 +66,13 @@ typedef struct deon_medium {
     vf mu[3];         /* mu_a' = mu_a / cos(theta_t), per channel */
 } deon_medium;
 
-HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_medium *m)
+/* channels: 3, or 1 for a grey fibre (a constant at every call, so the loops unroll) */
+HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_medium *m, const int channels)
 {
     m->cos_theta_d = g->cos_theta_d;
     m->inv_eta_prime = vf_div(g->cos_theta_d, vf_sqrt(vf_sub(vf_set1(d->ior.eta * d->ior.eta), g->sin2_theta_d))); /* sec. 5 */
     vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(d->ior.inv_eta2), vf_set1(1.0f)));
-    for (int c = 0; c < 3; c++)
+    for (int c = 0; c < channels; c++)
         m->mu[c] = vf_div(vf_set1(d->sigma_a[c]), cos_theta_t);
 }
 
@@ -84,7 +85,7 @@ typedef struct deon_node {
 } deon_node;
 
 HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf gamma_i, vf cos_gamma_i,
-                               deon_node *node)
+                               deon_node *node, const int channels)
 {
     vf sin_gamma_t = vf_mul(h, m->inv_eta_prime);
     vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
@@ -94,7 +95,7 @@ HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf 
     vf path = d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
                                   : vf_add(cos_gamma_t, cos_gamma_t);
     vf T[3], T_power[3];
-    for (int c = 0; c < 3; c++)
+    for (int c = 0; c < channels; c++)
         T_power[c] = T[c] = vf_exp_flush(vf_neg(vf_mul(m->mu[c], path)));
     if (d->lobes & 1u) {
         node->Phi[0] = vf_mul(vf_set1(-2.0f), gamma_i); /* eq. 8, p = 0 */
@@ -105,19 +106,23 @@ HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf 
         if (d->lobes >> p & 1u) {
             node->Phi[p] = vf_fma(vf_set1(2.0f * (float)p), gamma_t,
                                   vf_fnma(vf_set1(2.0f), gamma_i, vf_set1((float)p * 3.14159265f))); /* eq. 8 */
-            for (int c = 0; c < 3; c++)
+            for (int c = 0; c < channels; c++)
                 node->A[p][c] = vf_mul(A, T_power[c]);
         }
         A = vf_mul(A, f);
-        for (int c = 0; c < 3; c++)
+        for (int c = 0; c < channels; c++)
             T_power[c] = vf_mul(T_power[c], T[c]);
     }
     if (d->lobes >> HB_LOBE_RESIDUAL & 1u) { /* sum_{p > pmax} A(p, h) = A(pmax+1, h) / (1 - f T) */
-        for (int c = 0; c < 3; c++) {
+        for (int c = 0; c < channels; c++) {
             vf geometric = vf_max(vf_fnma(f, T[c], vf_set1(1.0f)), vf_set1(1e-30f));
             node->A[HB_LOBE_RESIDUAL][c] = vf_div(vf_mul(A, T_power[c]), geometric);
         }
     }
+    if (channels == 1) /* a grey fibre: the other channels are copies (register moves) */
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            if (hb_deon_lobe_on(d, p))
+                node->A[p][1] = node->A[p][2] = node->A[p][0];
 }
 
 /* The residual lobe's pair of detectors: uniform in phi, 2 / (2 pi). */
@@ -133,12 +138,14 @@ typedef struct deon_pdf_terms {
 
 /* N_p of eq. 10 for every lobe of the plan, by the plan's Gauss-Legendre rule in gamma_i:
  * N_p = sum_j weight_j A(p, h_j) [D_p(phi - Phi(p, h_j)) + D_p(-phi - Phi(p, h_j))].
- * N[HB_LOBE_RESIDUAL] holds all orders above pmax, spread uniformly in phi. */
-HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3],
-                              deon_pdf_terms *pdf)
+ * N[HB_LOBE_RESIDUAL] holds all orders above pmax, spread uniformly in phi. A grey fibre (the same
+ * absorption in every channel, hb_deon.channels = 1) computes channel 0 alone and copies it: bit for bit
+ * what three channels give. */
+HB_INLINE void azimuthal_deon_channels(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3],
+                                       deon_pdf_terms *pdf, const int channels)
 {
     deon_medium medium;
-    deon_medium_of(d, g, &medium);
+    deon_medium_of(d, g, &medium, channels);
     vf cos_n_phi[HB_MAX_DETECTOR_TERMS + 1];
     cos_multiples(g->cos_phi, d->fourier_terms, cos_n_phi);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
@@ -149,7 +156,8 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
     for (int j = 0; j < d->nodes; j++) {
         vf weight = vf_set1(d->weight[j]);
         deon_node node;
-        deon_node_lobes(d, &medium, vf_set1(d->h[j]), vf_set1(d->gamma_i[j]), vf_set1(d->cos_gamma_i[j]), &node);
+        deon_node_lobes(d, &medium, vf_set1(d->h[j]), vf_set1(d->gamma_i[j]), vf_set1(d->cos_gamma_i[j]), &node,
+                        channels);
         vf mass = vf_set1(0.0f), detected = vf_set1(0.0f);
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
             if (!hb_deon_lobe_on(d, p))
@@ -157,7 +165,7 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
             vf pair = p == HB_LOBE_RESIDUAL ? vf_set1(HB_RESIDUAL_DETECTOR_PAIR)
                                             : detector_pair(&d->detector[p], g->phi, node.Phi[p], cos_n_phi);
             vf wd = vf_mul(weight, pair);
-            for (int c = 0; c < 3; c++)
+            for (int c = 0; c < channels; c++)
                 N[p][c] = vf_fma(wd, node.A[p][c], N[p][c]);
             if (pdf) {
                 vf m = vf_mul(pdf->M[d->m_group[p]], channel_mean(node.A[p]));
@@ -172,6 +180,18 @@ HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_
     vf fresnel_r = d->r_fresnel_offset ? vf_set1(1.0f) : fresnel_dielectric(g->cos_half_io, &d->ior); /* eq. 12 */
     for (int c = 0; c < 3; c++)
         N[0][c] = vf_mul(N[0][c], fresnel_r);
+    if (channels == 1)
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            N[p][1] = N[p][2] = N[p][0];
+}
+
+HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3],
+                              deon_pdf_terms *pdf)
+{
+    if (d->channels == 1)
+        azimuthal_deon_channels(d, g, N, pdf, 1);
+    else
+        azimuthal_deon_channels(d, g, N, pdf, 3);
 }
 
 /* N_p from a table (HB_AZIMUTHAL_TABLE; dFH11 sec. 6 suggests tabulating N_p per lobe over
@@ -230,10 +250,13 @@ HB_INLINE void azimuthal_deon_table(const hb_deon *d, const deon_geometry *g, vf
     for (int corner = 0; corner < 4; corner++) {
         vi index = vi_add(base, vi_set1(offset[corner]));
         for (int s = 0; s < d->table_slots; s++)
-            for (int c = 0; c < 3; c++)
+            for (int c = 0; c < d->channels; c++)
                 N[d->table_leader[s]][c] =
                     vf_fma(weight[corner], vf_gather(d->np_table + 3 * s + c, index), N[d->table_leader[s]][c]);
     }
+    if (d->channels == 1) /* a grey fibre: one gather per corner and slot, copied */
+        for (int s = 0; s < d->table_slots; s++)
+            N[d->table_leader[s]][1] = N[d->table_leader[s]][2] = N[d->table_leader[s]][0];
 }
 
 /* f = sum_p M_p N_p over the plan's lobes, with lobes of equal M_p summed first so each

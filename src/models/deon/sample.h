@@ -97,9 +97,9 @@ HB_INLINE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf 
     g.sin2_theta_d = vf_mul(sin_td, sin_td);
     g.cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
     deon_medium medium;
-    deon_medium_of(d, &g, &medium);
+    deon_medium_of(d, &g, &medium, 3);
     deon_node node;
-    deon_node_lobes(d, &medium, h, gamma_i, cos_gamma_i, &node);
+    deon_node_lobes(d, &medium, h, gamma_i, cos_gamma_i, &node, 3);
     vf mass[HB_MAX_LOBES + 1], total = vf_set1(0.0f);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         if (!hb_deon_lobe_on(d, p))
