@@ -168,7 +168,8 @@ demo: all $(BENCH_BIN)
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model marschner --eumelanin 0.3 --quality reference
 	$(RUN) $(TOOL) dump --model marschner --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_marschner.png
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model huang --eumelanin 0.3
-	$(RUN) $(TOOL) dump --model huang --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_huang.png
+	$(RUN) $(TOOL) dump --model huang --tt-trt table --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_huang.png
+	$(RUN) $(TOOL) plan --model deon --eumelanin 1.8 --tolerance 1e-2
 	@echo "lobe images: $(B)/lobes_deon.png, $(B)/lobes_marschner.png, $(B)/lobes_huang.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
 	$(RUN) $(BENCH_BIN)
 
