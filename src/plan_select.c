@@ -19,21 +19,26 @@ typedef struct preset {
     hb_quality quality;
     int quadrature_order;
     hb_azimuthal azimuthal;
+    hb_tt_trt tt_trt; /* HHH22 with TT and TRT ("all/..."): the paper's estimator or the table */
 } preset;
 
 static const preset presets[] = {
-    { HB_MODEL_DEON, "full/fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE },
-    { HB_MODEL_DEON, "full/balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE },
-    { HB_MODEL_DEON, "full/high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE },
-    { HB_MODEL_DEON, "full/nodes35", HB_QUALITY_HIGH, 35, HB_AZIMUTHAL_QUADRATURE },
-    { HB_MODEL_DEON, "full/table-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_TABLE },
-    { HB_MODEL_DEON, "full/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_TABLE },
-    { HB_MODEL_DEON, "full/table-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_TABLE },
-    { HB_MODEL_MARSCHNER, "full/closed-form", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE },
-    { HB_MODEL_HUANG, "R/analytic", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE },
-    { HB_MODEL_HUANG, "R/G-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE },
-    { HB_MODEL_HUANG, "R/G-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE },
-    { HB_MODEL_HUANG, "R/G-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE },
+    { HB_MODEL_DEON, "full/fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_DEON, "full/balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_DEON, "full/high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_DEON, "full/nodes35", HB_QUALITY_HIGH, 35, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_DEON, "full/table-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_TABLE, HB_TT_TRT_MC },
+    { HB_MODEL_DEON, "full/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_TABLE, HB_TT_TRT_MC },
+    { HB_MODEL_DEON, "full/table-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_TABLE, HB_TT_TRT_MC },
+    { HB_MODEL_MARSCHNER, "full/closed-form", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_HUANG, "R/analytic", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_HUANG, "R/G-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_HUANG, "R/G-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_HUANG, "R/G-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_HUANG, "all/mc-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_HUANG, "all/mc-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { HB_MODEL_HUANG, "all/table-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_TABLE },
+    { HB_MODEL_HUANG, "all/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_TABLE },
 };
 #define N_PRESETS ((int)(sizeof presets / sizeof presets[0]))
 
@@ -51,6 +56,8 @@ static int preset_applies(const preset *p, const hb_material *m, const hb_option
         return 0;
     if (p->azimuthal == HB_AZIMUTHAL_TABLE && o->r_fresnel != HB_R_FRESNEL_OFFSET)
         return 0;
+    if (o->model == HB_MODEL_HUANG && strncmp(p->name, "all/", 4) == 0) /* the bench times R + TT + TRT */
+        return lobes == 7u;
     if (o->model == HB_MODEL_HUANG)
         return lobes == 1u << HB_LOBE_R && (strcmp(p->name, "R/analytic") == 0) == huang_analytic(m, o);
     return 1;
@@ -61,9 +68,10 @@ static const preset *preset_of(const hb_material *m, const hb_options *o, unsign
 {
     for (int k = 0; k < N_PRESETS; k++) {
         const preset *p = &presets[k];
-        if (preset_applies(p, m, o, lobes) && (o->model == HB_MODEL_MARSCHNER || huang_analytic(m, o) ||
-                                               (p->quality == o->quality && p->quadrature_order == o->quadrature_order &&
-                                                p->azimuthal == o->azimuthal)))
+        if (preset_applies(p, m, o, lobes) &&
+            (o->model == HB_MODEL_MARSCHNER || (huang_analytic(m, o) && lobes == 1u) ||
+             (p->quality == o->quality && p->quadrature_order == o->quadrature_order && p->azimuthal == o->azimuthal &&
+              (lobes == 1u || o->model != HB_MODEL_HUANG || p->tt_trt == o->tt_trt))))
             return p;
     }
     return NULL;
@@ -235,7 +243,7 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
     if (!candidates)
         return refuse(error, &calibration,
                       "no calibrated configuration of the %s model for these options: tolerance and budget plans "
-                      "cover deon, marschner and the huang R lobe (TT/TRT not calibrated yet)", model_names[in->model]);
+                      "cover deon, marschner, and huang with R alone or R + TT + TRT", model_names[in->model]);
     if (!best && in->tolerance > 0.0)
         return refuse(error, &calibration,
                       "tolerance %g leaves %.3g for the configuration after dropped lobes, below every calibrated "
@@ -251,6 +259,8 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
     out->quality = best->quality;
     out->quadrature_order = best->quadrature_order;
     out->azimuthal = best->azimuthal;
+    if (in->model == HB_MODEL_HUANG && lobes != 1u)
+        out->tt_trt = best->tt_trt;
     out->table_tolerance = 0.0;
     out->lobes = lobes;
     hb_calibration_close(&calibration);

@@ -141,9 +141,12 @@ static void test_select_refusals(hb_test_ctx *t)
     CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_PARAM, "NaN budget");
     o.budget_ns = 1e3, o.quality = HB_QUALITY_REFERENCE;
     CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED, "budget with the reference quality");
-    o.quality = HB_QUALITY_BALANCED, o.model = HB_MODEL_HUANG, o.lobes = 7u;
-    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED && strstr(e.message, "TT/TRT"),
-          "huang TT/TRT is not calibrated: %s", e.message);
+    o.quality = HB_QUALITY_BALANCED, o.model = HB_MODEL_HUANG, o.lobes = 3u;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED && strstr(e.message, "no calibrated"),
+          "huang R + TT has no calibrated configuration: %s", e.message);
+    o.lobes = 7u, o.budget_ns = 0.0, o.tolerance = 1e-2;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED && strstr(e.message, "below every calibrated"),
+          "huang R + TT + TRT: the bench's relative error where f is small exceeds any tolerance: %s", e.message);
     /* a calibration file: table-fast made slow, so a 40 ns budget on any ISA picks nothing of it */
     char path[] = "/tmp/hb_calibration_XXXXXX";
     close(mkstemp(path));
