@@ -214,6 +214,12 @@ static void test_effects_cost(hb_test_ctx *t)
         hb_test_note(t, "valgrind, AVX2 or a native unsanitized tool missing: instruction counts not taken");
         return;
     }
+    char probe[512];
+    snprintf(probe, sizeof probe, "valgrind --tool=none -q %s isa > /dev/null 2>&1", tool);
+    if (system(probe) != 0) { /* valgrind 3.19 gives up on clang 14's DWARF 5 debug info */
+        hb_test_note(t, "valgrind cannot run this build of the tool (%s): instruction counts not taken", tool);
+        return;
+    }
     double all = instructions(t, "--model deon --quality fast --eumelanin 8");
     double dark = instructions(t, "--model deon --quality fast --eumelanin 8 --lobes R,TT");
     double untilted = instructions(t, "--model deon --quality fast --eumelanin 8 --lobes R,TT --alpha 0");
