@@ -50,15 +50,6 @@ static double midpoint_error(const float *values, const float *mid, int lines, i
     return worst;
 }
 
-static hb_status table_fail(hb_error *error, hb_status status, const char *message, double a, double b)
-{
-    if (error) {
-        error->status = status;
-        snprintf(error->message, sizeof error->message, message, a, b);
-    }
-    return status;
-}
-
 hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error)
 {
     hb_deon *d = &plan->deon;
@@ -72,7 +63,7 @@ hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error)
     for (;;) {
         double work = 3.0 * n_phi * n_cd * d->nodes;
         if (work > MAX_WORK)
-            return table_fail(error, HB_ERR_UNSUPPORTED,
+            return hb_plan_fail(error, HB_ERR_UNSUPPORTED,
                               "table_tolerance %g needs a finer N_p table than %.3g node evaluations allow (this "
                               "beta_n and quality): loosen it or use the quadrature", tol, work);
         size_t nodes = (size_t)n_phi * (size_t)n_cd;
@@ -84,7 +75,7 @@ hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error)
         double *peak = calloc((size_t)texel, sizeof *peak);
         if (!values || !mid_phi || !mid_cd || !phi || !cd || !angle || !peak) {
             free(values), free(mid_phi), free(mid_cd), free(phi), free(cd), free(angle), free(peak);
-            return table_fail(error, HB_ERR_NOMEM, "could not allocate the deon N_p table (%g x %g nodes)", n_cd,
+            return hb_plan_fail(error, HB_ERR_NOMEM, "could not allocate the deon N_p table (%d x %d nodes)", n_cd,
                               n_phi);
         }
         axis_nodes(n_cd, 1.0, 0, cd);
@@ -121,7 +112,7 @@ hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error)
         free(values);
         int refine_phi = error_phi >= error_cd ? n_phi < MAX_PHI : n_cd >= MAX_CD;
         if (refine_phi ? n_phi >= MAX_PHI : n_cd >= MAX_CD)
-            return table_fail(error, HB_ERR_UNSUPPORTED,
+            return hb_plan_fail(error, HB_ERR_UNSUPPORTED,
                               "table_tolerance %g is not reached by the largest N_p table (midpoint error %.2g): "
                               "loosen it or use the quadrature", tol, error_phi + error_cd);
         if (refine_phi)

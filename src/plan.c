@@ -63,7 +63,7 @@ void hb_options_default(hb_options *o)
     o->absorption = HB_ABSORPTION_CORRECTED;
 }
 
-static hb_status fail(hb_error *error, hb_status status, const char *fmt, ...)
+hb_status hb_plan_fail(hb_error *error, hb_status status, const char *fmt, ...)
 {
     if (error) {
         va_list ap;
@@ -80,53 +80,53 @@ static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi;
 static hb_status validate_material(const hb_material *m, hb_error *error)
 {
     if (m->struct_size != sizeof *m)
-        return fail(error, HB_ERR_VERSION, "hb_material.struct_size is %zu, this library expects %zu",
+        return hb_plan_fail(error, HB_ERR_VERSION, "hb_material.struct_size is %zu, this library expects %zu",
                     m->struct_size, sizeof *m);
     if (!(m->eta > 1.0 && m->eta <= ETA_MAX))
-        return fail(error, HB_ERR_PARAM, "eta = %g must be in (1, %g]", m->eta, ETA_MAX);
+        return hb_plan_fail(error, HB_ERR_PARAM, "eta = %g must be in (1, %g]", m->eta, ETA_MAX);
     static const char *const channel[3] = { "r", "g", "b" };
     for (int c = 0; c < 3; c++)
         if (!(m->sigma_a[c] >= 0.0 && isfinite(m->sigma_a[c])))
-            return fail(error, HB_ERR_PARAM, "sigma_a.%s = %g must be finite and >= 0", channel[c], m->sigma_a[c]);
+            return hb_plan_fail(error, HB_ERR_PARAM, "sigma_a.%s = %g must be finite and >= 0", channel[c], m->sigma_a[c]);
     if (!(m->eumelanin >= 0.0 && isfinite(m->eumelanin)))
-        return fail(error, HB_ERR_PARAM, "eumelanin = %g must be finite and >= 0", m->eumelanin);
+        return hb_plan_fail(error, HB_ERR_PARAM, "eumelanin = %g must be finite and >= 0", m->eumelanin);
     if (!(m->pheomelanin >= 0.0 && isfinite(m->pheomelanin)))
-        return fail(error, HB_ERR_PARAM, "pheomelanin = %g must be finite and >= 0", m->pheomelanin);
+        return hb_plan_fail(error, HB_ERR_PARAM, "pheomelanin = %g must be finite and >= 0", m->pheomelanin);
     if (!in_range(m->beta_m, BETA_M_MIN, BETA_M_MAX))
-        return fail(error, HB_ERR_PARAM, "beta_m = %g must be in [%g, %g] (v = beta_m^2 in [1e-4, 10])",
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %g must be in [%g, %g] (v = beta_m^2 in [1e-4, 10])",
                     m->beta_m, BETA_M_MIN, BETA_M_MAX);
     for (int p = 0; p < HB_MAX_LOBES; p++)
         if (m->lobe_beta_m[p] != 0.0 && !in_range(m->lobe_beta_m[p], BETA_M_MIN, BETA_M_MAX))
-            return fail(error, HB_ERR_PARAM, "lobe_beta_m[%d] = %g must be 0 (derived) or in [%g, %g]", p,
+            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_beta_m[%d] = %g must be 0 (derived) or in [%g, %g]", p,
                         m->lobe_beta_m[p], BETA_M_MIN, BETA_M_MAX);
     if (!in_range(m->beta_n, BETA_N_MIN, BETA_N_MAX))
-        return fail(error, HB_ERR_PARAM, "beta_n = %g must be in [%g, %g]", m->beta_n, BETA_N_MIN, BETA_N_MAX);
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_n = %g must be in [%g, %g]", m->beta_n, BETA_N_MIN, BETA_N_MAX);
     for (int p = 0; p < HB_MAX_LOBES; p++)
         if (m->lobe_beta_n[p] != 0.0 && !in_range(m->lobe_beta_n[p], BETA_N_MIN, BETA_N_MAX))
-            return fail(error, HB_ERR_PARAM, "lobe_beta_n[%d] = %g must be 0 (derived) or in [%g, %g]", p,
+            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_beta_n[%d] = %g must be 0 (derived) or in [%g, %g]", p,
                         m->lobe_beta_n[p], BETA_N_MIN, BETA_N_MAX);
     if (!in_range(m->alpha, -ALPHA_MAX, ALPHA_MAX))
-        return fail(error, HB_ERR_PARAM, "alpha = %g must be in [%g, %g] radians", m->alpha, -ALPHA_MAX, ALPHA_MAX);
+        return hb_plan_fail(error, HB_ERR_PARAM, "alpha = %g must be in [%g, %g] radians", m->alpha, -ALPHA_MAX, ALPHA_MAX);
     for (int p = 0; p < HB_MAX_LOBES; p++)
         if ((m->lobe_alpha_override >> p & 1u) && !in_range(m->lobe_alpha[p], -3 * ALPHA_MAX, 3 * ALPHA_MAX))
-            return fail(error, HB_ERR_PARAM, "lobe_alpha[%d] = %g must be in [%g, %g] radians", p, m->lobe_alpha[p],
+            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_alpha[%d] = %g must be in [%g, %g] radians", p, m->lobe_alpha[p],
                         -3 * ALPHA_MAX, 3 * ALPHA_MAX);
     if (m->ndf != HB_NDF_GGX && m->ndf != HB_NDF_BECKMANN)
-        return fail(error, HB_ERR_PARAM, "ndf = %d is neither HB_NDF_GGX nor HB_NDF_BECKMANN", (int)m->ndf);
+        return hb_plan_fail(error, HB_ERR_PARAM, "ndf = %d is neither HB_NDF_GGX nor HB_NDF_BECKMANN", (int)m->ndf);
     if (!in_range(m->roughness, ROUGHNESS_MIN, ROUGHNESS_MAX))
-        return fail(error, HB_ERR_PARAM, "roughness = %g must be in [%g, %g]", m->roughness, ROUGHNESS_MIN,
+        return hb_plan_fail(error, HB_ERR_PARAM, "roughness = %g must be in [%g, %g]", m->roughness, ROUGHNESS_MIN,
                     ROUGHNESS_MAX);
     if (!in_range(m->eccentricity, 0.0, ECCENTRICITY_MAX))
-        return fail(error, HB_ERR_PARAM, "eccentricity = %g must be in [0, %g]", m->eccentricity,
+        return hb_plan_fail(error, HB_ERR_PARAM, "eccentricity = %g must be in [0, %g]", m->eccentricity,
                     ECCENTRICITY_MAX);
     if (!in_range(m->glint_scale, 0.0, 100.0))
-        return fail(error, HB_ERR_PARAM, "glint_scale = %g must be in [0, 100]", m->glint_scale);
+        return hb_plan_fail(error, HB_ERR_PARAM, "glint_scale = %g must be in [0, 100]", m->glint_scale);
     if (!in_range(m->caustic_width, 1e-3, 1.0))
-        return fail(error, HB_ERR_PARAM, "caustic_width = %g must be in [0.001, 1] radians", m->caustic_width);
+        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_width = %g must be in [0.001, 1] radians", m->caustic_width);
     if (!in_range(m->caustic_fade, 1e-3, 2.0))
-        return fail(error, HB_ERR_PARAM, "caustic_fade = %g must be in [0.001, 2]", m->caustic_fade);
+        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_fade = %g must be in [0.001, 2]", m->caustic_fade);
     if (!in_range(m->caustic_limit, 0.0, 2.0))
-        return fail(error, HB_ERR_PARAM, "caustic_limit = %g must be in [0, 2]", m->caustic_limit);
+        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_limit = %g must be in [0, 2]", m->caustic_limit);
     return HB_OK;
 }
 
@@ -134,75 +134,75 @@ static hb_status validate_material(const hb_material *m, hb_error *error)
 static hb_status validate_options(const hb_options *o, hb_error *error)
 {
     if (o->struct_size != sizeof *o)
-        return fail(error, HB_ERR_VERSION, "hb_options.struct_size is %zu, this library expects %zu",
+        return hb_plan_fail(error, HB_ERR_VERSION, "hb_options.struct_size is %zu, this library expects %zu",
                     o->struct_size, sizeof *o);
     if (o->model != HB_MODEL_DEON && o->model != HB_MODEL_MARSCHNER && o->model != HB_MODEL_HUANG)
-        return fail(error, HB_ERR_PARAM, "model = %d is not a model", (int)o->model);
+        return hb_plan_fail(error, HB_ERR_PARAM, "model = %d is not a model", (int)o->model);
     if (o->model == HB_MODEL_MARSCHNER && o->term == HB_TERM_FULL && o->lobes != HB_LOBES_DEFAULT &&
         (o->lobes & ~7u))
-        return fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the marschner model has R, TT and TRT only", o->lobes);
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the marschner model has R, TT and TRT only", o->lobes);
     if (o->term != HB_TERM_FULL && o->term != HB_TERM_LONGITUDINAL)
-        return fail(error, HB_ERR_PARAM, "term = %d is not a term", (int)o->term);
+        return hb_plan_fail(error, HB_ERR_PARAM, "term = %d is not a term", (int)o->term);
     if (o->pmax < 0 || o->pmax >= HB_MAX_LOBES)
-        return fail(error, HB_ERR_PARAM, "pmax = %d must be in [0, %d]", o->pmax, HB_MAX_LOBES - 1);
+        return hb_plan_fail(error, HB_ERR_PARAM, "pmax = %d must be in [0, %d]", o->pmax, HB_MAX_LOBES - 1);
     unsigned allowed = (2u << o->pmax) - 1u;
     if (o->term == HB_TERM_LONGITUDINAL && o->lobes != HB_LOBES_DEFAULT && o->lobes != 1u << HB_LOBE_R)
-        return fail(error, HB_ERR_UNSUPPORTED, "the longitudinal term is evaluated for the R lobe only");
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the longitudinal term is evaluated for the R lobe only");
     if (o->term == HB_TERM_FULL && (o->lobes & ~(allowed | 1u << HB_LOBE_RESIDUAL)))
-        return fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x asks for an order above pmax = %d", o->lobes, o->pmax);
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x asks for an order above pmax = %d", o->lobes, o->pmax);
     if ((unsigned)o->quality > HB_QUALITY_REFERENCE)
-        return fail(error, HB_ERR_PARAM, "quality = %d is not a quality level", (int)o->quality);
+        return hb_plan_fail(error, HB_ERR_PARAM, "quality = %d is not a quality level", (int)o->quality);
     if (o->i0 != HB_I0_ABRAMOWITZ && o->i0 != HB_I0_PAPER)
-        return fail(error, HB_ERR_PARAM, "i0 = %d is not an I0 variant", (int)o->i0);
+        return hb_plan_fail(error, HB_ERR_PARAM, "i0 = %d is not an I0 variant", (int)o->i0);
     if (o->absorption != HB_ABSORPTION_CORRECTED && o->absorption != HB_ABSORPTION_PAPER)
-        return fail(error, HB_ERR_PARAM, "absorption = %d is not an absorption variant", (int)o->absorption);
+        return hb_plan_fail(error, HB_ERR_PARAM, "absorption = %d is not an absorption variant", (int)o->absorption);
     if (o->r_fresnel != HB_R_FRESNEL_HALF_ANGLE && o->r_fresnel != HB_R_FRESNEL_OFFSET)
-        return fail(error, HB_ERR_PARAM, "r_fresnel = %d is not a variant", (int)o->r_fresnel);
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_fresnel = %d is not a variant", (int)o->r_fresnel);
     if (!(o->tolerance == 0.0 || in_range(o->tolerance, 1e-6, 0.5)))
-        return fail(error, HB_ERR_PARAM, "tolerance = %g must be 0 (none) or in [1e-6, 0.5]", o->tolerance);
+        return hb_plan_fail(error, HB_ERR_PARAM, "tolerance = %g must be 0 (none) or in [1e-6, 0.5]", o->tolerance);
     if (!(o->budget_ns == 0.0 || in_range(o->budget_ns, 1e-3, 1e9)))
-        return fail(error, HB_ERR_PARAM, "budget_ns = %g must be 0 (none) or in [0.001, 1e9]", o->budget_ns);
+        return hb_plan_fail(error, HB_ERR_PARAM, "budget_ns = %g must be 0 (none) or in [0.001, 1e9]", o->budget_ns);
     if (o->tolerance > 0.0 && o->budget_ns > 0.0)
-        return fail(error, HB_ERR_PARAM, "tolerance and budget_ns exclude each other: a plan meets one or the other");
+        return hb_plan_fail(error, HB_ERR_PARAM, "tolerance and budget_ns exclude each other: a plan meets one or the other");
     if ((o->tolerance > 0.0 || o->budget_ns > 0.0) && (o->quality == HB_QUALITY_REFERENCE || o->term != HB_TERM_FULL))
-        return fail(error, HB_ERR_UNSUPPORTED, "a tolerance or budget plan chooses among the float configurations of "
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "a tolerance or budget plan chooses among the float configurations of "
                     "the full model: not with the reference quality or the longitudinal term");
     if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE && o->azimuthal != HB_AZIMUTHAL_TABLE)
-        return fail(error, HB_ERR_PARAM, "azimuthal = %d is not a variant", (int)o->azimuthal);
+        return hb_plan_fail(error, HB_ERR_PARAM, "azimuthal = %d is not a variant", (int)o->azimuthal);
     if (!(o->table_tolerance == 0.0 || in_range(o->table_tolerance, 1e-6, 0.5)))
-        return fail(error, HB_ERR_PARAM, "table_tolerance = %g must be 0 (from quality) or in [1e-6, 0.5]",
+        return hb_plan_fail(error, HB_ERR_PARAM, "table_tolerance = %g must be 0 (from quality) or in [1e-6, 0.5]",
                     o->table_tolerance);
     if (o->azimuthal == HB_AZIMUTHAL_TABLE) {
         if (o->model != HB_MODEL_DEON)
-            return fail(error, HB_ERR_UNSUPPORTED, "the N_p table is dFH11's (model deon); huang tabulates TT/TRT "
+            return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the N_p table is dFH11's (model deon); huang tabulates TT/TRT "
                         "with tt_trt = table, marschner has none");
         if (o->term != HB_TERM_FULL || o->quality == HB_QUALITY_REFERENCE)
-            return fail(error, HB_ERR_UNSUPPORTED, "the N_p table is a float fast path of the full model: not with "
+            return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the N_p table is a float fast path of the full model: not with "
                         "the longitudinal term or the reference quality");
         if (o->r_fresnel != HB_R_FRESNEL_OFFSET)
-            return fail(error, HB_ERR_UNSUPPORTED, "the N_p table needs the offset R Fresnel: eq. 12's half-angle "
+            return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the N_p table needs the offset R Fresnel: eq. 12's half-angle "
                         "factor is not a function of (phi, theta_d)");
     }
     if (o->quadrature_order < 0 || o->quadrature_order > HB_MAX_NODES)
-        return fail(error, HB_ERR_PARAM, "quadrature_order = %d must be 0 (from quality) or in [1, %d]",
+        return hb_plan_fail(error, HB_ERR_PARAM, "quadrature_order = %d must be 0 (from quality) or in [1, %d]",
                     o->quadrature_order, HB_MAX_NODES);
     if (o->detector_tolerance != 0.0 && !in_range(o->detector_tolerance, 1e-12, 0.1))
-        return fail(error, HB_ERR_PARAM, "detector_tolerance = %g must be 0 (from quality) or in [1e-12, 0.1]",
+        return hb_plan_fail(error, HB_ERR_PARAM, "detector_tolerance = %g must be 0 (from quality) or in [1e-12, 0.1]",
                     o->detector_tolerance);
     if ((unsigned)o->isa >= HB_ISA_COUNT)
-        return fail(error, HB_ERR_PARAM, "isa = %d is not an instruction set", (int)o->isa);
+        return hb_plan_fail(error, HB_ERR_PARAM, "isa = %d is not an instruction set", (int)o->isa);
     if (o->shadowing != HB_SHADOWING_SMITH && o->shadowing != HB_SHADOWING_NONE)
-        return fail(error, HB_ERR_PARAM, "shadowing = %d is not a shadowing variant", (int)o->shadowing);
+        return hb_plan_fail(error, HB_ERR_PARAM, "shadowing = %d is not a shadowing variant", (int)o->shadowing);
     if ((unsigned)o->r_integration > HB_R_INTEGRATION_NUMERIC)
-        return fail(error, HB_ERR_PARAM, "r_integration = %d is not an integration method", (int)o->r_integration);
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_integration = %d is not an integration method", (int)o->r_integration);
     if (o->r_panels < 0 || o->r_panels > HB_MAX_R_PANELS || o->r_panels % 2)
-        return fail(error, HB_ERR_PARAM, "r_panels = %d must be 0 (from quality) or even, in [2, %d]", o->r_panels,
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_panels = %d must be 0 (from quality) or even, in [2, %d]", o->r_panels,
                     HB_MAX_R_PANELS);
     if (!(o->r_step == 0.0 || in_range(o->r_step, 1e-3, 10.0)))
-        return fail(error, HB_ERR_PARAM, "r_step = %g must be 0 (peak-following panels) or in [0.001, 10]",
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_step = %g must be 0 (peak-following panels) or in [0.001, 10]",
                     o->r_step);
     if (o->r_step > 0.0 && o->r_panels > 0)
-        return fail(error, HB_ERR_PARAM, "r_step and r_panels exclude each other: the step fixes the panels");
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_step and r_panels exclude each other: the step fixes the panels");
     return HB_OK;
 }
 
@@ -210,34 +210,34 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
 static hb_status validate_huang(const hb_material *m, const hb_options *o, hb_error *error)
 {
     if (o->term != HB_TERM_FULL)
-        return fail(error, HB_ERR_UNSUPPORTED, "the huang model is not separable: it has no longitudinal term");
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the huang model is not separable: it has no longitudinal term");
     if (o->lobes & ~7u)
-        return fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the huang model has R, TT and TRT only (HHH22 eq. 3)",
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the huang model has R, TT and TRT only (HHH22 eq. 3)",
                     o->lobes);
     if ((unsigned)o->tt_trt > HB_TT_TRT_TABLE)
-        return fail(error, HB_ERR_PARAM, "tt_trt = %d is not a TT/TRT evaluation method", (int)o->tt_trt);
+        return hb_plan_fail(error, HB_ERR_PARAM, "tt_trt = %d is not a TT/TRT evaluation method", (int)o->tt_trt);
     if (o->tt_trt == HB_TT_TRT_TABLE && o->quality == HB_QUALITY_REFERENCE)
-        return fail(error, HB_ERR_UNSUPPORTED, "the TT/TRT table is a float fast path: the reference quality "
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the TT/TRT table is a float fast path: the reference quality "
                                                "evaluates TT and TRT by nested quadrature instead");
     if (o->absorption != HB_ABSORPTION_CORRECTED)
-        return fail(error, HB_ERR_UNSUPPORTED,
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED,
                     "huang traces the chord itself (HHH22 eq. 17 note): there is no paper absorption variant");
     if (o->tt_panels < 0 || o->tt_panels > HB_MAX_TT_PANELS || o->tt_panels % 2)
-        return fail(error, HB_ERR_PARAM, "tt_panels = %d must be 0 (from quality) or even, in [2, %d]", o->tt_panels,
+        return hb_plan_fail(error, HB_ERR_PARAM, "tt_panels = %d must be 0 (from quality) or even, in [2, %d]", o->tt_panels,
                     HB_MAX_TT_PANELS);
     if (o->r_integration == HB_R_INTEGRATION_ANALYTIC) {
         if (m->ndf != HB_NDF_GGX)
-            return fail(error, HB_ERR_UNSUPPORTED, "the analytic R integral (HHH22 App. A) exists for GGX only");
+            return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the analytic R integral (HHH22 App. A) exists for GGX only");
         if (o->shadowing != HB_SHADOWING_NONE)
-            return fail(error, HB_ERR_UNSUPPORTED,
+            return hb_plan_fail(error, HB_ERR_UNSUPPORTED,
                         "the analytic R integral (HHH22 App. A) has no shadowing term: ask for no shadowing");
         if (m->eccentricity > 0.0)
-            return fail(error, HB_ERR_UNSUPPORTED, "the analytic R integral (HHH22 App. A) is for circular fibres");
+            return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the analytic R integral (HHH22 App. A) is for circular fibres");
         if (o->r_step > 0.0 || o->r_panels > 0)
-            return fail(error, HB_ERR_PARAM, "r_step and r_panels set the numeric R integral, not the analytic one");
+            return hb_plan_fail(error, HB_ERR_PARAM, "r_step and r_panels set the numeric R integral, not the analytic one");
     }
     if (o->r_step > 0.0 && ceil(M_PI / (o->r_step * m->roughness)) > HB_MAX_R_PANELS)
-        return fail(error, HB_ERR_PARAM, "r_step = %g at roughness %g needs %.0f panels, more than %d", o->r_step,
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_step = %g at roughness %g needs %.0f panels, more than %d", o->r_step,
                     m->roughness, 2.0 * ceil(M_PI / (2.0 * o->r_step * m->roughness)), HB_MAX_R_PANELS);
     return HB_OK;
 }
@@ -249,12 +249,12 @@ static hb_status resolve_isa(hb_isa requested, hb_isa *isa, hb_error *error)
     if (requested == HB_ISA_AUTO && env && *env) {
         requested = hb_isa_from_name(env);
         if (requested == HB_ISA_COUNT || requested == HB_ISA_AUTO)
-            return fail(error, HB_ERR_ISA, "HB_ISA=%s is not one of scalar, sse4.1, avx2, avx512, neon", env);
+            return hb_plan_fail(error, HB_ERR_ISA, "HB_ISA=%s is not one of scalar, sse4.1, avx2, avx512, neon", env);
     }
     if (requested == HB_ISA_AUTO)
         requested = hb_isa_best();
     if (!hb_isa_available(requested))
-        return fail(error, HB_ERR_ISA, "instruction set %s is not available on this CPU or build",
+        return hb_plan_fail(error, HB_ERR_ISA, "instruction set %s is not available on this CPU or build",
                     hb_isa_name(requested));
     *isa = requested;
     return HB_OK;
@@ -527,17 +527,17 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
         error->message[0] = '\0';
     }
     if (!out)
-        return fail(error, HB_ERR_NULL, "plan output pointer is NULL");
+        return hb_plan_fail(error, HB_ERR_NULL, "plan output pointer is NULL");
     *out = NULL;
     if (!material || !options)
-        return fail(error, HB_ERR_NULL, "%s is NULL", material ? "options" : "material");
+        return hb_plan_fail(error, HB_ERR_NULL, "%s is NULL", material ? "options" : "material");
     hb_status st = validate_material(material, error);
     if (st == HB_OK)
         st = validate_options(options, error);
     if (st == HB_OK && options->model == HB_MODEL_HUANG)
         st = validate_huang(material, options, error);
     if (st == HB_OK && options->model == HB_MODEL_DEON && material->eccentricity > 0.0)
-        st = fail(error, HB_ERR_UNSUPPORTED, "eccentricity = %g: the deon model is for circular fibres (dFH11 sec. 4); "
+        st = hb_plan_fail(error, HB_ERR_UNSUPPORTED, "eccentricity = %g: the deon model is for circular fibres (dFH11 sec. 4); "
                   "marschner and huang have elliptical ones", material->eccentricity);
     hb_isa isa = HB_ISA_SCALAR;
     if (st == HB_OK && options->quality != HB_QUALITY_REFERENCE)
@@ -571,7 +571,7 @@ static hb_status build_plan(const hb_material *material, const hb_options *optio
     hb_status st = HB_OK;
     hb_plan *plan = calloc(1, sizeof *plan);
     if (!plan)
-        return fail(error, HB_ERR_NOMEM, "could not allocate a plan");
+        return hb_plan_fail(error, HB_ERR_NOMEM, "could not allocate a plan");
     plan->material = *material;
     plan->options = *options;
     if (selection)

@@ -42,6 +42,9 @@ struct hb_plan {
     hb_selection selection;                      /* tolerance and budget plans */
 };
 
+/* Fills error (if not NULL) with status and the formatted message; returns status (src/plan.c). */
+hb_status hb_plan_fail(hb_error *error, hb_status status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
 /* SplitMix64's finaliser: a bijective 64-bit mix (src/sample.c). */
 unsigned long long hb_mix64(unsigned long long x);
 

@@ -4,7 +4,6 @@
  * calibration that `make bench` measures (src/calibration.c). README "Plans from a tolerance or a
  * time budget". */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -161,19 +160,6 @@ static hb_status measure_lobes(const hb_material *m, const hb_options *base, uns
     return st;
 }
 
-static hb_status refuse(hb_error *error, hb_calibration *c, const char *fmt, ...)
-{
-    hb_calibration_close(c);
-    if (error) {
-        va_list ap;
-        va_start(ap, fmt);
-        error->status = HB_ERR_UNSUPPORTED;
-        vsnprintf(error->message, sizeof error->message, fmt, ap);
-        va_end(ap);
-    }
-    return HB_ERR_UNSUPPORTED;
-}
-
 hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa, hb_options *out, hb_selection *sel,
                          hb_error *error)
 {
@@ -240,18 +226,25 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
             sel->ranked_by_scalar = fallback;
         }
     }
+    /* the message names calibration rows, so it is written before the calibration is closed */
+    st = HB_OK;
     if (!candidates)
-        return refuse(error, &calibration,
-                      "no calibrated configuration of the %s model for these options: tolerance and budget plans "
-                      "cover deon, marschner, and huang with R alone or R + TT + TRT", model_names[in->model]);
-    if (!best && in->tolerance > 0.0)
-        return refuse(error, &calibration,
-                      "tolerance %g leaves %.3g for the configuration after dropped lobes, below every calibrated "
-                      "one (the most accurate, %s, measured %.3g)", in->tolerance, allowed,
-                      most_accurate->configuration, most_accurate->error);
-    if (!best)
-        return refuse(error, &calibration, "budget %g ns: no configuration fits on %s (the fastest, %s, takes %.3g ns)",
-                      in->budget_ns, hb_isa_name(isa), fastest->configuration, fastest->ns);
+        st = hb_plan_fail(error, HB_ERR_UNSUPPORTED,
+                          "no calibrated configuration of the %s model for these options: tolerance and budget plans "
+                          "cover deon, marschner, and huang with R alone or R + TT + TRT", model_names[in->model]);
+    else if (!best && in->tolerance > 0.0)
+        st = hb_plan_fail(error, HB_ERR_UNSUPPORTED,
+                          "tolerance %g leaves %.3g for the configuration after dropped lobes, below every calibrated "
+                          "one (the most accurate, %s, measured %.3g)", in->tolerance, allowed,
+                          most_accurate->configuration, most_accurate->error);
+    else if (!best)
+        st = hb_plan_fail(error, HB_ERR_UNSUPPORTED,
+                          "budget %g ns: no configuration fits on %s (the fastest, %s, takes %.3g ns)", in->budget_ns,
+                          hb_isa_name(isa), fastest->configuration, fastest->ns);
+    if (st != HB_OK) {
+        hb_calibration_close(&calibration);
+        return st;
+    }
     snprintf(sel->configuration, sizeof sel->configuration, "%s", best->name);
     sel->preset = (int)(best - presets);
     sel->expected_error = best_entry->error + sel->dropped_bound;
