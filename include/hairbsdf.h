@@ -87,8 +87,9 @@ void hb_material_default(hb_material *material);
 void hb_material_absorption(const hb_material *material, double sigma_a_rgb[3]);
 
 /* Speed/accuracy levels: error targets of about 1e-2, 1e-3 and 1e-4 relative to the
- * double reference for N_p (dFH11: the node count follows from beta_n). The longitudinal
- * term has one kernel for every level but REFERENCE. */
+ * double reference for N_p (dFH11: the node count follows from beta_n). dFH11's M_p is
+ * formed in float at FAST and BALANCED (relative error about 1e-6 on the lobe, 2e-5 far in
+ * its tail) and with double where it matters from HIGH up (1e-6 everywhere; README, "d'Eon M_p"). */
 typedef enum hb_quality {
     HB_QUALITY_FAST,
     HB_QUALITY_BALANCED,

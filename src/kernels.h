@@ -13,6 +13,12 @@ typedef struct hb_longitudinal {
     double log_norm;  /* log(1 / (v (1 - e^(-2/v)))), the csch factor of dFH11 eq. 7 without e^(-1/v) */
     double shift;     /* alpha_p: M_p is evaluated at theta_o - shift (dFH11 sec. 6) */
     double cos_shift, sin_shift;
+    /* Below HB_QUALITY_HIGH M_p is formed in float (README, "Quality levels"): the same
+     * constants rounded, and the shift c of theta_o'' = sign * theta_o - c as a float pair
+     * c_hi + c_lo for the three cases of the pole reflection (none, above pi/2, below -pi/2). */
+    int single;
+    float inv_v_f, log_norm_f, cos_shift_f, sin_shift_f;
+    float shift_hi[3], shift_lo[3];
 } hb_longitudinal;
 
 /* MJC03's unit-area Gaussian M_p = g(mean, beta; theta_h). */

@@ -296,14 +296,26 @@ static hb_dielectric dielectric_of(double eta)
     return (hb_dielectric){ (float)eta, (float)(1.0 / (eta * eta)), (float)((eta - 1.0) * (eta + 1.0)) };
 }
 
-/* dFH11 eq. 7 constants, in double. */
-static void derive_longitudinal(hb_longitudinal *l, double v, double shift)
+/* dFH11 eq. 7 constants, in double, and rounded for the float path. */
+static void derive_longitudinal(hb_longitudinal *l, double v, double shift, hb_quality quality)
 {
     l->inv_v = 1.0 / v;
     l->log_norm = -log(v) - log(-expm1(-2.0 / v));
     l->shift = shift;
     l->cos_shift = cos(shift);
     l->sin_shift = sin(shift);
+    l->single = quality < HB_QUALITY_HIGH;
+    l->inv_v_f = (float)l->inv_v;
+    l->log_norm_f = (float)l->log_norm;
+    l->cos_shift_f = (float)l->cos_shift;
+    l->sin_shift_f = (float)l->sin_shift;
+    /* theta_o - shift reflected across a pole: pi - (theta_o - shift) = -theta_o - (-shift - pi),
+     * -pi - (theta_o - shift) = -theta_o - (pi - shift) */
+    const double c[3] = { shift, -shift - M_PI, M_PI - shift };
+    for (int k = 0; k < 3; k++) {
+        l->shift_hi[k] = (float)c[k];
+        l->shift_lo[k] = (float)(c[k] - (double)l->shift_hi[k]);
+    }
 }
 
 /* The cheaper truncation of the wrapped Gaussian (eq. 11) whose error, relative to its
@@ -342,7 +354,7 @@ static void derive_deon(hb_plan *plan)
         int q = p == HB_LOBE_RESIDUAL ? o->pmax : p;
         double beta = m->lobe_beta_m[q] > 0.0 ? m->lobe_beta_m[q] : m->beta_m;
         plan->v[p] = beta * beta;
-        derive_longitudinal(&d->longitudinal[p], plan->v[p], p == HB_LOBE_RESIDUAL ? 0.0 : lobe_shift(m, p));
+        derive_longitudinal(&d->longitudinal[p], plan->v[p], p == HB_LOBE_RESIDUAL ? 0.0 : lobe_shift(m, p), o->quality);
     }
     double tol = o->detector_tolerance > 0.0 ? o->detector_tolerance : quality_levels[o->quality].detector_tolerance;
     for (int p = 0; p < HB_MAX_LOBES; p++) {

@@ -39,22 +39,30 @@ HB_INLINE vf log_i0_series_paper(vf ax)
 
 #define HB_MP_EXPONENT_FLOOR -80.0
 
-/* dFH11 eq. 7 from 1 - cos(theta_i + theta_o') (double) and x = cos(theta_i) cos(theta_o') / v >= 0. */
-HB_INLINE vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_sum, vf x, hb_i0 i0)
+/* e^-x I0(x) as e^exponent * factor for x >= -3.75 (negative only by a cosine just beyond a
+ * pole): A&S 9.8.1 (exponent -x) below |x| = 3.75 and 9.8.2 (exponent 0) above, or dFH11
+ * eq. 15's series as a log. */
+HB_INLINE void i0_scaled(vf x, hb_i0 i0, vf *exponent, vf *factor)
 {
-    vf ax = vf_abs(x); /* x >= 0 up to the rounding of a cosine at pi/2 */
-    vf exponent, factor;
+    vf ax = vf_abs(x);
     if (i0 == HB_I0_PAPER) {
-        exponent = vf_sub(log_i0_series_paper(ax), ax); /* e^-x S(x), eq. 15 */
-        factor = vf_set1(1.0f);
+        *exponent = vf_sub(log_i0_series_paper(ax), x); /* e^-x S(x), eq. 15 */
+        *factor = vf_set1(1.0f);
     } else {
         vm small = vf_le(ax, vf_set1(3.75f));
         vf xs = vf_min(ax, vf_set1(3.75f)), xl = vf_max(ax, vf_set1(3.75f));
-        exponent = vf_select(small, vf_neg(ax), vf_set1(0.0f));
+        *exponent = vf_select(small, vf_neg(x), vf_set1(0.0f));
         vf i0_small = vf_add(vf_set1(1.0f), vf_i0_small_minus1(xs)); /* A&S 9.8.1 */
         vf i0e_large = vf_div(vf_i0_large_poly(xl), vf_sqrt(xl));     /* A&S 9.8.2 */
-        factor = vf_select(small, i0_small, i0e_large);
+        *factor = vf_select(small, i0_small, i0e_large);
     }
+}
+
+/* dFH11 eq. 7 from 1 - cos(theta_i + theta_o') (double) and x = cos(theta_i) cos(theta_o') / v >= 0. */
+HB_INLINE vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_sum, vf x, hb_i0 i0)
+{
+    vf exponent, factor;
+    i0_scaled(vf_abs(x), i0, &exponent, &factor); /* x >= 0 up to the rounding of a cosine at pi/2 */
     vdw e = vdw_add(vdw_fma(one_minus_cos_sum, vdw_set1(-lobe->inv_v), vdw_set1(lobe->log_norm)),
                     vdw_from_vf(exponent));
     /* Below e^-80 the result (factor >= 0.004) is under 1e-34: return 0 rather than
@@ -62,6 +70,51 @@ HB_INLINE vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_su
     vdw e_clamped = vdw_max(e, vdw_set1(HB_MP_EXPONENT_FLOOR));
     vm negligible = vf_lt(vdw_to_vf(e), vf_set1((float)HB_MP_EXPONENT_FLOOR));
     return vf_select(negligible, vf_set1(0.0f), vf_mul(vf_exp_dw(e_clamped), factor));
+}
+
+/* The float path of dFH11 eq. 7 (plans below HB_QUALITY_HIGH), from the exponent's
+ * (1 - cos(theta_i + theta_o')) / v and x, both in float. The exponent carries about two ulps
+ * of relative error, so M_p's relative error grows as 1e-7 (1 + that exponent): within 1e-6
+ * on the lobe and 2e-5 at M_p = 1e-30 of the peak (README, "Quality levels"). */
+HB_INLINE vf longitudinal_deon_single(const hb_longitudinal *lobe, vf cone_exponent, vf x, hb_i0 i0)
+{
+    vf exponent, factor;
+    i0_scaled(x, i0, &exponent, &factor);
+    vf e = vf_add(vf_sub(vf_set1(lobe->log_norm_f), cone_exponent), exponent);
+    vm negligible = vf_lt(e, vf_set1((float)HB_MP_EXPONENT_FLOOR));
+    return vf_select(negligible, vf_set1(0.0f), vf_mul(vf_exp_flush(e), factor));
+}
+
+/* cos(t) = sin(pi/2 - |t|) for t = t_hi + t_lo, |t| up to just beyond pi/2 (the float pi/2 lies
+ * beyond it, where the cosine is negative, as eq. 7 has it), relative-accurate near the poles:
+ * pi/2 - |t_hi| is exact there (Sterbenz) before the low parts are added. */
+HB_INLINE vf cos_near_pole(vf t_hi, vf t_lo)
+{
+    vf low = vf_fnma(t_lo, vf_copysign(vf_set1(1.0f), t_hi), vf_set1(-4.37113883e-8f)); /* pi/2's low part */
+    return vf_sin_halfpi(vf_add(vf_sub(vf_set1(1.57079637f), vf_abs(t_hi)), low));
+}
+
+/* M_p(v, theta_i, theta_o - shift) from angles in float. theta_o'' = theta_o - shift, reflected
+ * across a pole when it passes one, is s theta_o - c with s = +-1 and c = c_hi + c_lo per case;
+ * a = (theta_i + theta_o'')/2 and theta_o'' itself come from exact TwoSums, so their errors
+ * stay relative near the cone (a -> 0) and pi/2 - |theta_o''| near a pole. Then
+ *     1 - cos(theta_i + theta_o'') = 2 sin^2 a,  x = cos(theta_i) cos(theta_o'') / v. */
+HB_INLINE vf longitudinal_deon_angles_single(const hb_longitudinal *lobe, vf theta_i, vf theta_o, hb_i0 i0)
+{
+    vf t = vf_sub(theta_o, vf_set1(lobe->shift_hi[0]));
+    vm over = vf_gt(t, vf_set1(1.57079637f)), under = vf_lt(t, vf_set1(-1.57079637f));
+    vf signed_o = vf_select(vm_or(over, under), vf_neg(theta_o), theta_o);
+    vf c_hi = vf_select(over, vf_set1(lobe->shift_hi[1]), vf_select(under, vf_set1(lobe->shift_hi[2]), vf_set1(lobe->shift_hi[0])));
+    vf c_lo = vf_select(over, vf_set1(lobe->shift_lo[1]), vf_select(under, vf_set1(lobe->shift_lo[2]), vf_set1(lobe->shift_lo[0])));
+    vf sum = vf_add(theta_i, signed_o);
+    vf sum_error = vf_two_sum_error(theta_i, signed_o, sum);
+    vf sin_a = vf_sin_halfpi(vf_mul(vf_add(vf_sub(sum, c_hi), vf_sub(sum_error, c_lo)), vf_set1(0.5f)));
+    vf theta_o_hi = vf_sub(signed_o, c_hi);
+    vf theta_o_lo = vf_sub(vf_two_sum_error(signed_o, vf_neg(c_hi), theta_o_hi), c_lo);
+    vf cos_product = vf_mul(cos_near_pole(theta_i, vf_set1(0.0f)), cos_near_pole(theta_o_hi, theta_o_lo));
+    vf inv_v = vf_set1(lobe->inv_v_f);
+    vf cone_exponent = vf_mul(vf_mul(vf_add(sin_a, sin_a), sin_a), inv_v);
+    return longitudinal_deon_single(lobe, cone_exponent, vf_mul(cos_product, inv_v), i0);
 }
 
 /* theta - shift in double, reflected across a pole into [-pi/2, pi/2]: pi - t above
@@ -80,6 +133,8 @@ HB_INLINE vdw inclination_reflected(vf theta, double shift)
  * theta_i and theta_o take the same path, so without a shift M_p(a, b) == M_p(b, a) bit for bit. */
 HB_INLINE vf longitudinal_deon_angles(const hb_longitudinal *lobe, vf theta_i, vf theta_o, hb_i0 i0)
 {
+    if (lobe->single)
+        return longitudinal_deon_angles_single(lobe, theta_i, theta_o, i0);
     vdw ti = inclination_reflected(theta_i, 0.0);
     vdw to = inclination_reflected(theta_o, lobe->shift);
     vdw sin_a = vdw_sin_taylor(vdw_mul(vdw_add(ti, to), vdw_set1(0.5)));
@@ -101,10 +156,39 @@ HB_INLINE void inclination_dw(vf x, vf y, vf z, vdw *sin_theta, vdw *cos_theta)
     *cos_theta = vdw_mul(vdw_sqrt(planar2), inv_norm);
 }
 
+/* sin and cos of the inclination of w = (x, y, z), in float. */
+HB_INLINE void inclination(vf x, vf y, vf z, vf *sin_theta, vf *cos_theta)
+{
+    vf planar2 = vf_fma(x, x, vf_mul(z, z));
+    vf inv_norm = vf_div(vf_set1(1.0f), vf_sqrt(vf_fma(y, y, planar2)));
+    *sin_theta = vf_mul(y, inv_norm);
+    *cos_theta = vf_mul(vf_sqrt(planar2), inv_norm);
+}
+
+/* The float path from unit vectors: 1 - cos(theta_i + theta_o') = ((cos theta_i - cos theta_o')^2 +
+ * (sin theta_i + sin theta_o')^2) / 2, a sum of squares that cannot cancel; its terms carry the
+ * float rounding of the sines and cosines (about 1e-7 in angle), so the exponent's error near
+ * the cone grows as sqrt(exponent / v) 1e-7 (README, "Quality levels"). */
+HB_INLINE vf longitudinal_deon_vectors_single(const hb_longitudinal *lobe, const vf wi[3], const vf wo[3], hb_i0 i0)
+{
+    vf si, ci, so, co;
+    inclination(wi[0], wi[1], wi[2], &si, &ci);
+    inclination(wo[0], wo[1], wo[2], &so, &co);
+    vf cs = vf_set1(lobe->cos_shift_f), ss = vf_set1(lobe->sin_shift_f);
+    vf co_shifted = vf_abs(vf_fma(co, cs, vf_mul(so, ss))); /* cos(theta_o - shift), reflected to >= 0 */
+    vf so_shifted = vf_fnma(co, ss, vf_mul(so, cs));
+    vf dc = vf_sub(ci, co_shifted), ds = vf_add(si, so_shifted);
+    vf inv_v = vf_set1(lobe->inv_v_f);
+    vf cone_exponent = vf_mul(vf_fma(dc, dc, vf_mul(ds, ds)), vf_mul(vf_set1(0.5f), inv_v));
+    return longitudinal_deon_single(lobe, cone_exponent, vf_mul(vf_mul(ci, co_shifted), inv_v), i0);
+}
+
 /* M_p(v, theta_i, theta_o - shift) from unit vectors, all in double up to x. The
  * reflection across a pole is |cos(theta_o - shift)| with sin(theta_o - shift) kept. */
 HB_INLINE vf longitudinal_deon_vectors(const hb_longitudinal *lobe, const vf wi[3], const vf wo[3], hb_i0 i0)
 {
+    if (lobe->single)
+        return longitudinal_deon_vectors_single(lobe, wi, wo, i0);
     vdw si, ci, so, co;
     inclination_dw(wi[0], wi[1], wi[2], &si, &ci);
     inclination_dw(wo[0], wo[1], wo[2], &so, &co);
