@@ -31,15 +31,17 @@
 /* Loads lane block [i, i + lanes) of each stream; a short tail is padded with pad. */
 HB_INLINE void load_block(const float *const *src, int streams, size_t i, size_t lanes, float pad, vf *dst)
 {
-    for (int s = 0; s < streams; s++) {
-        if (lanes == HB_W) {
+    if (lanes == HB_W) { /* the common case, as straight-line loads (streams is a constant) */
+#pragma GCC unroll 16
+        for (int s = 0; s < streams; s++)
             dst[s] = vf_loadu(src[s] + i);
-        } else {
-            float buf[HB_W];
-            for (size_t k = 0; k < HB_W; k++)
-                buf[k] = k < lanes ? src[s][i + k] : pad;
-            dst[s] = vf_loadu(buf);
-        }
+        return;
+    }
+    for (int s = 0; s < streams; s++) {
+        float buf[HB_W];
+        for (size_t k = 0; k < HB_W; k++)
+            buf[k] = k < lanes ? src[s][i + k] : pad;
+        dst[s] = vf_loadu(buf);
     }
 }
 
@@ -81,6 +83,7 @@ HB_INLINE vm load_angles(hb_angles_soa in, size_t i, size_t lanes, vf a[4])
     const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
     load_block(src, 4, i, lanes, 0.0f, a);
     vm valid = vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
+#pragma GCC unroll 4
     for (int k = 0; k < 4; k++)
         a[k] = vf_select(valid, a[k], vf_set1(0.0f));
     return valid;
