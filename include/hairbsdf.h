@@ -179,8 +179,9 @@ typedef struct hb_options {
     hb_i0 i0;           /* default HB_I0_ABRAMOWITZ */
     int pmax;           /* dFH11: highest explicit order, 0..7 (default 3, TRRT) */
     hb_absorption absorption; /* default HB_ABSORPTION_CORRECTED */
-    int quadrature_order;     /* dFH11 N_p nodes (Gauss-Legendre in gamma_i, h = sin gamma_i in [0, 1]);
-                                 0 = from quality and beta_n, else 1..HB_MAX_NODES */
+    int quadrature_order;     /* dFH11 N_p: order of the Gauss-Legendre rule in gamma_i across the fibre
+                                 (h = sin gamma_i in [-1, 1]; (order + 1) / 2 nodes are evaluated, by
+                                 symmetry); 0 = from quality and beta_n, else 1..HB_MAX_QUADRATURE_ORDER */
     double detector_tolerance; /* dFH11 D_p truncation error bound; 0 = from quality */
     hb_r_fresnel r_fresnel;    /* default HB_R_FRESNEL_OFFSET */
     hb_shadowing shadowing;    /* HHH22, default HB_SHADOWING_SMITH */
@@ -217,7 +218,7 @@ typedef struct hb_options {
 
 #define HB_MAX_R_PANELS 16384
 
-#define HB_MAX_NODES 256
+#define HB_MAX_QUADRATURE_ORDER 512
 #define HB_MAX_DETECTOR_TERMS 16
 
 void hb_options_default(hb_options *options);

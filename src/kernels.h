@@ -7,6 +7,9 @@
 #include <stdint.h>
 #include "hairbsdf.h"
 
+/* dFH11 quadrature nodes a plan evaluates: gamma_i >= 0 of the largest order */
+#define HB_MAX_NODES ((HB_MAX_QUADRATURE_ORDER + 1) / 2)
+
 /* Constants of one lobe's longitudinal function, fixed at plan creation. */
 typedef struct hb_longitudinal {
     double inv_v;     /* 1 / v, v = beta_m^2 */
@@ -122,12 +125,14 @@ typedef struct hb_deon {
     unsigned lobes; /* bits p <= pmax, and HB_LOBE_RESIDUAL */
     int pmax;
     int channels;   /* 3, or 1 for a grey fibre (sigma_a the same in every channel: one computed, copied) */
-    int nodes;
+    int order; /* the Gauss-Legendre order in gamma_i over [-pi/2, pi/2] */
+    int nodes; /* its nodes with gamma_i >= 0: (order + 1) / 2 */
     int absorption_paper;
     int r_fresnel_offset; /* R uses eq. 14 per node instead of eq. 12 */
     hb_dielectric ior;
     float sigma_a[3];
-    /* quadrature over gamma_i in [0, pi/2] (h = sin gamma_i), weights include 1/2 and dh/dgamma */
+    /* the rule's nodes with gamma_i >= 0 (h = sin gamma_i), each detected at phi and -phi; weights
+     * include eq. 10's 1/2 and dh/dgamma (plan.c, deon_nodes) */
     float gamma_i[HB_MAX_NODES], cos_gamma_i[HB_MAX_NODES], h[HB_MAX_NODES], weight[HB_MAX_NODES];
     hb_detector detector[HB_MAX_LOBES];
     int fourier_terms; /* the most Fourier terms any lobe's detector uses (cos(n phi) to precompute) */

@@ -183,9 +183,9 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
             return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the N_p table needs the offset R Fresnel: eq. 12's half-angle "
                         "factor is not a function of (phi, theta_d)");
     }
-    if (o->quadrature_order < 0 || o->quadrature_order > HB_MAX_NODES)
+    if (o->quadrature_order < 0 || o->quadrature_order > HB_MAX_QUADRATURE_ORDER)
         return hb_plan_fail(error, HB_ERR_PARAM, "quadrature_order = %d must be 0 (from quality) or in [1, %d]",
-                    o->quadrature_order, HB_MAX_NODES);
+                    o->quadrature_order, HB_MAX_QUADRATURE_ORDER);
     if (o->detector_tolerance != 0.0 && !in_range(o->detector_tolerance, 1e-12, 0.1))
         return hb_plan_fail(error, HB_ERR_PARAM, "detector_tolerance = %g must be 0 (from quality) or in [1e-12, 0.1]",
                     o->detector_tolerance);
@@ -263,7 +263,8 @@ static hb_status resolve_isa(hb_isa requested, hb_isa *isa, hb_error *error)
 /* Each quality level is an error target for N_p. Gauss-Legendre in gamma needs a node
  * count inversely proportional to the azimuthal roughness: measured against the
  * reference (white and brown hair, beta_n 0.02..1), nodes * beta_n = 2.8 keeps the
- * error under 1e-2, 3.6 under 1e-3 and 5 under 1e-4 (README, "Quality levels"). */
+ * error under 1e-2, 3.6 under 1e-3 and 5 under 1e-4 (README, "Quality levels"), nodes
+ * being the rule's points with gamma_i >= 0 (order 2 nodes, deon_nodes below). */
 static const struct {
     double nodes_times_beta; /* nodes = ceil(this / smallest beta_n of the plan's lobes) */
     int min_nodes;
@@ -343,6 +344,28 @@ static void derive_detector(hb_detector *d, double beta, double tol)
         d->coeff[j] = (float)(exp(-0.5 * j * j * beta * beta) / M_PI);
 }
 
+/* eq. 10's integral over h in [-1, 1] by the order-n Gauss-Legendre rule in gamma_i over
+ * [-pi/2, pi/2] (h = sin gamma_i, so the h^(1/2) behaviour of gamma_i at h = +-1 is smooth; the
+ * weight carries dh = cos gamma_i dgamma_i and eq. 10's 1/2). By the symmetry of dFH11 sec. 6
+ * (A even in h, Phi odd), nodes +-gamma pair into one node at gamma >= 0 detected at phi and -phi:
+ * (n + 1) / 2 nodes are evaluated, the centre (n odd) with half its weight. The paper's
+ * "quadrature of order 35" is n = 35: 18 nodes. */
+static void deon_nodes(hb_deon *d, int n)
+{
+    double gamma[HB_MAX_QUADRATURE_ORDER], w[HB_MAX_QUADRATURE_ORDER];
+    hb_gauss_legendre(n, -M_PI_2, M_PI_2, gamma, w);
+    d->order = n;
+    d->nodes = (n + 1) / 2;
+    for (int j = 0; j < d->nodes; j++) {
+        int k = n / 2 + j, centre = (n & 1) && j == 0;
+        double g = centre ? 0.0 : gamma[k]; /* the rule's centre is 0 up to rounding */
+        d->gamma_i[j] = (float)g;
+        d->cos_gamma_i[j] = (float)cos(g);
+        d->h[j] = (float)sin(g);
+        d->weight[j] = (float)((centre ? 0.25 : 0.5) * w[k] * cos(g));
+    }
+}
+
 static void derive_deon(hb_plan *plan)
 {
     const hb_material *m = &plan->material;
@@ -384,25 +407,13 @@ static void derive_deon(hb_plan *plan)
     for (int c = 0; c < 3; c++)
         d->sigma_a[c] = absorption_float(plan->sigma_a[c]);
     d->channels = d->sigma_a[0] == d->sigma_a[1] && d->sigma_a[1] == d->sigma_a[2] ? 1 : 3;
-    /* eq. 10 over h in [0, 1] with h = sin(gamma_i): the h^(1/2) behaviour of gamma_i at h = 1
-     * becomes smooth, and detection at phi and -phi covers h < 0 (A even, Phi odd mod 2 pi). */
     double beta_min = HUGE_VAL;
     for (int p = 0; p <= o->pmax; p++)
         beta_min = fmin(beta_min, plan->beta_n[p]);
-    int n = (int)ceil(quality_levels[o->quality].nodes_times_beta / beta_min);
-    n = n < quality_levels[o->quality].min_nodes ? quality_levels[o->quality].min_nodes : n;
-    n = n > HB_MAX_NODES ? HB_MAX_NODES : n;
-    if (o->quadrature_order > 0)
-        n = o->quadrature_order;
-    double gamma[HB_MAX_NODES], w[HB_MAX_NODES];
-    hb_gauss_legendre(n, 0.0, M_PI_2, gamma, w);
-    d->nodes = n;
-    for (int j = 0; j < n; j++) {
-        d->gamma_i[j] = (float)gamma[j];
-        d->cos_gamma_i[j] = (float)cos(gamma[j]);
-        d->h[j] = (float)sin(gamma[j]);
-        d->weight[j] = (float)(0.5 * w[j] * cos(gamma[j]));
-    }
+    int nodes = (int)ceil(quality_levels[o->quality].nodes_times_beta / beta_min);
+    nodes = nodes < quality_levels[o->quality].min_nodes ? quality_levels[o->quality].min_nodes : nodes;
+    nodes = nodes > HB_MAX_NODES ? HB_MAX_NODES : nodes;
+    deon_nodes(d, o->quadrature_order > 0 ? o->quadrature_order : 2 * nodes);
 }
 
 /* The largest |phi_hat(p, gamma) - p pi| over gamma in [-pi/2, pi/2] for index eta': the

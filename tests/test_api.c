@@ -117,7 +117,7 @@ static void test_unsupported_and_null(hb_test_ctx *t)
     CHECK(t, create(&m, &o, &err) == HB_ERR_UNSUPPORTED && strstr(err.message, "eccentricity"), "deon ellipse: %s",
           err.message);
     m.eccentricity = 0.0;
-    o.quadrature_order = HB_MAX_NODES + 1;
+    o.quadrature_order = HB_MAX_QUADRATURE_ORDER + 1;
     CHECK(t, create(&m, &o, &err) == HB_ERR_PARAM && strstr(err.message, "quadrature_order"), "nodes: %s",
           err.message);
     o.quadrature_order = 0;

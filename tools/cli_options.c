@@ -16,7 +16,8 @@ const char cli_model_options_help[] =
     "  --isa auto|scalar|sse4.1|avx2|avx512|neon  instruction set (default auto, or $HB_ISA)\n"
     "  --i0 abramowitz|paper          I0 in dFH11 eq. 7: A&S 9.8.1/9.8.2, or the eq. 15 series\n"
     "  --pmax N                       dFH11: highest explicit order (default 3); 'all' lobes add the residual\n"
-    "  --quadrature N                 dFH11: N_p nodes (default: from quality and beta_n)\n"
+    "  --quadrature N                 dFH11: N_p's Gauss-Legendre order across the fibre, (N + 1) / 2 nodes\n"
+    "                                 evaluated by symmetry (paper: 35; default: from quality and beta_n)\n"
     "  --detector-tolerance X         dFH11: truncation error of the Gaussian detector (default: from quality)\n"
     "  --absorption corrected|paper   path length 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t)\n"
     "  --r-fresnel offset|half-angle  dFH11 R lobe Fresnel: eq. 14 per offset (default, exact energy), or eq. 12 (paper)\n"
@@ -250,7 +251,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     } else if (strcmp(name, "--pmax") == 0) {
         if (!parse_int(value, 0, HB_MAX_LOBES - 1, &o->pmax)) expected = "an order from 0 to 7";
     } else if (strcmp(name, "--quadrature") == 0) {
-        if (!parse_int(value, 1, HB_MAX_NODES, &o->quadrature_order)) expected = "a node count from 1 to 256";
+        if (!parse_int(value, 1, HB_MAX_QUADRATURE_ORDER, &o->quadrature_order)) expected = "a quadrature order from 1 to 512";
     } else if (strcmp(name, "--calibration") == 0) {
         o->calibration = value;
     } else if (strcmp(name, "--azimuthal") == 0) {
