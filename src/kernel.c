@@ -28,21 +28,18 @@
 #define HB_TABLE_ISA HB_ISA_NEON
 #endif
 
-/* Loads lane block [i, i + lanes) of each stream; a short tail is padded with pad. */
+/* Loads lane block [i, i + lanes) of each stream; a short tail is padded with pad. One load per
+ * stream either way (from the stream, or from the padded copy), so the vectors stay in registers. */
 HB_INLINE void load_block(const float *const *src, int streams, size_t i, size_t lanes, float pad, vf *dst)
 {
-    if (lanes == HB_W) { /* the common case, as straight-line loads (streams is a constant) */
-#pragma GCC unroll 16
+    float padded[2 + HB_SAMPLE_DIMENSIONS][HB_W]; /* the most streams a kernel loads */
+    if (lanes != HB_W)
         for (int s = 0; s < streams; s++)
-            dst[s] = vf_loadu(src[s] + i);
-        return;
-    }
-    for (int s = 0; s < streams; s++) {
-        float buf[HB_W];
-        for (size_t k = 0; k < HB_W; k++)
-            buf[k] = k < lanes ? src[s][i + k] : pad;
-        dst[s] = vf_loadu(buf);
-    }
+            for (size_t k = 0; k < HB_W; k++)
+                padded[s][k] = k < lanes ? src[s][i + k] : pad;
+    HB_UNROLL
+    for (int s = 0; s < streams; s++)
+        dst[s] = vf_loadu(lanes == HB_W ? src[s] + i : padded[s]);
 }
 
 HB_INLINE void store_block(float *dst, size_t i, size_t lanes, vf value)
@@ -83,9 +80,9 @@ HB_INLINE vm load_angles(hb_angles_soa in, size_t i, size_t lanes, vf a[4])
     const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
     load_block(src, 4, i, lanes, 0.0f, a);
     vm valid = vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
-#pragma GCC unroll 4
+HB_UNROLL
     for (int k = 0; k < 4; k++)
-        a[k] = vf_select(valid, a[k], vf_set1(0.0f));
+        a[k] = vf_keep(valid, a[k]);
     return valid;
 }
 
@@ -137,24 +134,25 @@ HB_INLINE void store_rgb(hb_rgb_soa out, size_t i, size_t lanes, vm valid, const
 {
     float *planes[3] = { out.r, out.g, out.b };
     for (int c = 0; c < 3; c++)
-        store_block(planes[c], i, lanes, vf_select(valid, f[c], vf_set1(0.0f)));
+        store_block(planes[c], i, lanes, vf_keep(valid, f[c]));
 }
 
 /* A sampled direction, its pdf and weight; invalid lanes get 0 everywhere. */
 HB_INLINE void store_sample(hb_sample_out out, size_t i, size_t lanes, vm valid, vf theta_i, vf phi_i, vf pdf,
                             const vf weight[3])
 {
-    store_block(out.theta_i, i, lanes, vf_select(valid, theta_i, vf_set1(0.0f)));
-    store_block(out.phi_i, i, lanes, vf_select(valid, phi_i, vf_set1(0.0f)));
-    store_block(out.pdf, i, lanes, vf_select(valid, pdf, vf_set1(0.0f)));
+    store_block(out.theta_i, i, lanes, vf_keep(valid, theta_i));
+    store_block(out.phi_i, i, lanes, vf_keep(valid, phi_i));
+    store_block(out.pdf, i, lanes, vf_keep(valid, pdf));
     store_rgb(out.weight, i, lanes, valid, weight);
 }
 
 /* The loop every entry point shares: blocks of W lanes (a padded tail last), `compute`
  * turning the loaded lanes `a` (valid where `valid`) into stored results, and the count of
- * invalid samples. */
+ * invalid samples; subnormals flushed meanwhile (simd.h). */
 #define HB_BATCH(load, streams, in, n, invalid, compute)              \
     do {                                                              \
+        hb_fp_mode mode_ = hb_flush_subnormals();                     \
         size_t bad_ = 0;                                              \
         for (size_t i = 0; i < (n); i += HB_W) {                      \
             size_t lanes = (n) - i < HB_W ? (n) - i : HB_W;           \
@@ -164,6 +162,7 @@ HB_INLINE void store_sample(hb_sample_out out, size_t i, size_t lanes, vm valid,
             bad_ += count_invalid(valid, lanes);                      \
         }                                                             \
         *(invalid) = bad_;                                            \
+        hb_fp_restore(mode_);                                         \
     } while (0)
 
 /* One specialised kernel per I0 variant: the variant is a constant inside each. */
@@ -173,14 +172,14 @@ HB_INLINE void store_sample(hb_sample_out out, size_t i, size_t lanes, vm valid,
     {                                                                                                     \
         HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
                  store_block(out, i, lanes,                                                               \
-                             vf_select(valid, longitudinal_deon_angles(lobe, a[0], a[2], i0), vf_set1(0.0f)))); \
+                             vf_keep(valid, longitudinal_deon_angles(lobe, a[0], a[2], i0)))); \
     }                                                                                                     \
     static void longitudinal_vectors_##suffix(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,   \
                                               float *out, size_t *invalid)                               \
     {                                                                                                     \
         HB_BATCH(load_vectors, 6, in, n, invalid,                                                         \
                  store_block(out, i, lanes,                                                               \
-                             vf_select(valid, longitudinal_deon_vectors(lobe, a, a + 3, i0), vf_set1(0.0f)))); \
+                             vf_keep(valid, longitudinal_deon_vectors(lobe, a, a + 3, i0)))); \
     }                                                                                                     \
     static void deon_angles_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,     \
                                      size_t *invalid)                                                    \
@@ -202,7 +201,7 @@ HB_INLINE void store_sample(hb_sample_out out, size_t i, size_t lanes, vm valid,
     {                                                                                                     \
         HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
                  store_block(pdf, i, lanes,                                                               \
-                             vf_select(valid, deon_pdf_angles(deon, a[0], a[1], a[2], a[3], i0), vf_set1(0.0f)))); \
+                             vf_keep(valid, deon_pdf_angles(deon, a[0], a[1], a[2], a[3], i0)))); \
     }                                                                                                     \
     static void deon_vectors_##suffix(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,   \
                                       size_t *invalid)                                                   \
@@ -216,7 +215,7 @@ static void marschner_longitudinal_angles(const hb_gaussian_lobe *lobe, size_t n
 {
     HB_BATCH(load_angles, 4, in, n, invalid,
              store_block(out, i, lanes,
-                         vf_select(valid, longitudinal_marschner_angles(lobe, a[0], a[2]), vf_set1(0.0f))));
+                         vf_keep(valid, longitudinal_marschner_angles(lobe, a[0], a[2]))));
 }
 
 static void marschner_longitudinal_vectors(const hb_gaussian_lobe *lobe, size_t n, hb_vectors_soa in, float *out,
@@ -224,7 +223,7 @@ static void marschner_longitudinal_vectors(const hb_gaussian_lobe *lobe, size_t 
 {
     HB_BATCH(load_vectors, 6, in, n, invalid,
              store_block(out, i, lanes,
-                         vf_select(valid, longitudinal_marschner_vectors(lobe, a, a + 3), vf_set1(0.0f))));
+                         vf_keep(valid, longitudinal_marschner_vectors(lobe, a, a + 3))));
 }
 
 static void marschner_angles_kernel(const hb_marschner *mjc, size_t n, hb_angles_soa in, hb_rgb_soa out,
@@ -284,12 +283,11 @@ static void huang_pdf_kernel(const hb_huang *h, size_t n, hb_angles_soa in, floa
     if (h->lobes == 1u << HB_LOBE_R)
         HB_BATCH(load_angles, 4, in, n, invalid,
                  store_block(pdf, i, lanes,
-                             vf_select(valid, huang_pdf_angles(h, a[0], a[1], a[2], a[3]), vf_set1(0.0f))));
+                             vf_keep(valid, huang_pdf_angles(h, a[0], a[1], a[2], a[3]))));
     else
         HB_BATCH(load_angles, 4, in, n, invalid,
                  store_block(pdf, i, lanes,
-                             vf_select(valid, huang_path_pdf(h, a[0], a[1], a[2], a[3], lane_indices(i)),
-                                       vf_set1(0.0f))));
+                             vf_keep(valid, huang_path_pdf(h, a[0], a[1], a[2], a[3], lane_indices(i)))));
 }
 
 HB_KERNEL_VARIANTS(abramowitz, HB_I0_ABRAMOWITZ)
@@ -302,6 +300,7 @@ HB_INLINE vf math_apply(hb_math_fn fn, vf a, vf b)
     switch (fn) {
     case HB_FN_EXP: return vf_exp(a);
     case HB_FN_EXP_FLUSH: return vf_exp_flush(a);
+    case HB_FN_EXP2_FLUSH: return vf_exp2_flush(a);
     case HB_FN_LOG: return vf_log(a);
     case HB_FN_LOG1P: return vf_log1p(a);
     case HB_FN_SIN: return vf_sin(a);
@@ -338,7 +337,7 @@ static void detector_map(const hb_detector *d, size_t n, const float *x, float *
         vf phi, cos_n_phi[HB_MAX_DETECTOR_TERMS + 1];
         load_block(&x, 1, i, lanes, 0.0f, &phi);
         cos_multiples(vf_cos(phi), d->fourier ? d->terms : 0, cos_n_phi);
-        vf pair = detector_pair(d, phi, vf_set1(0.0f), cos_n_phi);
+        vf pair = detector_pair(d, phi, vf_set1(0.0f), cos_n_phi, (deon_shape){ 0, 1, 0 });
         store_block(out, i, lanes, vf_mul(pair, vf_set1(0.5f)));
     }
 }

@@ -113,7 +113,7 @@ typedef struct hb_huang {
 typedef struct hb_detector {
     int fourier;         /* 1: (1/2pi)(1 + 2 sum_{n<=terms} e^(-n^2 beta^2/2) cos(n x)); 0: Gaussians at x - 2 pi k, |k| <= terms */
     int terms;
-    float inv_two_beta2; /* direct series: 1 / (2 beta^2) */
+    float log2e_over_two_beta2; /* direct series: log2(e) / (2 beta^2), the Gaussian as a power of 2 */
     float gauss_norm;    /* direct series: 1 / (beta sqrt(2 pi)) */
     float coeff[HB_MAX_DETECTOR_TERMS + 1]; /* Fourier series: coeff[0] = 1/(2 pi), coeff[n] = e^(-n^2 beta^2/2) / pi */
 } hb_detector;
@@ -126,11 +126,13 @@ typedef struct hb_deon {
     int pmax;
     int channels;   /* 3, or 1 for a grey fibre (sigma_a the same in every channel: one computed, copied) */
     int order; /* the Gauss-Legendre order in gamma_i over [-pi/2, pi/2] */
+    int standard; /* the default shape: pmax 3 (any lobe subset), every detector the nearest Gaussian
+                   * alone, corrected absorption, R Fresnel per offset (azimuthal.h, deon_shape) */
     int nodes; /* its nodes with gamma_i >= 0: (order + 1) / 2 */
     int absorption_paper;
     int r_fresnel_offset; /* R uses eq. 14 per node instead of eq. 12 */
     hb_dielectric ior;
-    float sigma_a[3];
+    float sigma_a_log2e[3]; /* sigma_a log2(e): absorption as a power of 2 */
     /* the rule's nodes with gamma_i >= 0 (h = sin gamma_i), each detected at phi and -phi; weights
      * include eq. 10's 1/2 and dh/dgamma (plan.c, deon_nodes) */
     float gamma_i[HB_MAX_NODES], cos_gamma_i[HB_MAX_NODES], h[HB_MAX_NODES], weight[HB_MAX_NODES];
@@ -157,6 +159,8 @@ typedef struct hb_deon {
 
 /* Whether lobe p (an order up to pmax, or the residual) is in the plan's dFH11 sum, and whether it
  * is the first lobe of its M_p group (the one whose M_p is evaluated). */
+#define HB_STANDARD_PMAX 3
+
 static inline int hb_deon_lobe_on(const hb_deon *d, int p)
 {
     return (d->lobes >> p & 1u) && (p <= d->pmax || p == HB_LOBE_RESIDUAL);
@@ -165,7 +169,7 @@ static inline int hb_deon_group_leader(const hb_deon *d, int p) { return hb_deon
 
 /* Functions of src/math/vmath.h exported for the accuracy tests. */
 typedef enum hb_math_fn {
-    HB_FN_EXP, HB_FN_EXP_FLUSH, HB_FN_LOG, HB_FN_LOG1P, HB_FN_SIN, HB_FN_COS, HB_FN_ASIN, HB_FN_ACOS,
+    HB_FN_EXP, HB_FN_EXP_FLUSH, HB_FN_EXP2_FLUSH, HB_FN_LOG, HB_FN_LOG1P, HB_FN_SIN, HB_FN_COS, HB_FN_ASIN, HB_FN_ACOS,
     HB_FN_ATAN2, HB_FN_SQRT, HB_FN_I0, HB_FN_I0E, HB_FN_LOG_I0, HB_FN_COUNT
 } hb_math_fn;
 

@@ -337,7 +337,7 @@ static void derive_detector(hb_detector *d, double beta, double tol)
     memset(d, 0, sizeof *d);
     d->fourier = fourier_converged && fourier_cost < direct_cost;
     d->terms = d->fourier ? n : k;
-    d->inv_two_beta2 = (float)(1.0 / (2.0 * beta * beta));
+    d->log2e_over_two_beta2 = (float)(M_LOG2E / (2.0 * beta * beta));
     d->gauss_norm = (float)(1.0 / (beta * sqrt(2.0 * M_PI)));
     d->coeff[0] = (float)(0.5 / M_PI);
     for (int j = 1; j <= HB_MAX_DETECTOR_TERMS; j++)
@@ -403,10 +403,14 @@ static void derive_deon(hb_plan *plan)
             d->fourier_terms = d->detector[p].terms;
     d->absorption_paper = o->absorption == HB_ABSORPTION_PAPER;
     d->r_fresnel_offset = o->r_fresnel == HB_R_FRESNEL_OFFSET;
+    int nearest = 1;
+    for (int p = 0; p <= o->pmax; p++)
+        nearest = nearest && !d->detector[p].fourier && d->detector[p].terms == 0;
+    d->standard = o->pmax == HB_STANDARD_PMAX && nearest && !d->absorption_paper && d->r_fresnel_offset;
     d->ior = dielectric_of(m->eta);
     for (int c = 0; c < 3; c++)
-        d->sigma_a[c] = absorption_float(plan->sigma_a[c]);
-    d->channels = d->sigma_a[0] == d->sigma_a[1] && d->sigma_a[1] == d->sigma_a[2] ? 1 : 3;
+        d->sigma_a_log2e[c] = absorption_float(plan->sigma_a[c] * M_LOG2E);
+    d->channels = d->sigma_a_log2e[0] == d->sigma_a_log2e[1] && d->sigma_a_log2e[1] == d->sigma_a_log2e[2] ? 1 : 3;
     double beta_min = HUGE_VAL;
     for (int p = 0; p <= o->pmax; p++)
         beta_min = fmin(beta_min, plan->beta_n[p]);

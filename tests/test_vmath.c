@@ -122,6 +122,20 @@ static void test_exp_flush(hb_test_ctx *t)
     check_function(t, "exp_flush", HB_FN_EXP_FLUSH, ref_exp_flush, &s, ERR_ULP, 2.0);
 }
 
+/* 2^t with results below FLT_MIN flushed to 0, for t <= 127: 2 ulp where the result is normal, 0 below. */
+static double ref_exp2_flush(double a, double b) { (void)b; return a < -126.0 ? 0.0 : exp2(a); }
+
+static void test_exp2_flush(hb_test_ctx *t)
+{
+    input_set s = { 0 };
+    push_grid(&s, -126.0, 127.0, DENSE);
+    push_grid(&s, -1000.0, -126.0, 4096);
+    const float edges[] = { 0.0f, -0.0f, 1e-30f, -1e-30f, 0.5f, -0.5f, 1.5f, -1.5f, -125.5f, -126.0f, 126.5f, 127.0f };
+    for (size_t k = 0; k < sizeof edges / sizeof edges[0]; k++)
+        push_neighbourhood(&s, edges[k], 64);
+    check_function(t, "exp2_flush", HB_FN_EXP2_FLUSH, ref_exp2_flush, &s, ERR_ULP, 2.0);
+}
+
 static void test_log(hb_test_ctx *t)
 {
     input_set s = { 0 };
@@ -278,6 +292,7 @@ static void test_reference_i0(hb_test_ctx *t)
 const hb_test hb_tests_vmath[] = {
     { "vmath_exp", test_exp, 1 },
     { "vmath_exp_flush", test_exp_flush, 1 },
+    { "vmath_exp2_flush", test_exp2_flush, 1 },
     { "vmath_log", test_log, 1 },
     { "vmath_log1p", test_log1p, 1 },
     { "vmath_sin", test_sin, 1 },

@@ -62,13 +62,33 @@ HB_INLINE vf vf_exp(vf x)
  * ever formed and 2^k stays finite (k <= 127). Same accuracy as vf_exp above. */
 HB_INLINE vf vf_exp_flush(vf x)
 {
-    vm tiny = vf_lt(x, vf_set1(-87.33f));
+    vm normal = vf_ge(x, vf_set1(-87.33f));
     x = vf_clamp(x, -87.33f, 88.0f);
     vf k = vf_round(vf_mul(x, vf_set1(1.44269504f)));
     vf r = vf_fnma(k, vf_set1(0.693359375f), x);
     r = vf_fnma(k, vf_set1(-2.12194440e-4f), r);
     vf scale = vi_as_vf(vi_shl(vi_add(vi_from_vf(k), vi_set1(127)), 23));
-    return vf_select(tiny, vf_set1(0.0f), vf_mul(vf_exp_reduced(r), scale));
+    return vf_keep(normal, vf_mul(vf_exp_reduced(r), scale));
+}
+
+/* 2^t for t <= 127, 0 below -126 (no denormal is formed): the kernels' detectors and absorptions,
+ * whose exponents the plan scales by log2(e) in advance. t is rounded to k by adding 1.5 2^23
+ * (exact for |t| < 2^22; the sum's low bits are k, so 2^k's exponent field is one integer add and
+ * shift away), 2^r for |r| <= 1/2 by the Cephes exp2f polynomial (2e-9 relative before rounding). */
+HB_INLINE vf vf_exp2_flush(vf t)
+{
+    vm normal = vf_ge(t, vf_set1(-126.0f));
+    t = vf_max(t, vf_set1(-126.0f));
+    vf shifted = vf_add(t, vf_set1(12582912.0f));
+    vf r = vf_sub(t, vf_sub(shifted, vf_set1(12582912.0f)));
+    vf p = vf_set1(1.535336188319500e-4f);
+    p = vf_fma(p, r, vf_set1(1.339887440266574e-3f));
+    p = vf_fma(p, r, vf_set1(9.618437357674640e-3f));
+    p = vf_fma(p, r, vf_set1(5.550332471162809e-2f));
+    p = vf_fma(p, r, vf_set1(2.402264791363012e-1f));
+    p = vf_fma(p, r, vf_set1(6.931472028550421e-1f));
+    vf scale = vi_as_vf(vi_shl(vi_add(vf_as_vi(shifted), vi_set1(127)), 23));
+    return vf_keep(normal, vf_mul(vf_fma(p, r, vf_set1(1.0f)), scale));
 }
 
 /* e^x for an argument carried in double precision: the reduction x - k ln2 is
@@ -336,10 +356,11 @@ HB_INLINE vf vf_normal_quantile(vf u)
     return vf_mul(vf_mul(erfinv_over_x, vf_fnma(vf_set1(-2.0f), u, vf_set1(-1.0f))), vf_set1(1.41421356f));
 }
 
-/* x - 2 pi k in [-pi, pi], with 2 pi split in two floats. */
+/* x - 2 pi k in [-pi, pi] for |x| < 2^24, with 2 pi split in two floats; k = x / 2 pi rounded by
+ * adding 1.5 2^23 (as in vf_exp2_flush: two additions instead of a multiply and a rounding). */
 HB_INLINE vf wrap_angle(vf x)
 {
-    vf k = vf_round(vf_mul(x, vf_set1(0.159154943f)));
+    vf k = vf_sub(vf_fma(x, vf_set1(0.159154943f), vf_set1(12582912.0f)), vf_set1(12582912.0f));
     return vf_fnma(k, vf_set1(HB_TWO_PI_LO), vf_fnma(k, vf_set1(HB_TWO_PI_F), x));
 }
 

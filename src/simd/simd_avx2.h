@@ -27,6 +27,7 @@ HB_INLINE vf vf_min(vf a, vf b) { return _mm256_min_ps(a, b); }
 HB_INLINE vf vf_max(vf a, vf b) { return _mm256_max_ps(a, b); }
 HB_INLINE vf vf_sqrt(vf a) { return _mm256_sqrt_ps(a); }
 HB_INLINE vf vf_select(vm m, vf a, vf b) { return _mm256_blendv_ps(b, a, m); }
+HB_INLINE vf vf_keep(vm m, vf a) { return _mm256_and_ps(a, m); }
 HB_INLINE vf vf_round(vf a) { return _mm256_round_ps(a, HB_ROUND_NEAREST); }
 
 HB_INLINE vm vf_lt(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }

@@ -27,6 +27,7 @@ HB_INLINE vf vf_min(vf a, vf b) { return _mm512_min_ps(a, b); }
 HB_INLINE vf vf_max(vf a, vf b) { return _mm512_max_ps(a, b); }
 HB_INLINE vf vf_sqrt(vf a) { return _mm512_sqrt_ps(a); }
 HB_INLINE vf vf_select(vm m, vf a, vf b) { return _mm512_mask_blend_ps(m, b, a); }
+HB_INLINE vf vf_keep(vm m, vf a) { return _mm512_maskz_mov_ps(m, a); }
 HB_INLINE vf vf_round(vf a) { return _mm512_roundscale_ps(a, HB_ROUND_NEAREST); }
 
 HB_INLINE vm vf_lt(vf a, vf b) { return _mm512_cmp_ps_mask(a, b, _CMP_LT_OQ); }

@@ -25,6 +25,7 @@ HB_INLINE vf vf_min(vf a, vf b) { return vminq_f32(a, b); }
 HB_INLINE vf vf_max(vf a, vf b) { return vmaxq_f32(a, b); }
 HB_INLINE vf vf_sqrt(vf a) { return vsqrtq_f32(a); }
 HB_INLINE vf vf_select(vm m, vf a, vf b) { return vbslq_f32(m, a, b); }
+HB_INLINE vf vf_keep(vm m, vf a) { return vreinterpretq_f32_u32(vandq_u32(vreinterpretq_u32_f32(a), m)); }
 HB_INLINE vf vf_round(vf a) { return vrndnq_f32(a); }
 
 HB_INLINE vm vf_lt(vf a, vf b) { return vcltq_f32(a, b); }

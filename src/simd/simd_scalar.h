@@ -28,6 +28,7 @@ HB_INLINE vf vf_min(vf a, vf b) { return a < b ? a : b; }
 HB_INLINE vf vf_max(vf a, vf b) { return a > b ? a : b; }
 HB_INLINE vf vf_sqrt(vf a) { return __builtin_sqrtf(a); }
 HB_INLINE vf vf_select(vm m, vf a, vf b) { return m ? a : b; }
+HB_INLINE vf vf_keep(vm m, vf a) { return m ? a : 0.0f; }
 
 HB_INLINE vm vf_lt(vf a, vf b) { return a < b; }
 HB_INLINE vm vf_le(vf a, vf b) { return a <= b; }

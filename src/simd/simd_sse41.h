@@ -38,6 +38,7 @@ HB_INLINE vf vf_min(vf a, vf b) { return _mm_min_ps(a, b); }
 HB_INLINE vf vf_max(vf a, vf b) { return _mm_max_ps(a, b); }
 HB_INLINE vf vf_sqrt(vf a) { return _mm_sqrt_ps(a); }
 HB_INLINE vf vf_select(vm m, vf a, vf b) { return _mm_blendv_ps(b, a, m); }
+HB_INLINE vf vf_keep(vm m, vf a) { return _mm_and_ps(a, m); }
 HB_INLINE vf vf_round(vf a) { return _mm_round_ps(a, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
 
 HB_INLINE vm vf_lt(vf a, vf b) { return _mm_cmplt_ps(a, b); }

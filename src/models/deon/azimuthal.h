@@ -19,11 +19,30 @@ HB_INLINE void cos_multiples(vf cos_phi, int terms, vf *out)
     }
 }
 
+/* The plan's shape as constants, so that each kernel's loops over lobes and detector terms unroll:
+ * standard = explicit orders up to TRRT (any subset of them and the residual), every detector the
+ * nearest Gaussian alone, the default absorption and R Fresnel (hb_deon.standard); all_lobes: the
+ * standard shape with every one of those lobes; channels 3, or 1 for a grey fibre. */
+typedef struct deon_shape {
+    int standard, channels, all_lobes;
+} deon_shape;
+
+#define HB_STANDARD_LOBES (((2u << HB_STANDARD_PMAX) - 1u) | 1u << HB_LOBE_RESIDUAL)
+
+HB_INLINE int deon_pmax(const hb_deon *d, deon_shape shape) { return shape.standard ? HB_STANDARD_PMAX : d->pmax; }
+
+/* hb_deon_lobe_on with the shape's pmax, a constant for the standard shape */
+HB_INLINE int deon_lobe_on(const hb_deon *d, int p, deon_shape shape)
+{
+    unsigned lobes = shape.all_lobes ? HB_STANDARD_LOBES : d->lobes;
+    return (lobes >> p & 1u) && (p <= deon_pmax(d, shape) || p == HB_LOBE_RESIDUAL);
+}
+
 /* D_p(phi - Phi) + D_p(-phi - Phi), eq. 11: detection at phi and -phi covers h < 0.
  * Fourier form: cos(n(phi - Phi)) + cos(n(-phi - Phi)) = 2 cos(n phi) cos(n Phi). */
-HB_INLINE vf detector_pair(const hb_detector *d, vf phi, vf Phi, const vf *cos_n_phi)
+HB_INLINE vf detector_pair(const hb_detector *d, vf phi, vf Phi, const vf *cos_n_phi, deon_shape shape)
 {
-    if (d->fourier) {
+    if (!shape.standard && d->fourier) {
         vf cos_Phi = vf_cos(Phi);
         vf previous = vf_set1(1.0f), current = cos_Phi;
         vf sum = vf_set1(2.0f * d->coeff[0]);
@@ -36,11 +55,12 @@ HB_INLINE vf detector_pair(const hb_detector *d, vf phi, vf Phi, const vf *cos_n
         return sum;
     }
     vf x1 = wrap_angle(vf_sub(phi, Phi)), x2 = wrap_angle(vf_neg(vf_add(phi, Phi)));
-    vf sum = vf_set1(0.0f);
-    for (int k = -d->terms; k <= d->terms; k++) {
+    vf sum = vf_set1(0.0f), exponent = vf_set1(-d->log2e_over_two_beta2);
+    int terms = shape.standard ? 0 : d->terms;
+    for (int k = -terms; k <= terms; k++) {
         vf d1 = vf_sub(x1, vf_set1(HB_TWO_PI_F * (float)k)), d2 = vf_sub(x2, vf_set1(HB_TWO_PI_F * (float)k));
-        sum = vf_add(sum, vf_exp_flush(vf_mul(vf_mul(d1, d1), vf_set1(-d->inv_two_beta2))));
-        sum = vf_add(sum, vf_exp_flush(vf_mul(vf_mul(d2, d2), vf_set1(-d->inv_two_beta2))));
+        sum = vf_add(sum, vf_exp2_flush(vf_mul(vf_mul(d1, d1), exponent)));
+        sum = vf_add(sum, vf_exp2_flush(vf_mul(vf_mul(d2, d2), exponent)));
     }
     return vf_mul(sum, vf_set1(d->gauss_norm));
 }
@@ -63,65 +83,92 @@ typedef struct deon_geometry {
 typedef struct deon_medium {
     vf cos_theta_d;
     vf inv_eta_prime; /* 1 / eta' = cos(theta_d) / sqrt(eta^2 - sin^2(theta_d)) */
-    vf mu[3];         /* mu_a' = mu_a / cos(theta_t), per channel */
+    vf mu_log2e[3];   /* mu_a' log2(e), mu_a' = mu_a / cos(theta_t), per channel */
 } deon_medium;
 
-/* channels: 3, or 1 for a grey fibre (a constant at every call, so the loops unroll) */
 HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_medium *m, const int channels)
 {
     m->cos_theta_d = g->cos_theta_d;
     m->inv_eta_prime = vf_div(g->cos_theta_d, vf_sqrt(vf_sub(vf_set1(d->ior.eta * d->ior.eta), g->sin2_theta_d))); /* sec. 5 */
     vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(d->ior.inv_eta2), vf_set1(1.0f)));
     for (int c = 0; c < channels; c++)
-        m->mu[c] = vf_div(vf_set1(d->sigma_a[c]), cos_theta_t);
+        m->mu_log2e[c] = vf_div(vf_set1(d->sigma_a_log2e[c]), cos_theta_t);
 }
+
+/* What the paths through one offset h = sin(gamma_i) share across channels: the Fresnel factor f
+ * (eq. 14), the per-traversal transmittance T (RGB), the exit azimuths Phi(p, h) (eq. 8) and the
+ * channel-free part of A(p, h) (eq. 13): A_f[0] = f, A_f[p] = (1 - f)^2 f^(p-1) up to p = pmax + 1
+ * (the residual's first order); A(p, h) = A_f[p] T^p. */
+typedef struct deon_paths {
+    vf f, T[3];
+    vf A_f[HB_MAX_LOBES + 1];
+    vf Phi[HB_MAX_LOBES];
+} deon_paths;
+
+HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf gamma_i, vf cos_gamma_i,
+                               deon_paths *out, deon_shape shape)
+{
+    const int pmax = deon_pmax(d, shape);
+    vf sin_gamma_t = vf_mul(h, m->inv_eta_prime);
+    vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
+    vf gamma_t = vf_asin(sin_gamma_t);
+    vf f = out->f = fresnel_dielectric(vf_mul(m->cos_theta_d, cos_gamma_i), &d->ior); /* eq. 14 */
+    /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (SPEC.md 4) */
+    vf path = !shape.standard && d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
+                                                     : vf_add(cos_gamma_t, cos_gamma_t);
+    HB_UNROLL
+    for (int c = 0; c < shape.channels; c++)
+        out->T[c] = vf_exp2_flush(vf_neg(vf_mul(m->mu_log2e[c], path)));
+    out->Phi[0] = vf_mul(vf_set1(-2.0f), gamma_i); /* eq. 8, p = 0 */
+    out->A_f[0] = f;
+    out->A_f[1] = vf_mul(vf_sub(vf_set1(1.0f), f), vf_sub(vf_set1(1.0f), f)); /* (1 - f)^2 f^(p-1), eq. 13 */
+    HB_UNROLL
+    for (int p = 1; p <= pmax && p < HB_MAX_LOBES; p++) {
+        out->Phi[p] = vf_fma(vf_set1(2.0f * (float)p), gamma_t,
+                             vf_fnma(vf_set1(2.0f), gamma_i, vf_set1((float)p * 3.14159265f))); /* eq. 8 */
+        out->A_f[p + 1] = vf_mul(out->A_f[p], f);
+    }
+}
+
+/* 1 / (1 - f T), the geometric series of the orders above pmax (floored: f T < 1 but rounds to it). */
+HB_INLINE vf residual_series(vf f, vf T) { return vf_div(vf_set1(1.0f), vf_max(vf_fnma(f, T, vf_set1(1.0f)), vf_set1(1e-30f))); }
 
 /* Attenuation A(p, h) (eqs. 12-14, RGB) and exit azimuth Phi(p, h) (eq. 8) of every lobe of the
  * plan at one offset h = sin(gamma_i). A[HB_LOBE_RESIDUAL] = sum_{p > pmax} A(p, h). Without
  * the offset Fresnel option, A[R] = 1 and eq. 12's factor is applied by the caller. */
 typedef struct deon_node {
+    deon_paths paths; /* Phi among them */
     vf A[HB_MAX_LOBES + 1][3];
-    vf Phi[HB_MAX_LOBES];
 } deon_node;
 
 HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf gamma_i, vf cos_gamma_i,
-                               deon_node *node, const int channels)
+                               deon_node *node, deon_shape shape)
 {
-    vf sin_gamma_t = vf_mul(h, m->inv_eta_prime);
-    vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
-    vf gamma_t = vf_asin(sin_gamma_t);
-    vf f = fresnel_dielectric(vf_mul(m->cos_theta_d, cos_gamma_i), &d->ior); /* eq. 14 */
-    /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (SPEC.md 4) */
-    vf path = d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
-                                  : vf_add(cos_gamma_t, cos_gamma_t);
-    vf T[3], T_power[3];
+    const int channels = shape.channels, r_fresnel_offset = shape.standard || d->r_fresnel_offset;
+    const int pmax = deon_pmax(d, shape);
+    const deon_paths *paths = &node->paths;
+    deon_node_paths(d, m, h, gamma_i, cos_gamma_i, &node->paths, shape);
+    vf T_power[3];
     for (int c = 0; c < channels; c++)
-        T_power[c] = T[c] = vf_exp_flush(vf_neg(vf_mul(m->mu[c], path)));
-    if (d->lobes & 1u) {
-        node->Phi[0] = vf_mul(vf_set1(-2.0f), gamma_i); /* eq. 8, p = 0 */
-        node->A[0][0] = node->A[0][1] = node->A[0][2] = d->r_fresnel_offset ? f : vf_set1(1.0f);
+        T_power[c] = paths->T[c];
+    if (deon_lobe_on(d, 0, shape)) {
+        node->A[0][0] = node->A[0][1] = node->A[0][2] = r_fresnel_offset ? paths->f : vf_set1(1.0f);
     }
-    vf A = vf_mul(vf_sub(vf_set1(1.0f), f), vf_sub(vf_set1(1.0f), f)); /* (1 - f)^2 f^(p-1), eq. 13 */
-    for (int p = 1; p <= d->pmax; p++) {
-        if (d->lobes >> p & 1u) {
-            node->Phi[p] = vf_fma(vf_set1(2.0f * (float)p), gamma_t,
-                                  vf_fnma(vf_set1(2.0f), gamma_i, vf_set1((float)p * 3.14159265f))); /* eq. 8 */
+    HB_UNROLL
+    for (int p = 1; p <= pmax; p++) {
+        if (deon_lobe_on(d, p, shape)) {
             for (int c = 0; c < channels; c++)
-                node->A[p][c] = vf_mul(A, T_power[c]);
+                node->A[p][c] = vf_mul(paths->A_f[p], T_power[c]);
         }
-        A = vf_mul(A, f);
         for (int c = 0; c < channels; c++)
-            T_power[c] = vf_mul(T_power[c], T[c]);
+            T_power[c] = vf_mul(T_power[c], paths->T[c]);
     }
-    if (d->lobes >> HB_LOBE_RESIDUAL & 1u) { /* sum_{p > pmax} A(p, h) = A(pmax+1, h) / (1 - f T) */
-        for (int c = 0; c < channels; c++) {
-            vf geometric = vf_max(vf_fnma(f, T[c], vf_set1(1.0f)), vf_set1(1e-30f));
-            node->A[HB_LOBE_RESIDUAL][c] = vf_div(vf_mul(A, T_power[c]), geometric);
-        }
-    }
+    if (deon_lobe_on(d, HB_LOBE_RESIDUAL, shape)) /* sum_{p > pmax} A(p, h) = A(pmax+1, h) / (1 - f T) */
+        for (int c = 0; c < channels; c++)
+            node->A[HB_LOBE_RESIDUAL][c] = vf_mul(vf_mul(paths->A_f[pmax + 1], T_power[c]), residual_series(paths->f, paths->T[c]));
     if (channels == 1) /* a grey fibre: the other channels are copies (register moves) */
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-            if (hb_deon_lobe_on(d, p))
+            if (deon_lobe_on(d, p, shape))
                 node->A[p][1] = node->A[p][2] = node->A[p][0];
 }
 
@@ -141,9 +188,10 @@ typedef struct deon_pdf_terms {
  * N[HB_LOBE_RESIDUAL] holds all orders above pmax, spread uniformly in phi. A grey fibre (the same
  * absorption in every channel, hb_deon.channels = 1) computes channel 0 alone and copies it: bit for bit
  * what three channels give. */
-HB_INLINE void azimuthal_deon_channels(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3],
-                                       deon_pdf_terms *pdf, const int channels)
+HB_INLINE void azimuthal_deon_shaped(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3],
+                                     deon_pdf_terms *pdf, deon_shape shape)
 {
+    const int channels = shape.channels;
     deon_medium medium;
     deon_medium_of(d, g, &medium, channels);
     vf cos_n_phi[HB_MAX_DETECTOR_TERMS + 1];
@@ -157,13 +205,14 @@ HB_INLINE void azimuthal_deon_channels(const hb_deon *d, const deon_geometry *g,
         vf weight = vf_set1(d->weight[j]);
         deon_node node;
         deon_node_lobes(d, &medium, vf_set1(d->h[j]), vf_set1(d->gamma_i[j]), vf_set1(d->cos_gamma_i[j]), &node,
-                        channels);
+                        shape);
         vf mass = vf_set1(0.0f), detected = vf_set1(0.0f);
+        HB_UNROLL
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-            if (!hb_deon_lobe_on(d, p))
+            if (!deon_lobe_on(d, p, shape))
                 continue;
             vf pair = p == HB_LOBE_RESIDUAL ? vf_set1(HB_RESIDUAL_DETECTOR_PAIR)
-                                            : detector_pair(&d->detector[p], g->phi, node.Phi[p], cos_n_phi);
+                                            : detector_pair(&d->detector[p], g->phi, node.paths.Phi[p], cos_n_phi, shape);
             vf wd = vf_mul(weight, pair);
             for (int c = 0; c < channels; c++)
                 N[p][c] = vf_fma(wd, node.A[p][c], N[p][c]);
@@ -188,10 +237,14 @@ HB_INLINE void azimuthal_deon_channels(const hb_deon *d, const deon_geometry *g,
 HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3],
                               deon_pdf_terms *pdf)
 {
-    if (d->channels == 1)
-        azimuthal_deon_channels(d, g, N, pdf, 1);
+    if (d->standard && d->channels == 1)
+        azimuthal_deon_shaped(d, g, N, pdf, (deon_shape){ 1, 1, 0 });
+    else if (d->standard)
+        azimuthal_deon_shaped(d, g, N, pdf, (deon_shape){ 1, 3, 0 });
+    else if (d->channels == 1)
+        azimuthal_deon_shaped(d, g, N, pdf, (deon_shape){ 0, 1, 0 });
     else
-        azimuthal_deon_channels(d, g, N, pdf, 3);
+        azimuthal_deon_shaped(d, g, N, pdf, (deon_shape){ 0, 3, 0 });
 }
 
 /* N_p from a table (HB_AZIMUTHAL_TABLE; dFH11 sec. 6 suggests tabulating N_p per lobe over
@@ -230,7 +283,7 @@ HB_INLINE void deon_np_row(const hb_deon *d, float cos_theta_d, size_t n, const 
 }
 
 /* N per M_p group leader, bilinear in (sqrt(cos(theta_d)), |phi|); every other N is 0, so
- * HB_DEON_SUM adds nothing for the non-leaders. */
+ * HB_DEON_EVAL adds nothing for the non-leaders. */
 HB_INLINE void azimuthal_deon_table(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3])
 {
     vf zero = vf_set1(0.0f), one = vf_set1(1.0f);
@@ -259,11 +312,106 @@ HB_INLINE void azimuthal_deon_table(const hb_deon *d, const deon_geometry *g, vf
             N[d->table_leader[s]][1] = N[d->table_leader[s]][2] = N[d->table_leader[s]][0];
 }
 
-/* f = sum_p M_p N_p over the plan's lobes, with lobes of equal M_p summed first so each
- * distinct M_p is evaluated once; M_p from a caller-supplied evaluator so the angle and
- * vector entry points share everything else. */
-#define HB_DEON_SUM(d, N, out, longitudinal_of_lobe)                                    \
+/* f = sum_p M_p N_p for the standard shape with M_p folded into the sum over nodes, so that three
+ * accumulators replace one N per lobe and channel. Per node j, with
+ * s_p = weight_j M_p A_f[p] [D_p(phi - Phi_p) + D_p(-phi - Phi_p)] (0 for a lobe the plan leaves out)
+ * and the residual's q = weight_j M_res A_f[4] / pi, the channel's sum over p of A(p, h) M_p D_p
+ * (eqs. 10, 13) is s_0 + T (s_1 + T (s_2 + T (s_3 + T q / (1 - f T)))). M is per M_p group (the
+ * group leader's index); with pdf, the sampling density's node sum as azimuthal_deon_shaped forms it. */
+HB_INLINE void deon_fused_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
+                                 vf out[3], deon_pdf_terms *pdf, deon_shape shape)
+{
+    const int channels = shape.channels;
+    deon_medium medium;
+    deon_medium_of(d, g, &medium, channels);
+    vf M_lobe[HB_MAX_LOBES + 1];
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        M_lobe[p] = deon_lobe_on(d, p, shape) ? M[d->m_group[p]] : vf_set1(0.0f);
+    vf sum_R = vf_set1(0.0f), sum[3] = { vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f) };
+    if (pdf)
+        pdf->sum = vf_set1(0.0f);
+    for (int j = 0; j < d->nodes; j++) {
+        deon_paths paths;
+        deon_node_paths(d, &medium, vf_set1(d->h[j]), vf_set1(d->gamma_i[j]), vf_set1(d->cos_gamma_i[j]), &paths,
+                        shape);
+        vf weight = vf_set1(d->weight[j]), pair[HB_LOBE_RESIDUAL + 1], s[HB_STANDARD_PMAX + 1];
+        HB_UNROLL
+        for (int p = 0; p <= HB_STANDARD_PMAX; p++) {
+            pair[p] = deon_lobe_on(d, p, shape) ? detector_pair(&d->detector[p], g->phi, paths.Phi[p], NULL, shape)
+                                            : vf_set1(0.0f);
+            s[p] = vf_mul(vf_mul(weight, paths.A_f[p]), vf_mul(M_lobe[p], pair[p]));
+        }
+        pair[HB_LOBE_RESIDUAL] = vf_set1(HB_RESIDUAL_DETECTOR_PAIR);
+        vf q = vf_mul(vf_mul(weight, paths.A_f[HB_STANDARD_PMAX + 1]),
+                      vf_mul(M_lobe[HB_LOBE_RESIDUAL], pair[HB_LOBE_RESIDUAL]));
+        sum_R = vf_add(sum_R, s[0]);
+        vf series[3];
+        HB_UNROLL
+        for (int c = 0; c < channels; c++) {
+            vf T = paths.T[c];
+            series[c] = residual_series(paths.f, T);
+            vf inner = vf_fma(T, vf_mul(q, series[c]), s[3]);
+            inner = vf_fma(T, inner, s[2]);
+            inner = vf_fma(T, inner, s[1]);
+            sum[c] = vf_fma(T, inner, sum[c]);
+        }
+        if (pdf) { /* m_p = M_p times A(p, h) averaged over the channels */
+            vf A[3], T_power[3], mass = vf_set1(0.0f), detected = vf_set1(0.0f);
+            for (int c = 0; c < 3; c++)
+                T_power[c] = vf_set1(1.0f);
+            for (int p = 0; p <= HB_STANDARD_PMAX + 1; p++) { /* the last: the residual's orders */
+                for (int c = 0; c < 3; c++) {
+                    int k = channels == 1 ? 0 : c;
+                    vf series_k = p == HB_STANDARD_PMAX + 1 ? series[k] : vf_set1(1.0f);
+                    A[c] = p == 0 ? paths.f : vf_mul(vf_mul(paths.A_f[p], T_power[c]), series_k);
+                    T_power[c] = vf_mul(T_power[c], paths.T[k]);
+                }
+                int lobe = p == HB_STANDARD_PMAX + 1 ? HB_LOBE_RESIDUAL : p;
+                vf m = vf_mul(M_lobe[lobe], channel_mean(A));
+                mass = vf_add(mass, m);
+                detected = vf_fma(m, pair[lobe], detected);
+            }
+            pdf->sum = vf_fma(vf_set1(d->node_half_probability[j]),
+                              vf_div(detected, vf_max(mass, vf_set1(1e-37f))), pdf->sum);
+        }
+    }
+    for (int c = 0; c < 3; c++)
+        out[c] = vf_add(sum[channels == 1 ? 0 : c], sum_R);
+}
+
+HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3],
+                          deon_pdf_terms *pdf)
+{
+    int all = d->lobes == HB_STANDARD_LOBES;
+    if (all && d->channels == 1)
+        deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 1, 1 });
+    else if (all)
+        deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 1 });
+    else if (d->channels == 1)
+        deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 1, 0 });
+    else
+        deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
+}
+
+/* f for the plan's shape: the standard one folds M_p into the node sum (above), any other sums
+ * N_p per lobe first and adds the lobes of equal M_p before multiplying, so each distinct M_p is
+ * evaluated once. M_p comes from a caller-supplied evaluator so the angle and vector entry points
+ * share everything else. */
+#define HB_DEON_EVAL(d, g, out, longitudinal_of_lobe)                                   \
     do {                                                                                \
+        if ((d)->standard && !(d)->np_table) {                                          \
+            vf m_[HB_MAX_LOBES + 1];                                                    \
+            for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++)                              \
+                if (hb_deon_group_leader((d), p_))                                      \
+                    m_[p_] = longitudinal_of_lobe(&(d)->longitudinal[p_]);              \
+            deon_fused((d), (g), m_, (out), NULL);                                      \
+            break;                                                                      \
+        }                                                                               \
+        vf N[HB_MAX_LOBES + 1][3];                                                      \
+        if ((d)->np_table)                                                              \
+            azimuthal_deon_table((d), (g), N);                                          \
+        else                                                                            \
+            azimuthal_deon((d), (g), N, NULL);                                          \
         (out)[0] = (out)[1] = (out)[2] = vf_set1(0.0f);                                 \
         for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                \
             int g_ = (d)->m_group[p_];                                                  \
@@ -301,13 +449,8 @@ HB_INLINE void deon_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, v
 {
     deon_geometry g;
     deon_geometry_angles(theta_i, phi_i, theta_o, phi_o, &g);
-    vf N[HB_MAX_LOBES + 1][3];
-    if (d->np_table)
-        azimuthal_deon_table(d, &g, N);
-    else
-        azimuthal_deon(d, &g, N, NULL);
 #define HB_M_ANGLES(lobe) longitudinal_deon_angles((lobe), theta_i, theta_o, i0)
-    HB_DEON_SUM(d, N, out, HB_M_ANGLES);
+    HB_DEON_EVAL(d, &g, out, HB_M_ANGLES);
 #undef HB_M_ANGLES
 }
 
@@ -330,13 +473,8 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     g.sin2_theta_d = vf_max(vf_fnma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f));
     vf dot = vf_mul(vf_mul(inv_i, inv_o), vf_fma(wi[0], wo[0], vf_fma(wi[1], wo[1], vf_mul(wi[2], wo[2]))));
     g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
-    vf N[HB_MAX_LOBES + 1][3];
-    if (d->np_table)
-        azimuthal_deon_table(d, &g, N);
-    else
-        azimuthal_deon(d, &g, N, NULL);
 #define HB_M_VECTORS(lobe) longitudinal_deon_vectors((lobe), wi, wo, i0)
-    HB_DEON_SUM(d, N, out, HB_M_VECTORS);
+    HB_DEON_EVAL(d, &g, out, HB_M_VECTORS);
 #undef HB_M_VECTORS
 }
 

@@ -68,8 +68,8 @@ HB_INLINE vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_su
     /* Below e^-80 the result (factor >= 0.004) is under 1e-34: return 0 rather than
      * form a denormal, whose multiply costs a microcode assist on x86. */
     vdw e_clamped = vdw_max(e, vdw_set1(HB_MP_EXPONENT_FLOOR));
-    vm negligible = vf_lt(vdw_to_vf(e), vf_set1((float)HB_MP_EXPONENT_FLOOR));
-    return vf_select(negligible, vf_set1(0.0f), vf_mul(vf_exp_dw(e_clamped), factor));
+    vm significant = vf_ge(vdw_to_vf(e), vf_set1((float)HB_MP_EXPONENT_FLOOR));
+    return vf_keep(significant, vf_mul(vf_exp_dw(e_clamped), factor));
 }
 
 /* The float path of dFH11 eq. 7 (plans below HB_QUALITY_HIGH), from the exponent's
@@ -81,8 +81,8 @@ HB_INLINE vf longitudinal_deon_single(const hb_longitudinal *lobe, vf cone_expon
     vf exponent, factor;
     i0_scaled(x, i0, &exponent, &factor);
     vf e = vf_add(vf_sub(vf_set1(lobe->log_norm_f), cone_exponent), exponent);
-    vm negligible = vf_lt(e, vf_set1((float)HB_MP_EXPONENT_FLOOR));
-    return vf_select(negligible, vf_set1(0.0f), vf_mul(vf_exp_flush(e), factor));
+    vm significant = vf_ge(e, vf_set1((float)HB_MP_EXPONENT_FLOOR));
+    return vf_keep(significant, vf_mul(vf_exp_flush(e), factor));
 }
 
 /* cos(t) = sin(pi/2 - |t|) for t = t_hi + t_lo, |t| up to just beyond pi/2 (the float pi/2 lies

@@ -99,7 +99,7 @@ HB_INLINE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf 
     deon_medium medium;
     deon_medium_of(d, &g, &medium, 3);
     deon_node node;
-    deon_node_lobes(d, &medium, h, gamma_i, cos_gamma_i, &node, 3);
+    deon_node_lobes(d, &medium, h, gamma_i, cos_gamma_i, &node, (deon_shape){ 0, 3, 0 });
     vf mass[HB_MAX_LOBES + 1], total = vf_set1(0.0f);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         if (!hb_deon_lobe_on(d, p))
@@ -119,7 +119,7 @@ HB_INLINE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf 
         if (p == HB_LOBE_RESIDUAL) {
             residual = take;
         } else {
-            Phi = vf_select(take, node.Phi[p], Phi);
+            Phi = vf_select(take, node.paths.Phi[p], Phi);
             beta = vf_select(take, vf_set1(d->beta_n[p]), beta);
             residual = vm_andnot(residual, take);
         }
@@ -136,22 +136,24 @@ HB_INLINE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf 
 HB_INLINE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o,
                         vf out[3])
 {
-    vf N[HB_MAX_LOBES + 1][3];
     deon_pdf_terms terms = { M, vf_set1(0.0f) };
-    azimuthal_deon(d, g, N, &terms);
+    if (d->standard) { /* f as hb_eval computes it (azimuthal.h, HB_DEON_EVAL), so weight = f / pdf */
+        deon_fused(d, g, M, out, &terms);
+    } else {
+        vf N[HB_MAX_LOBES + 1][3];
+        azimuthal_deon(d, g, N, &terms);
+        out[0] = out[1] = out[2] = vf_set1(0.0f);
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            if (hb_deon_lobe_on(d, p))
+                for (int k = 0; k < 3; k++)
+                    out[k] = vf_fma(M[d->m_group[p]], N[p][k], out[k]);
+    }
     vf c[HB_MAX_LOBES + 1];
     vf c_total = deon_lobe_choice_at(d, theta_o, c);
     vf mixture = vf_set1(0.0f);
-    out[0] = out[1] = out[2] = vf_set1(0.0f);
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!hb_deon_lobe_on(d, p))
-            continue;
-        vf m = M[d->m_group[p]];
-        for (int k = 0; k < 3; k++)
-            out[k] = vf_fma(m, N[p][k], out[k]);
-        if (d->m_group[p] == p)
-            mixture = vf_fma(c[p], m, mixture);
-    }
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        if (hb_deon_group_leader(d, p))
+            mixture = vf_fma(c[p], M[p], mixture);
     return vf_mul(vf_div(mixture, c_total), terms.sum);
 }
 
