@@ -264,7 +264,9 @@ typedef struct hb_eval_report {
     size_t invalid;
 } hb_eval_report;
 
-/* Evaluate n samples. report may be NULL. Output arrays must not alias inputs. */
+/* Evaluate n samples. report may be NULL. Output arrays must not alias inputs. The batch entry
+ * points (eval, sample, pdf) run with subnormal floats flushed to zero and restore the caller's
+ * floating-point mode before returning: results below FLT_MIN are 0. */
 hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out,
                          hb_eval_report *report);
 hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,

@@ -76,7 +76,7 @@ typedef struct deon_geometry {
     vf cos_phi;
     vf sin2_theta_d; /* theta_d = (theta_o - theta_i)/2 */
     vf cos_theta_d;
-    vf cos_half_io;  /* cos of half the angle between w_i and w_o */
+    vf cos_half_io;  /* cos of half the angle between w_i and w_o (eq. 12's Fresnel; 1 where unused) */
 } deon_geometry;
 
 /* What every node of the h quadrature needs from a sample: eta' (sec. 5) and mu_a' (sec. 6). */
@@ -430,25 +430,29 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
     } while (0)
 
 /* deon_geometry from angles. */
-HB_INLINE void deon_geometry_angles(vf theta_i, vf phi_i, vf theta_o, vf phi_o, deon_geometry *g)
+HB_INLINE void deon_geometry_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, vf phi_o, deon_geometry *g)
 {
-    vf si, ci, so, co, sin_phi, sin_td, cos_td;
+    vf sin_phi, sin_td, cos_td;
     g->phi = wrap_angle(vf_sub(phi_o, phi_i));
-    vf_sincos(theta_i, &si, &ci);
-    vf_sincos(theta_o, &so, &co);
     vf_sincos(g->phi, &sin_phi, &g->cos_phi);
     vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &cos_td);
     g->sin2_theta_d = vf_mul(sin_td, sin_td);
     g->cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
-    vf dot = vf_fma(vf_mul(ci, co), g->cos_phi, vf_mul(si, so));
-    g->cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
+    g->cos_half_io = vf_set1(1.0f);
+    if (!d->r_fresnel_offset) { /* two more sine-cosine pairs only for eq. 12 */
+        vf si, ci, so, co;
+        vf_sincos(theta_i, &si, &ci);
+        vf_sincos(theta_o, &so, &co);
+        vf dot = vf_fma(vf_mul(ci, co), g->cos_phi, vf_mul(si, so));
+        g->cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
+    }
 }
 
 /* f from angles. */
 HB_INLINE void deon_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, vf phi_o, hb_i0 i0, vf out[3])
 {
     deon_geometry g;
-    deon_geometry_angles(theta_i, phi_i, theta_o, phi_o, &g);
+    deon_geometry_angles(d, theta_i, phi_i, theta_o, phi_o, &g);
 #define HB_M_ANGLES(lobe) longitudinal_deon_angles((lobe), theta_i, theta_o, i0)
     HB_DEON_EVAL(d, &g, out, HB_M_ANGLES);
 #undef HB_M_ANGLES

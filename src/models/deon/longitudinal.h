@@ -51,7 +51,7 @@ HB_INLINE void i0_scaled(vf x, hb_i0 i0, vf *exponent, vf *factor)
     } else {
         vm small = vf_le(ax, vf_set1(3.75f));
         vf xs = vf_min(ax, vf_set1(3.75f)), xl = vf_max(ax, vf_set1(3.75f));
-        *exponent = vf_select(small, vf_neg(x), vf_set1(0.0f));
+        *exponent = vf_keep(small, vf_neg(x));
         vf i0_small = vf_add(vf_set1(1.0f), vf_i0_small_minus1(xs)); /* A&S 9.8.1 */
         vf i0e_large = vf_div(vf_i0_large_poly(xl), vf_sqrt(xl));     /* A&S 9.8.2 */
         *factor = vf_select(small, i0_small, i0e_large);

@@ -163,7 +163,7 @@ HB_INLINE vf deon_pdf_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o,
     vf M[HB_MAX_LOBES + 1], f[3];
     deon_longitudinal_groups(d, theta_i, theta_o, i0, M);
     deon_geometry g;
-    deon_geometry_angles(theta_i, phi_i, theta_o, phi_o, &g);
+    deon_geometry_angles(d, theta_i, phi_i, theta_o, phi_o, &g);
     return deon_f_pdf(d, M, &g, theta_o, f);
 }
 
@@ -177,12 +177,12 @@ HB_INLINE void deon_sample(const hb_deon *d, vf theta_o, vf phi_o, const vf u[5]
     deon_longitudinal_groups(d, *theta_i, theta_o, i0, M);
     *phi_i = wrap_angle(vf_sub(phi_o, deon_sample_phi(d, M, *theta_i, theta_o, u + 3)));
     deon_geometry g;
-    deon_geometry_angles(*theta_i, *phi_i, theta_o, phi_o, &g);
+    deon_geometry_angles(d, *theta_i, *phi_i, theta_o, phi_o, &g);
     *pdf = deon_f_pdf(d, M, &g, theta_o, f);
     vm positive = vf_gt(*pdf, vf_set1(0.0f));
     vf inv_pdf = vf_div(vf_set1(1.0f), vf_select(positive, *pdf, vf_set1(1.0f)));
     for (int k = 0; k < 3; k++)
-        weight[k] = vf_select(positive, vf_mul(f[k], inv_pdf), vf_set1(0.0f));
+        weight[k] = vf_keep(positive, vf_mul(f[k], inv_pdf));
 }
 
 #endif

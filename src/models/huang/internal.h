@@ -236,7 +236,7 @@ HB_INLINE entry_rule entry_rule_of(const hb_huang *h, vf cos_ti, vf sin_ti, vf c
 {
     entry_rule e;
     vf cut = visible_cut(h, cos_ti, sin_ti, &e.seen);
-    e.half = vf_select(e.seen, vf_sub(vf_set1(HB_PIO2_F), cut), vf_set1(0.0f));
+    e.half = vf_keep(e.seen, vf_sub(vf_set1(HB_PIO2_F), cut));
     e.step = vf_div(vf_add(e.half, e.half), vf_set1((float)panels));
     e.cos_phi_i = cos_phi_i;
     e.sin_phi_i = sin_phi_i;

@@ -125,7 +125,7 @@ HB_INLINE huang_r_geometry huang_r_geometry_of(const hb_huang *h, const huang_di
     vf width = vf_min(vf_sub(vf_set1(HB_PI_F), vf_add(vf_max(cut_i, cut_o), vf_max(cut_i, cut_o))),
                       vf_sub(d->forward_gap, vf_add(cut_i, cut_o)));
     g.visible = vm_and(vm_and(seen_i, seen_o), vf_gt(width, vf_set1(0.0f)));
-    g.half_width = vf_select(g.visible, vf_mul(vf_set1(0.5f), width), vf_set1(0.0f));
+    g.half_width = vf_keep(g.visible, vf_mul(vf_set1(0.5f), width));
     g.phi = vf_atan2(d->sin_phi, d->cos_phi);
     vf phi = g.phi, half_i = vf_sub(vf_set1(HB_PIO2_F), cut_i);
     vf half_o = vf_sub(vf_set1(HB_PIO2_F), cut_o);
@@ -312,7 +312,7 @@ HB_INLINE vf huang_r(const hb_huang *h, const huang_directions *d)
     if (h->elliptical)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), d->sin2_phi_o, vf_set1(1.0f))));
     vf f = vf_div(vf_mul(fresnel, vf_max(integral, vf_set1(0.0f))), den);
-    return vf_select(g.visible, f, vf_set1(0.0f));
+    return vf_keep(g.visible, f);
 }
 
 /* The directions of an angle pair. */

@@ -43,7 +43,7 @@ HB_INLINE huang_o_window huang_o_window_of(const hb_huang *h, vf cos_to, vf sin_
 {
     huang_o_window w;
     vf cut = visible_cut(h, cos_to, sin_to, &w.seen), cos_half;
-    w.half = vf_select(w.seen, vf_sub(vf_set1(HB_PIO2_F), cut), vf_set1(0.0f));
+    w.half = vf_keep(w.seen, vf_sub(vf_set1(HB_PIO2_F), cut));
     vf_sincos(w.half, &w.sin_half, &cos_half);
     w.projected = vf_add(w.sin_half, w.sin_half);
     w.lo_projected = vf_neg(w.sin_half);
@@ -239,7 +239,7 @@ HB_INLINE void huang_sample(const hb_huang *h, vf theta_o, vf phi_o, const vf u[
     vm positive = vf_gt(*pdf, vf_set1(0.0f));
     vf inv = vf_div(vf_set1(1.0f), vf_select(positive, *pdf, vf_set1(1.0f)));
     for (int c = 0; c < 3; c++)
-        weight[c] = vf_select(positive, vf_mul(f, inv), vf_set1(0.0f));
+        weight[c] = vf_keep(positive, vf_mul(f, inv));
 }
 
 #endif

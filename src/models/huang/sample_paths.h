@@ -73,8 +73,7 @@ HB_INLINE vf exit_toward(const hb_huang *h, const internal_exit *x, v3 d, vf *de
     vf factor = exit_factor(h, &x->q, x->w, n, d, cos_in, sin2_out);
     vf w_m = v3_dot(x->w, x->q.meso);
     vf shape = vf_mul(ndf_huang(h, v3_one_minus_dot(n, x->q.meso)), smith_g1_over_cos(h, w_m));
-    *density = vf_select(vf_gt(factor, vf_set1(0.0f)), vf_div(vf_mul(shape, vf_mul(cos_in, v3_dot(d, n))), len2),
-                         vf_set1(0.0f));
+    *density = vf_keep(vf_gt(factor, vf_set1(0.0f)), vf_div(vf_mul(shape, vf_mul(cos_in, v3_dot(d, n))), len2));
     return factor;
 }
 

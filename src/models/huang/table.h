@@ -112,7 +112,7 @@ HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, int
     for (int j = 0; j <= panels; j++) {
         vf weight;
         fibre_point p = entry_node(h, &e, j, panels, &weight);
-        weight = vf_select(e.seen, vf_mul(weight, scale), vf_set1(0.0f));
+        weight = vf_keep(e.seen, vf_mul(weight, scale));
         vi stream = rng_stream(h->rng_key, vi_set1(j)); /* the node's shift of the sequence */
         for (int first = 0; first < lattice; first += HB_W) {
             vf index = vf_add(vf_set1((float)first), vf_loadu(lane_of)), u[4];

@@ -122,14 +122,13 @@ HB_INLINE void azimuthal_marschner_roots(const hb_marschner *m, int p, int all_t
         cubic_roots(P, Q, all_three, root, real);
         for (int r = 0; r < (all_three ? 3 : 1); r++) {
             vm inside = vm_and(real[r], vf_le(vf_abs(root[r]), vf_set1(HB_PIO2_F + 1e-6f)));
-            vf gamma = vf_select(inside, vf_min(vf_max(root[r], vf_set1(-HB_PIO2_F)), vf_set1(HB_PIO2_F)),
-                                 vf_set1(0.0f));
+            vf gamma = vf_keep(inside, vf_min(vf_max(root[r], vf_set1(-HB_PIO2_F)), vf_set1(HB_PIO2_F)));
             vf s, c;
             vf_sincos(gamma, &s, &c);
             /* |2 d phi / dh|^-1 = cos(gamma) / (2 |d phi_hat / d gamma|), d phi_hat / d gamma = B + 3 A gamma^2 */
             vf slope = vf_abs(vf_fma(vf_mul(vf_set1(3.0f), ix->cubic_a), vf_mul(gamma, gamma), ix->cubic_b));
             vf weight = vf_div(vf_max(c, vf_set1(0.0f)), vf_mul(vf_set1(2.0f), vf_max(slope, vf_set1(HB_MJC_SLOPE_FLOOR))));
-            weight = vf_select(inside, weight, vf_set1(0.0f));
+            weight = vf_keep(inside, weight);
             vf A[3];
             attenuation_marschner(m, p, ix, ab, s, c, A);
             for (int ch = 0; ch < 3; ch++)
