@@ -349,9 +349,10 @@ static void reference_of(const hb_material *m, const config *c)
     hb_plan_destroy(plan);
 }
 
-/* --once CONFIG: evaluate one batch of CONFIG once on $HB_ISA and exit, for callgrind
- * (make bench-instr counts the instructions inside hb_eval_angles). */
-static int run_once(const char *name)
+/* --once CONFIG: evaluate one batch of CONFIG on $HB_ISA `repeats` times (default once) and exit,
+ * for callgrind (make bench-instr counts the instructions inside hb_eval_angles) or, repeated,
+ * for a sampling profiler such as perf record. */
+static int run_once(const char *name, long repeats)
 {
     for (size_t ci = 0; ci < N_CONFIGS; ci++) {
         char label[64];
@@ -373,7 +374,8 @@ static int run_once(const char *name)
         for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
             streams[d] = uniforms[d];
         hb_uniforms(1, 0, BATCH, HB_SAMPLE_DIMENSIONS, streams);
-        run_op(plan, configs[ci].op);
+        for (long r = 0; r < repeats; r++)
+            run_op(plan, configs[ci].op);
         hb_plan_destroy(plan);
         return 0;
     }
@@ -437,7 +439,8 @@ static void scaling(const hb_material *m)
 
 int main(int argc, char **argv)
 {
-    const char *budgets = NULL, *results_dir = NULL, *only = "", *only_isa = NULL;
+    const char *budgets = NULL, *results_dir = NULL, *only = "", *only_isa = NULL, *once = NULL;
+    long repeats = 1;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--budgets") == 0 && i + 1 < argc)
             budgets = argv[++i];
@@ -448,7 +451,9 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--isa") == 0 && i + 1 < argc)
             only_isa = argv[++i];
         else if (strcmp(argv[i], "--once") == 0 && i + 1 < argc)
-            return run_once(argv[++i]);
+            once = argv[++i];
+        else if (strcmp(argv[i], "--repeat") == 0 && i + 1 < argc && atol(argv[i + 1]) > 0)
+            repeats = atol(argv[++i]);
         else if (strcmp(argv[i], "--list") == 0) {
             for (size_t ci = 0; ci < N_CONFIGS; ci++)
                 printf("%s/%s/%s\n", configs[ci].model, configs[ci].term, configs[ci].variant);
@@ -456,11 +461,13 @@ int main(int argc, char **argv)
         } else {
             fprintf(stderr,
                     "usage: %s [--budgets FILE] [--results DIR] [--only PREFIX] [--isa NAME] | --list | --once "
-                    "MODEL/TERM/VARIANT\n",
+                    "MODEL/TERM/VARIANT [--repeat N]\n",
                     argv[0]);
             return 2;
         }
     }
+    if (once)
+        return run_once(once, repeats);
     cpu_set_t one;
     CPU_ZERO(&one);
     CPU_SET(0, &one);

@@ -6,6 +6,7 @@
 
 #include "longitudinal.h"
 #include "../fresnel.h"
+#include "../../math/multilinear.h"
 
 /* cos(n phi) for n = 1..terms by the Chebyshev recurrence, for the Fourier detectors. */
 HB_INLINE void cos_multiples(vf cos_phi, int terms, vf *out)
@@ -282,34 +283,45 @@ HB_INLINE void deon_np_row(const hb_deon *d, float cos_theta_d, size_t n, const 
     }
 }
 
-/* N per M_p group leader, bilinear in (sqrt(cos(theta_d)), |phi|); every other N is 0, so
- * HB_DEON_EVAL adds nothing for the non-leaders. */
-HB_INLINE void azimuthal_deon_table(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3])
+/* f = sum over the M_p groups of M_group N_group, N bilinear in (|phi|, sqrt(cos(theta_d))) from the
+ * plan's table (slot s holds group leader table_leader[s]); M is per group leader. */
+HB_INLINE void deon_table_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3],
+                                 int channels)
 {
-    vf zero = vf_set1(0.0f), one = vf_set1(1.0f);
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        N[p][0] = N[p][1] = N[p][2] = zero;
-    vf x = vf_clamp(vf_mul(vf_sqrt(g->cos_theta_d), vf_set1((float)(d->table_cd - 1))), 0.0f, (float)(d->table_cd - 1));
-    vf y = vf_clamp(vf_mul(vf_abs(g->phi), vf_set1((float)(d->table_phi - 1) / HB_PI_F)), 0.0f,
-                    (float)(d->table_phi - 1));
-    vf row = vf_min(vf_from_vi(vi_from_vf(x)), vf_set1((float)(d->table_cd - 2)));
-    vf column = vf_min(vf_from_vi(vi_from_vf(y)), vf_set1((float)(d->table_phi - 2)));
-    vf fx = vf_sub(x, row), fy = vf_sub(y, column);
-    int texel = 3 * d->table_slots, row_stride = texel * d->table_phi;
-    vi base = vi_add(vi_mul(vi_from_vf(row), vi_set1(row_stride)), vi_mul(vi_from_vf(column), vi_set1(texel)));
-    vf weight[4] = { vf_mul(vf_sub(one, fx), vf_sub(one, fy)), vf_mul(vf_sub(one, fx), fy),
-                     vf_mul(fx, vf_sub(one, fy)), vf_mul(fx, fy) };
-    int offset[4] = { 0, texel, row_stride, row_stride + texel };
-    for (int corner = 0; corner < 4; corner++) {
-        vi index = vi_add(base, vi_set1(offset[corner]));
-        for (int s = 0; s < d->table_slots; s++)
-            for (int c = 0; c < d->channels; c++)
-                N[d->table_leader[s]][c] =
-                    vf_fma(weight[corner], vf_gather(d->np_table + 3 * s + c, index), N[d->table_leader[s]][c]);
+    vf frac[2], weight[4];
+    vi cell[2];
+    cell[0] = table_cell(vf_mul(vf_abs(g->phi), vf_set1((float)(d->table_phi - 1) / HB_PI_F)), d->table_phi, &frac[0]);
+    cell[1] = table_cell(vf_mul(vf_sqrt(g->cos_theta_d), vf_set1((float)(d->table_cd - 1))), d->table_cd, &frac[1]);
+    int texel = 3 * d->table_slots, offset[4];
+    int stride[2] = { texel, texel * d->table_phi };
+    vi base = cell_corners(2, cell, frac, stride, weight, offset), index[4];
+    HB_UNROLL
+    for (int k = 0; k < 4; k++)
+        index[k] = vi_add(base, vi_set1(offset[k]));
+    for (int c = 0; c < 3; c++)
+        out[c] = vf_set1(0.0f);
+    for (int s = 0; s < d->table_slots; s++) {
+        const float *slot = d->np_table + 3 * s;
+        vf m = M[d->table_leader[s]];
+        HB_UNROLL
+        for (int c = 0; c < channels; c++) {
+            vf n = vf_mul(weight[0], vf_gather(slot + c, index[0]));
+            HB_UNROLL
+            for (int k = 1; k < 4; k++)
+                n = vf_fma(weight[k], vf_gather(slot + c, index[k]), n);
+            out[c] = vf_fma(m, n, out[c]);
+        }
     }
-    if (d->channels == 1) /* a grey fibre: one gather per corner and slot, copied */
-        for (int s = 0; s < d->table_slots; s++)
-            N[d->table_leader[s]][1] = N[d->table_leader[s]][2] = N[d->table_leader[s]][0];
+    if (channels == 1) /* a grey fibre: one gather per corner and slot, copied */
+        out[1] = out[2] = out[0];
+}
+
+HB_INLINE void deon_table(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
+{
+    if (d->channels == 1)
+        deon_table_shaped(d, g, M, out, 1);
+    else
+        deon_table_shaped(d, g, M, out, 3);
 }
 
 /* f = sum_p M_p N_p for the standard shape with M_p folded into the sum over nodes, so that three
@@ -393,25 +405,25 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
 }
 
-/* f for the plan's shape: the standard one folds M_p into the node sum (above), any other sums
- * N_p per lobe first and adds the lobes of equal M_p before multiplying, so each distinct M_p is
+/* f for the plan's shape: a table plan looks N up per M_p group, the standard shape folds M_p into
+ * the node sum (above), any other sums N_p per lobe first and adds the lobes of equal M_p before multiplying, so each distinct M_p is
  * evaluated once. M_p comes from a caller-supplied evaluator so the angle and vector entry points
  * share everything else. */
 #define HB_DEON_EVAL(d, g, out, longitudinal_of_lobe)                                   \
     do {                                                                                \
-        if ((d)->standard && !(d)->np_table) {                                          \
+        if ((d)->standard || (d)->np_table) {                                           \
             vf m_[HB_MAX_LOBES + 1];                                                    \
             for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++)                              \
                 if (hb_deon_group_leader((d), p_))                                      \
                     m_[p_] = longitudinal_of_lobe(&(d)->longitudinal[p_]);              \
-            deon_fused((d), (g), m_, (out), NULL);                                      \
+            if ((d)->np_table)                                                          \
+                deon_table((d), (g), m_, (out));                                        \
+            else                                                                        \
+                deon_fused((d), (g), m_, (out), NULL);                                  \
             break;                                                                      \
         }                                                                               \
         vf N[HB_MAX_LOBES + 1][3];                                                      \
-        if ((d)->np_table)                                                              \
-            azimuthal_deon_table((d), (g), N);                                          \
-        else                                                                            \
-            azimuthal_deon((d), (g), N, NULL);                                          \
+        azimuthal_deon((d), (g), N, NULL);                                              \
         (out)[0] = (out)[1] = (out)[2] = vf_set1(0.0f);                                 \
         for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                \
             int g_ = (d)->m_group[p_];                                                  \
@@ -432,9 +444,9 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
 /* deon_geometry from angles. */
 HB_INLINE void deon_geometry_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, vf phi_o, deon_geometry *g)
 {
-    vf sin_phi, sin_td, cos_td;
+    vf sin_td, cos_td;
     g->phi = wrap_angle(vf_sub(phi_o, phi_i));
-    vf_sincos(g->phi, &sin_phi, &g->cos_phi);
+    g->cos_phi = d->np_table ? vf_set1(1.0f) : vf_cos(g->phi); /* a table reads |phi| only */
     vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &cos_td);
     g->sin2_theta_d = vf_mul(sin_td, sin_td);
     g->cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
@@ -471,7 +483,7 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     vf sin_part = vf_fnma(wo[2], wi[0], vf_mul(wo[0], wi[2]));
     vf cos_part = vf_fma(wo[0], wi[0], vf_mul(wo[2], wi[2]));
     g.phi = vf_atan2(sin_part, cos_part);
-    g.cos_phi = vf_cos(g.phi);
+    g.cos_phi = d->np_table ? vf_set1(1.0f) : vf_cos(g.phi); /* a table reads |phi| only */
     vf cos_diff = vf_fma(ci, co, vf_mul(si, so)); /* cos(theta_o - theta_i) = cos(2 theta_d) */
     g.cos_theta_d = vf_sqrt(vf_max(vf_fma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
     g.sin2_theta_d = vf_max(vf_fnma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f));

@@ -5,8 +5,9 @@
 #include "table.h"
 
 /* index: each lane's sample index, which keys the Monte-Carlo numbers of TT and TRT (unused when
- * the plan has their table). */
-HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, vi index, vf out[3])
+ * the plan has their table); angles: the table's angles where the caller has them, else NULL. */
+HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, const huang_table_angles *angles, vi index,
+                          vf out[3])
 {
     vf r = vf_set1(0.0f);
     if (h->lobes >> HB_LOBE_R & 1u)
@@ -16,10 +17,16 @@ HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, vi index
     if (!(h->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)))
         return;
     vf internal[3];
-    if (h->table.values)
-        huang_table_lookup(h, d, internal);
-    else
+    if (h->table.values) {
+        huang_table_angles from_directions;
+        if (!angles) {
+            from_directions = huang_table_angles_of(h, d);
+            angles = &from_directions;
+        }
+        huang_table_lookup(h, d, angles, internal);
+    } else {
         huang_internal(h, d, index, internal);
+    }
     for (int c = 0; c < 3; c++)
         out[c] = vf_add(out[c], internal[c]);
 }
@@ -27,13 +34,14 @@ HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, vi index
 HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vi index, vf out[3])
 {
     huang_directions d = huang_directions_of_angles(h, theta_i, phi_i, theta_o, phi_o);
-    huang_eval(h, &d, index, out);
+    huang_table_angles angles = { theta_i, theta_o, wrap_angle(vf_sub(phi_o, phi_i)), wrap_angle(phi_i) };
+    huang_eval(h, &d, &angles, index, out);
 }
 
 HB_INLINE void huang_vectors(const hb_huang *h, const vf wi[3], const vf wo[3], vi index, vf out[3])
 {
     huang_directions d = huang_directions_of_vectors(wi, wo);
-    huang_eval(h, &d, index, out);
+    huang_eval(h, &d, NULL, index, out);
 }
 
 #endif

@@ -8,6 +8,7 @@
 #define HB_HUANG_TABLE_H
 
 #include "internal.h"
+#include "../../math/multilinear.h"
 
 /* asinh(x) = sign(x) log(|x| + sqrt(x^2 + 1)): the warp of s (monotone and continuous, which is
  * all the grid needs; its absolute error is a few float ulps of the index). */
@@ -17,24 +18,30 @@ HB_INLINE vf table_asinh(vf x)
     return vf_copysign(vf_log(vf_add(a, vf_sqrt(vf_fma(a, a, vf_set1(1.0f))))), x);
 }
 
-/* Node coordinate x of a table axis with n >= 2 nodes, clamped to the table: the lower node's
- * index and the fraction toward the next. */
-HB_INLINE vi table_cell(vf x, int n, vf *fraction)
+/* The angles a lookup reads: theta_i, theta_o, and phi = phi_o - phi_i and phi_i in [-pi, pi]. */
+typedef struct huang_table_angles {
+    vf theta_i, theta_o, phi, phi_i;
+} huang_table_angles;
+
+/* The angles back from the directions (for callers that have vectors). */
+HB_INLINE huang_table_angles huang_table_angles_of(const hb_huang *h, const huang_directions *d)
 {
-    x = vf_clamp(x, 0.0f, (float)(n - 1));
-    vf lower = vf_min(vf_from_vi(vi_from_vf(x)), vf_set1((float)(n - 2)));
-    *fraction = vf_sub(x, lower);
-    return vi_from_vf(lower);
+    huang_table_angles a;
+    a.theta_i = vf_atan2(d->sin_ti, d->cos_ti);
+    a.theta_o = vf_atan2(d->sin_to, d->cos_to);
+    a.phi = vf_atan2(d->sin_phi, d->cos_phi);
+    a.phi_i = h->elliptical ? vf_atan2(d->sin_phi_i, d->cos_phi_i) : vf_set1(0.0f);
+    return a;
 }
 
-/* f_TT + f_TRT per channel from the table. */
-HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_directions *d, vf out[3])
+/* f_TT + f_TRT per channel from the table, multilinear over `axes` axes: theta_i, (phi_i on an
+ * elliptical fibre,) the warped sum theta_i + theta_o and the azimuth difference. */
+HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_directions *d, const huang_table_angles *a,
+                                  vf out[3], int axes)
 {
     const hb_huang_table *t = &h->table;
-    vf theta_i = vf_atan2(d->sin_ti, d->cos_ti), theta_o = vf_atan2(d->sin_to, d->cos_to);
-    vf delta = vf_atan2(d->sin_phi, d->cos_phi), phi_i = vf_set1(0.0f);
-    if (h->elliptical) { /* x -> -x and z -> -z map the fibre onto itself: phi_i into [0, pi/2] */
-        phi_i = vf_atan2(d->sin_phi_i, d->cos_phi_i);
+    vf delta = a->phi, phi_i = a->phi_i;
+    if (axes == 4) { /* x -> -x and z -> -z map the fibre onto itself: phi_i into [0, pi/2] */
         vm flip = vf_lt(phi_i, vf_set1(0.0f));
         phi_i = vf_abs(phi_i);
         delta = vf_select(flip, vf_neg(delta), delta);
@@ -44,45 +51,44 @@ HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_directions *d, 
     } else {
         delta = vf_abs(delta);
     }
-    vf u = table_asinh(vf_mul(vf_sub(vf_add(theta_i, theta_o), vf_set1(t->sum_centre)), vf_set1(t->inv_sum_width)));
-    vf frac[4];
+    vf u = table_asinh(vf_mul(vf_sub(vf_add(a->theta_i, a->theta_o), vf_set1(t->sum_centre)), vf_set1(t->inv_sum_width)));
+    vf frac[4], weight[16];
     vi cell[4];
-    cell[0] = table_cell(vf_mul(vf_add(theta_i, vf_set1(HB_PIO2_F)), vf_set1((float)(t->n_theta_i - 1) / HB_PI_F)),
-                         t->n_theta_i, &frac[0]);
-    cell[1] = vi_set1(0);
-    frac[1] = vf_set1(0.0f);
-    if (t->n_phi_i > 1)
-        cell[1] = table_cell(vf_mul(phi_i, vf_set1((float)(t->n_phi_i - 1) / HB_PIO2_F)), t->n_phi_i, &frac[1]);
-    cell[2] = table_cell(vf_mul(vf_sub(u, vf_set1(t->u_lo)), vf_set1(t->u_scale)), t->n_sum, &frac[2]);
-    cell[3] = table_cell(vf_mul(vf_sub(delta, vf_set1(t->delta_lo)), vf_set1(t->delta_scale)), t->n_delta, &frac[3]);
-    int stride[4];
-    stride[3] = 3;
-    stride[2] = 3 * t->n_delta;
-    stride[1] = stride[2] * t->n_sum;
-    stride[0] = stride[1] * t->n_phi_i;
-    vi base = vi_set1(0);
-    for (int axis = 0; axis < 4; axis++)
-        base = vi_add(base, vi_mul(cell[axis], vi_set1(stride[axis])));
-    vf zero = vf_set1(0.0f), one = vf_set1(1.0f), sum[3] = { zero, zero, zero };
-    for (int corner = 0; corner < 16; corner++) {
-        if ((corner >> 1 & 1) && t->n_phi_i == 1)
-            continue;
-        vf weight = one;
-        int offset = 0;
-        for (int axis = 0; axis < 4; axis++) {
-            int upper = corner >> axis & 1;
-            weight = vf_mul(weight, upper ? frac[axis] : vf_sub(one, frac[axis]));
-            offset += upper ? stride[axis] : 0;
-        }
-        vi index = vi_add(base, vi_set1(offset));
+    int stride[4], offset[16], k = 0;
+    cell[k] = table_cell(vf_mul(vf_add(a->theta_i, vf_set1(HB_PIO2_F)), vf_set1((float)(t->n_theta_i - 1) / HB_PI_F)),
+                         t->n_theta_i, &frac[k]);
+    stride[k++] = 3 * t->n_delta * t->n_sum * t->n_phi_i;
+    if (axes == 4) {
+        cell[k] = table_cell(vf_mul(phi_i, vf_set1((float)(t->n_phi_i - 1) / HB_PIO2_F)), t->n_phi_i, &frac[k]);
+        stride[k++] = 3 * t->n_delta * t->n_sum;
+    }
+    cell[k] = table_cell(vf_mul(vf_sub(u, vf_set1(t->u_lo)), vf_set1(t->u_scale)), t->n_sum, &frac[k]);
+    stride[k++] = 3 * t->n_delta;
+    cell[k] = table_cell(vf_mul(vf_sub(delta, vf_set1(t->delta_lo)), vf_set1(t->delta_scale)), t->n_delta, &frac[k]);
+    stride[k] = 3;
+    vi base = cell_corners(axes, cell, frac, stride, weight, offset);
+    vf zero = vf_set1(0.0f), sum[3] = { zero, zero, zero };
+    HB_UNROLL
+    for (int corner = 0; corner < 1 << axes; corner++) {
+        vi index = vi_add(base, vi_set1(offset[corner]));
+        HB_UNROLL
         for (int c = 0; c < 3; c++)
-            sum[c] = vf_fma(weight, vf_gather(t->values + c, index), sum[c]);
+            sum[c] = vf_fma(weight[corner], vf_gather(t->values + c, index), sum[c]);
     }
     vf den = vf_mul(vf_set1(2.0f), vf_max(d->cos_to, vf_set1(HB_HUANG_COS_FLOOR)));
-    if (h->elliptical)
-        den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), d->sin2_phi_o, one)));
+    if (axes == 4)
+        den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), d->sin2_phi_o, vf_set1(1.0f))));
+    vf inv_den = vf_div(vf_set1(1.0f), den);
     for (int c = 0; c < 3; c++)
-        out[c] = vf_div(vf_max(sum[c], zero), den);
+        out[c] = vf_mul(vf_max(sum[c], zero), inv_den);
+}
+
+HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_directions *d, const huang_table_angles *a, vf out[3])
+{
+    if (h->elliptical)
+        huang_table_shaped(h, d, a, out, 4);
+    else
+        huang_table_shaped(h, d, a, out, 3);
 }
 
 /* The R4 additive sequence (M. Roberts 2018): point l is frac(shift + l alpha) with alpha_k =
