@@ -23,7 +23,7 @@ HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, const hu
             from_directions = huang_table_angles_of(h, d);
             angles = &from_directions;
         }
-        huang_table_lookup(h, d, angles, internal);
+        huang_table_lookup(h, angles, d->cos_to, d->sin2_phi_o, internal);
     } else {
         huang_internal(h, d, index, internal);
     }
@@ -33,8 +33,13 @@ HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, const hu
 
 HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vi index, vf out[3])
 {
-    huang_directions d = huang_directions_of_angles(h, theta_i, phi_i, theta_o, phi_o);
     huang_table_angles angles = { theta_i, theta_o, wrap_angle(vf_sub(phi_o, phi_i)), wrap_angle(phi_i) };
+    if (h->table.values && !(h->lobes >> HB_LOBE_R & 1u)) { /* the table alone reads no directions */
+        vf sin_po = h->elliptical ? vf_sin(wrap_angle(phi_o)) : vf_set1(0.0f);
+        huang_table_lookup(h, &angles, vf_max(vf_cos(theta_o), vf_set1(0.0f)), vf_mul(sin_po, sin_po), out);
+        return;
+    }
+    huang_directions d = huang_directions_of_angles(h, theta_i, phi_i, theta_o, phi_o);
     huang_eval(h, &d, &angles, index, out);
 }
 
