@@ -5,9 +5,8 @@
 #include "table.h"
 
 /* index: each lane's sample index, which keys the Monte-Carlo numbers of TT and TRT (unused when
- * the plan has their table); angles: the table's angles where the caller has them, else NULL. */
-HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, const huang_table_angles *angles, vi index,
-                          vf out[3])
+ * the plan has their table); angles: theta_i, phi_i, theta_o, phi_o where the caller has them, else NULL. */
+HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, const vf *angles, vi index, vf out[3])
 {
     vf r = vf_set1(0.0f);
     if (h->lobes >> HB_LOBE_R & 1u)
@@ -18,12 +17,9 @@ HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, const hu
         return;
     vf internal[3];
     if (h->table.values) {
-        huang_table_angles from_directions;
-        if (!angles) {
-            from_directions = huang_table_angles_of(h, d);
-            angles = &from_directions;
-        }
-        huang_table_lookup(h, angles, d->cos_to, d->sin2_phi_o, internal);
+        huang_table_angles a = angles ? huang_table_angles_from(angles[0], angles[1], angles[2], angles[3])
+                                      : huang_table_angles_of(h, d);
+        huang_table_lookup(h, &a, d->cos_to, d->sin2_phi_o, internal);
     } else {
         huang_internal(h, d, index, internal);
     }
@@ -33,14 +29,15 @@ HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, const hu
 
 HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vi index, vf out[3])
 {
-    huang_table_angles angles = { theta_i, theta_o, wrap_angle(vf_sub(phi_o, phi_i)), wrap_angle(phi_i) };
     if (h->table.values && !(h->lobes >> HB_LOBE_R & 1u)) { /* the table alone reads no directions */
+        huang_table_angles a = huang_table_angles_from(theta_i, phi_i, theta_o, phi_o);
         vf sin_po = h->elliptical ? vf_sin(wrap_angle(phi_o)) : vf_set1(0.0f);
-        huang_table_lookup(h, &angles, vf_max(vf_cos(theta_o), vf_set1(0.0f)), vf_mul(sin_po, sin_po), out);
+        huang_table_lookup(h, &a, vf_max(vf_cos(theta_o), vf_set1(0.0f)), vf_mul(sin_po, sin_po), out);
         return;
     }
     huang_directions d = huang_directions_of_angles(h, theta_i, phi_i, theta_o, phi_o);
-    huang_eval(h, &d, &angles, index, out);
+    vf angles[4] = { theta_i, phi_i, theta_o, phi_o };
+    huang_eval(h, &d, angles, index, out);
 }
 
 HB_INLINE void huang_vectors(const hb_huang *h, const vf wi[3], const vf wo[3], vi index, vf out[3])

@@ -18,7 +18,8 @@
  * their absolute azimuths (the fibre's orientation). cos(theta) >= 0. */
 typedef struct huang_directions {
     vf cos_ti, sin_ti, cos_to, sin_to;
-    vf cos_phi, sin_phi;     /* phi = phi_o - phi_i */
+    vf phi;                  /* phi_o - phi_i in [-pi, pi] */
+    vf cos_phi, sin_phi;
     vf forward_gap;          /* pi - |phi|, to float accuracy also where it is tiny (the window's width there) */
     vf cos_phi_i, sin_phi_i; /* elliptical only */
     vf sin2_phi_o;           /* elliptical only */
@@ -126,7 +127,7 @@ HB_INLINE huang_r_geometry huang_r_geometry_of(const hb_huang *h, const huang_di
                       vf_sub(d->forward_gap, vf_add(cut_i, cut_o)));
     g.visible = vm_and(vm_and(seen_i, seen_o), vf_gt(width, vf_set1(0.0f)));
     g.half_width = vf_keep(g.visible, vf_mul(vf_set1(0.5f), width));
-    g.phi = vf_atan2(d->sin_phi, d->cos_phi);
+    g.phi = d->phi;
     vf phi = g.phi, half_i = vf_sub(vf_set1(HB_PIO2_F), cut_i);
     vf half_o = vf_sub(vf_set1(HB_PIO2_F), cut_o);
     vf lo = vf_max(vf_neg(half_i), vf_sub(phi, half_o)), hi = vf_min(half_i, vf_add(phi, half_o));
@@ -163,7 +164,11 @@ HB_INLINE vf r_integral_ggx_analytic(const hb_huang *h, const huang_r_geometry *
     vf a_coef = vf_mul(g->cos_h_tilt, vf_set1(h->c_rough)), b_coef = vf_mul(g->sin_h_tilt, vf_set1(h->c_rough));
     reciprocal_terms(&e, g->p_minus, g->p_plus, &int_p, &sin_over_p); /* p = (1 - B) - A cos(delta) */
     reciprocal_terms(&e, g->q_plus, g->q_minus, &int_q, &sin_over_q); /* q = (1 + B) + A cos(delta) */
-    vf inv_pp = vf_div(one, vf_mul(g->p_minus, g->p_plus)), inv_qq = vf_div(one, vf_mul(g->q_minus, g->q_plus));
+    /* 1 / (P- P+) and 1 / (Q- Q+) from one division: each factor lies in [1 - c, 2], 1 - c about
+     * roughness^2 / 2 >= 5e-7, so the product of all four stays within [6e-26, 16] */
+    vf pp = vf_mul(g->p_minus, g->p_plus), qq = vf_mul(g->q_minus, g->q_plus);
+    vf inv_ppqq = vf_div(one, vf_mul(pp, qq));
+    vf inv_pp = vf_mul(qq, inv_ppqq), inv_qq = vf_mul(pp, inv_ppqq);
     vf sum_p = vf_fma(vf_fma(vf_sub(one, b_coef), inv_pp, one), int_p, vf_mul(vf_mul(a_coef, inv_pp), sin_over_p));
     vf sum_q = vf_fnma(vf_mul(a_coef, inv_qq), sin_over_q, vf_mul(vf_fma(vf_add(one, b_coef), inv_qq, one), int_q));
     return vf_mul(vf_set1(h->roughness2 * 0.25f * HB_INV_PI_F), vf_add(sum_p, sum_q));
@@ -331,7 +336,8 @@ HB_INLINE huang_directions huang_directions_of_angles(const hb_huang *h, vf thet
     vf phi = vf_fnma(turns, vf_set1(HB_TWO_PI_F), diff), phi_low = vf_fnma(turns, vf_set1(HB_TWO_PI_LO), rounding);
     d.forward_gap = vf_add(vf_sub(vf_set1(HB_PI_F), vf_abs(phi)), vf_fnma(vf_copysign(vf_set1(1.0f), phi), phi_low,
                                                                           vf_set1(HB_PI_LO)));
-    vf_sincos(vf_add(phi, phi_low), &d.sin_phi, &d.cos_phi);
+    d.phi = vf_add(phi, phi_low);
+    vf_sincos(d.phi, &d.sin_phi, &d.cos_phi);
     /* w_i = (0, sin theta_i, cos theta_i), w_o = (sin phi cos theta_o, sin theta_o, cos phi cos theta_o) */
     d.hx = vf_mul(d.sin_phi, d.cos_to);
     d.hy = vf_add(d.sin_ti, d.sin_to);
@@ -388,11 +394,12 @@ HB_INLINE huang_directions huang_directions_of_vectors(const vf wi[3], const vf 
     d.cos_phi = vf_fma(cos_phi_o, d.cos_phi_i, vf_mul(sin_phi_o, d.sin_phi_i));
     d.sin_phi = vf_fnma(cos_phi_o, d.sin_phi_i, vf_mul(sin_phi_o, d.cos_phi_i));
     d.sin2_phi_o = vf_mul(sin_phi_o, sin_phi_o);
+    d.phi = vf_atan2(d.sin_phi, d.cos_phi);
     /* pi - |phi| = atan2(|P_i x P_o|, -P_i . P_o) of the planar parts */
     vf cross = vdw_to_vf(vdw_sub(vdw_mul(i[2], o[0]), vdw_mul(i[0], o[2])));
     vf dot = vdw_to_vf(vdw_fma(i[0], o[0], vdw_mul(i[2], o[2])));
     d.forward_gap = vf_select(vm_and(azimuth_i, azimuth_o), vf_atan2(vf_abs(cross), vf_neg(dot)),
-                              vf_sub(vf_set1(HB_PI_F), vf_abs(vf_atan2(d.sin_phi, d.cos_phi))));
+                              vf_sub(vf_set1(HB_PI_F), vf_abs(d.phi)));
     return d;
 }
 

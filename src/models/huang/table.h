@@ -23,13 +23,18 @@ typedef struct huang_table_angles {
     vf theta_i, theta_o, phi, phi_i;
 } huang_table_angles;
 
+HB_INLINE huang_table_angles huang_table_angles_from(vf theta_i, vf phi_i, vf theta_o, vf phi_o)
+{
+    return (huang_table_angles){ theta_i, theta_o, wrap_angle(vf_sub(phi_o, phi_i)), wrap_angle(phi_i) };
+}
+
 /* The angles back from the directions (for callers that have vectors). */
 HB_INLINE huang_table_angles huang_table_angles_of(const hb_huang *h, const huang_directions *d)
 {
     huang_table_angles a;
     a.theta_i = vf_atan2(d->sin_ti, d->cos_ti);
     a.theta_o = vf_atan2(d->sin_to, d->cos_to);
-    a.phi = vf_atan2(d->sin_phi, d->cos_phi);
+    a.phi = d->phi;
     a.phi_i = h->elliptical ? vf_atan2(d->sin_phi_i, d->cos_phi_i) : vf_set1(0.0f);
     return a;
 }
