@@ -14,21 +14,32 @@
  * r^2 / (pi ((1 - x^2) + r^2 x^2)^2), Beckmann exp(-tan^2 / r^2) / (pi r^2 x^4). Callers only ask
  * inside the visible window, where x >= 0 (both directions see w_m, so their sum does); at its ends
  * x = 0 up to rounding, and both forms are even in x, so there is no cut-off to misplace. */
-HB_INLINE vf ndf_huang(const hb_huang *h, vf one_minus_x)
+/* GGX's D as numerator / denominator, for callers that fold several divisions into one: the
+ * denominator ((1 - x^2) + r^2 x^2)^2 lies in [r^4, 1]. */
+HB_INLINE void ndf_ggx_ratio(const hb_huang *h, vf one_minus_x, vf *num, vf *den)
 {
     vf x = vf_sub(vf_set1(1.0f), one_minus_x);
     vf sin2 = vf_mul(one_minus_x, vf_add(vf_set1(1.0f), x));
-    vf x2 = vf_mul(x, x), r2 = vf_set1(h->roughness2), d;
+    vf r2 = vf_set1(h->roughness2), base = vf_fma(r2, vf_mul(x, x), sin2);
+    *num = vf_mul(r2, vf_set1(HB_INV_PI_F));
+    *den = vf_mul(base, base);
+}
+
+HB_INLINE vf ndf_huang(const hb_huang *h, vf one_minus_x)
+{
+    vf num, den;
     if (h->beckmann) {
+        vf x = vf_sub(vf_set1(1.0f), one_minus_x);
+        vf sin2 = vf_mul(one_minus_x, vf_add(vf_set1(1.0f), x));
+        vf x2 = vf_mul(x, x), r2 = vf_set1(h->roughness2);
         vf x4 = vf_max(vf_mul(x2, x2), vf_set1(1e-30f));
         vf tan2 = vf_div(sin2, vf_max(x2, vf_set1(1e-30f)));
-        d = vf_div(vf_exp_flush(vf_max(vf_div(vf_neg(tan2), r2), vf_set1(-100.0f))),
-                   vf_mul(vf_mul(vf_set1(HB_PI_F), r2), x4));
+        num = vf_exp_flush(vf_max(vf_div(vf_neg(tan2), r2), vf_set1(-100.0f)));
+        den = vf_mul(vf_mul(vf_set1(HB_PI_F), r2), x4);
     } else {
-        vf den = vf_fma(r2, x2, sin2);
-        d = vf_div(vf_mul(r2, vf_set1(HB_INV_PI_F)), vf_mul(den, den));
+        ndf_ggx_ratio(h, one_minus_x, &num, &den);
     }
-    return d;
+    return vf_div(num, den);
 }
 
 /* erfcx(a) = e^(a^2) erfc(a) for a >= 0 by A&S 7.1.26 (error below 1.5e-7 e^(a^2), i.e. erfc within 1.5e-7). */
@@ -73,6 +84,15 @@ HB_INLINE vf smith_g1_huang(const hb_huang *h, vf c)
 {
     smith_parts l = smith_lambda_parts(h, vf_clamp(c, 0.0f, 1.0f));
     return vf_div(l.d, vf_max(vf_add(l.d, l.y), vf_set1(1e-30f)));
+}
+
+/* G1(c_1) G1(c_2) as numerator / denominator, the denominator (d_1 + y_1)(d_2 + y_2) >= 1e-30 each. */
+HB_INLINE void smith_g1_pair_ratio(const hb_huang *h, vf c_1, vf c_2, vf *num, vf *den)
+{
+    smith_parts l_1 = smith_lambda_parts(h, vf_clamp(c_1, 0.0f, 1.0f));
+    smith_parts l_2 = smith_lambda_parts(h, vf_clamp(c_2, 0.0f, 1.0f));
+    *num = vf_mul(l_1.d, l_2.d);
+    *den = vf_mul(vf_max(vf_add(l_1.d, l_1.y), vf_set1(1e-30f)), vf_max(vf_add(l_2.d, l_2.y), vf_set1(1e-30f)));
 }
 
 /* G1 / c, finite as c -> 0 where both vanish (GGX: 2 / r, Beckmann: 2 sqrt(pi) / r): the visible

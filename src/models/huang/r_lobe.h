@@ -186,23 +186,32 @@ HB_INLINE vf arc_length_rho(const hb_huang *h, const huang_directions *d, vf cos
 
 /* D G rho at one phi_m = phi_h - delta of the window, given sin^2(delta / 2), cos(delta), sin(delta):
  * the NDF at the mesonormal, Smith G1(w_i) G1(w_o) against it (eq. 12), and for elliptical fibres
- * the arc length rho. */
+ * the arc length rho. GGX's D and the two G1 are one fraction, one division: its denominator is at
+ * least r^4 (d_i + y_i)(d_o + y_o) >= r^8 > 1e-24 (microfacet.h); Beckmann's D, whose denominator
+ * reaches 1e-36, is divided alone. */
 HB_INLINE vf r_integrand(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g, vf sin2_half,
                          vf cos_delta, vf sin_delta)
 {
     vf one_minus_x = vf_fma(vf_add(g->cos_h_tilt, g->cos_h_tilt), sin2_half, g->one_minus_cos_minus);
-    vf value = ndf_huang(h, one_minus_x);
     if (!h->shadowing && !h->elliptical)
-        return value;
+        return ndf_huang(h, one_minus_x);
+    vf num = vf_set1(1.0f), den = vf_set1(1.0f);
+    if (h->beckmann)
+        num = ndf_huang(h, one_minus_x);
+    else
+        ndf_ggx_ratio(h, one_minus_x, &num, &den);
     vf cos_m = vf_fma(g->cos_phi_h, cos_delta, vf_mul(g->sin_phi_h, sin_delta));
     vf sin_m = vf_fnma(g->cos_phi_h, sin_delta, vf_mul(g->sin_phi_h, cos_delta));
     if (h->shadowing) {
-        vf ct = vf_set1(h->cos_tilt), st = vf_set1(h->sin_tilt);
+        vf ct = vf_set1(h->cos_tilt), st = vf_set1(h->sin_tilt), g_num, g_den;
         vf macro_i = vf_mul(d->cos_ti, cos_m);
         vf macro_o = vf_mul(d->cos_to, vf_fma(d->cos_phi, cos_m, vf_mul(d->sin_phi, sin_m)));
         vf meso_i = vf_fma(ct, macro_i, vf_mul(st, d->sin_ti)), meso_o = vf_fma(ct, macro_o, vf_mul(st, d->sin_to));
-        value = vf_mul(value, vf_mul(smith_g1_huang(h, meso_i), smith_g1_huang(h, meso_o)));
+        smith_g1_pair_ratio(h, meso_i, meso_o, &g_num, &g_den);
+        num = vf_mul(num, g_num);
+        den = vf_mul(den, g_den);
     }
+    vf value = vf_div(num, den);
     if (h->elliptical)
         value = vf_mul(value, arc_length_rho(h, d, cos_m, sin_m));
     return value;
