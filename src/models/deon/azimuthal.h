@@ -406,8 +406,8 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
 }
 
 /* f for the plan's shape: a table plan looks N up per M_p group, the standard shape folds M_p into
- * the node sum (above), any other sums N_p per lobe first and adds the lobes of equal M_p before multiplying, so each distinct M_p is
- * evaluated once. M_p comes from a caller-supplied evaluator so the angle and vector entry points
+ * the node sum (above), any other sums N_p per lobe first and adds the lobes of equal M_p before
+ * multiplying, so each distinct M_p is evaluated once. M_p comes from a caller-supplied evaluator so the angle and vector entry points
  * share everything else. */
 #define HB_DEON_EVAL(d, g, out, longitudinal_of_lobe)                                   \
     do {                                                                                \

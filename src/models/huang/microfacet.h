@@ -10,10 +10,6 @@
 #define HB_INV_PI_F 0.318309886f
 #define HB_INV_SQRT_PI_F 0.564189584f
 
-/* D(w_h, w_m) given one_minus_x = 1 - x, x = w_h . w_m: GGX (HHH22 eq. 41) written as
- * r^2 / (pi ((1 - x^2) + r^2 x^2)^2), Beckmann exp(-tan^2 / r^2) / (pi r^2 x^4). Callers only ask
- * inside the visible window, where x >= 0 (both directions see w_m, so their sum does); at its ends
- * x = 0 up to rounding, and both forms are even in x, so there is no cut-off to misplace. */
 /* GGX's D as numerator / denominator, for callers that fold several divisions into one: the
  * denominator ((1 - x^2) + r^2 x^2)^2 lies in [r^4, 1]. */
 HB_INLINE void ndf_ggx_ratio(const hb_huang *h, vf one_minus_x, vf *num, vf *den)
@@ -25,6 +21,10 @@ HB_INLINE void ndf_ggx_ratio(const hb_huang *h, vf one_minus_x, vf *num, vf *den
     *den = vf_mul(base, base);
 }
 
+/* D(w_h, w_m) given one_minus_x = 1 - x, x = w_h . w_m: GGX (HHH22 eq. 41) written as
+ * r^2 / (pi ((1 - x^2) + r^2 x^2)^2), Beckmann exp(-tan^2 / r^2) / (pi r^2 x^4). Callers only ask
+ * inside the visible window, where x >= 0 (both directions see w_m, so their sum does); at its ends
+ * x = 0 up to rounding, and both forms are even in x, so there is no cut-off to misplace. */
 HB_INLINE vf ndf_huang(const hb_huang *h, vf one_minus_x)
 {
     vf num, den;
@@ -79,20 +79,29 @@ HB_INLINE smith_parts smith_lambda_parts(const hb_huang *h, vf c)
     return l;
 }
 
-/* G1 = 1 / (1 + Lambda) = d / (d + y). */
-HB_INLINE vf smith_g1_huang(const hb_huang *h, vf c)
+/* G1 = 1 / (1 + Lambda) = d / (d + y), as that numerator and denominator (the latter >= 1e-30). */
+HB_INLINE void smith_g1_ratio(const hb_huang *h, vf c, vf *num, vf *den)
 {
     smith_parts l = smith_lambda_parts(h, vf_clamp(c, 0.0f, 1.0f));
-    return vf_div(l.d, vf_max(vf_add(l.d, l.y), vf_set1(1e-30f)));
+    *num = l.d;
+    *den = vf_max(vf_add(l.d, l.y), vf_set1(1e-30f));
 }
 
-/* G1(c_1) G1(c_2) as numerator / denominator, the denominator (d_1 + y_1)(d_2 + y_2) >= 1e-30 each. */
+HB_INLINE vf smith_g1_huang(const hb_huang *h, vf c)
+{
+    vf num, den;
+    smith_g1_ratio(h, c, &num, &den);
+    return vf_div(num, den);
+}
+
+/* G1(c_1) G1(c_2) as numerator / denominator, for callers that fold divisions. */
 HB_INLINE void smith_g1_pair_ratio(const hb_huang *h, vf c_1, vf c_2, vf *num, vf *den)
 {
-    smith_parts l_1 = smith_lambda_parts(h, vf_clamp(c_1, 0.0f, 1.0f));
-    smith_parts l_2 = smith_lambda_parts(h, vf_clamp(c_2, 0.0f, 1.0f));
-    *num = vf_mul(l_1.d, l_2.d);
-    *den = vf_mul(vf_max(vf_add(l_1.d, l_1.y), vf_set1(1e-30f)), vf_max(vf_add(l_2.d, l_2.y), vf_set1(1e-30f)));
+    vf num_1, den_1, num_2, den_2;
+    smith_g1_ratio(h, c_1, &num_1, &den_1);
+    smith_g1_ratio(h, c_2, &num_2, &den_2);
+    *num = vf_mul(num_1, num_2);
+    *den = vf_mul(den_1, den_2);
 }
 
 /* G1 / c, finite as c -> 0 where both vanish (GGX: 2 / r, Beckmann: 2 sqrt(pi) / r): the visible
