@@ -1,85 +1,146 @@
-/* The SIMD vocabulary on AVX2 + FMA: 8 float lanes, masks are all-ones lanes. */
+/* The SIMD vocabulary on AVX2 + FMA: 16 float lanes held as two 8-lane registers, every
+ * operation issued once per half. The kernels are long dependency chains (polynomials,
+ * divisions, square roots) that leave most of the pipelines idle on one register; the second
+ * half is an independent chain in the same instruction stream, so it fills them (the way
+ * AVX-512's 16 lanes do on a core that executes them as two 256-bit halves). Lane by lane the
+ * operations are the 8-lane ones, so results are unchanged. Masks are all-ones float lanes. */
 #ifndef HB_SIMD_AVX2_H
 #define HB_SIMD_AVX2_H
 
 #include <immintrin.h>
 #include <stdint.h>
 
-#define HB_W 8
+#define HB_W 16
 #define HB_ISA_LABEL "avx2"
 
-typedef __m256 vf;
-typedef __m256i vi;
-typedef __m256 vm;
+typedef struct { __m256 lo, hi; } vf;
+typedef struct { __m256i lo, hi; } vi;
+typedef vf vm;
 
 #define HB_ROUND_NEAREST (_MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC)
 
-HB_INLINE vf vf_set1(float a) { return _mm256_set1_ps(a); }
-HB_INLINE vf vf_loadu(const float *p) { return _mm256_loadu_ps(p); }
-HB_INLINE void vf_storeu(float *p, vf a) { _mm256_storeu_ps(p, a); }
-HB_INLINE vf vf_add(vf a, vf b) { return _mm256_add_ps(a, b); }
-HB_INLINE vf vf_sub(vf a, vf b) { return _mm256_sub_ps(a, b); }
-HB_INLINE vf vf_mul(vf a, vf b) { return _mm256_mul_ps(a, b); }
-HB_INLINE vf vf_div(vf a, vf b) { return _mm256_div_ps(a, b); }
-HB_INLINE vf vf_fma(vf a, vf b, vf c) { return _mm256_fmadd_ps(a, b, c); }
-HB_INLINE vf vf_fnma(vf a, vf b, vf c) { return _mm256_fnmadd_ps(a, b, c); }
-HB_INLINE vf vf_min(vf a, vf b) { return _mm256_min_ps(a, b); }
-HB_INLINE vf vf_max(vf a, vf b) { return _mm256_max_ps(a, b); }
-HB_INLINE vf vf_sqrt(vf a) { return _mm256_sqrt_ps(a); }
-HB_INLINE vf vf_select(vm m, vf a, vf b) { return _mm256_blendv_ps(b, a, m); }
-HB_INLINE vf vf_keep(vm m, vf a) { return _mm256_and_ps(a, m); }
-HB_INLINE vf vf_round(vf a) { return _mm256_round_ps(a, HB_ROUND_NEAREST); }
+/* One intrinsic applied to both halves: unary, binary and ternary forms. */
+#define HB_HALVES1(T, name, op, A) \
+    HB_INLINE T name(A a) { T r = { op(a.lo), op(a.hi) }; return r; }
+#define HB_HALVES2(T, name, op, A) \
+    HB_INLINE T name(A a, A b) { T r = { op(a.lo, b.lo), op(a.hi, b.hi) }; return r; }
+#define HB_HALVES3(T, name, op) \
+    HB_INLINE T name(T a, T b, T c) { T r = { op(a.lo, b.lo, c.lo), op(a.hi, b.hi, c.hi) }; return r; }
 
-HB_INLINE vm vf_lt(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
-HB_INLINE vm vf_le(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
-HB_INLINE vm vf_gt(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
-HB_INLINE vm vf_ge(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
-HB_INLINE vm vf_eq(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_EQ_OQ); }
-HB_INLINE vm vf_ne(vf a, vf b) { return _mm256_cmp_ps(a, b, _CMP_NEQ_UQ); }
+HB_INLINE vf vf_set1(float a) { vf r = { _mm256_set1_ps(a), _mm256_set1_ps(a) }; return r; }
+HB_INLINE vf vf_loadu(const float *p) { vf r = { _mm256_loadu_ps(p), _mm256_loadu_ps(p + 8) }; return r; }
+HB_INLINE void vf_storeu(float *p, vf a) { _mm256_storeu_ps(p, a.lo); _mm256_storeu_ps(p + 8, a.hi); }
+HB_HALVES2(vf, vf_add, _mm256_add_ps, vf)
+HB_HALVES2(vf, vf_sub, _mm256_sub_ps, vf)
+HB_HALVES2(vf, vf_mul, _mm256_mul_ps, vf)
+HB_HALVES2(vf, vf_div, _mm256_div_ps, vf)
+HB_HALVES3(vf, vf_fma, _mm256_fmadd_ps)
+HB_HALVES3(vf, vf_fnma, _mm256_fnmadd_ps)
+HB_HALVES2(vf, vf_min, _mm256_min_ps, vf)
+HB_HALVES2(vf, vf_max, _mm256_max_ps, vf)
+HB_HALVES1(vf, vf_sqrt, _mm256_sqrt_ps, vf)
+HB_INLINE vf vf_select(vm m, vf a, vf b)
+{
+    vf r = { _mm256_blendv_ps(b.lo, a.lo, m.lo), _mm256_blendv_ps(b.hi, a.hi, m.hi) };
+    return r;
+}
+HB_HALVES2(vf, vf_keep, _mm256_and_ps, vf)
+#define HB_ROUND_HALF(a) _mm256_round_ps(a, HB_ROUND_NEAREST)
+HB_HALVES1(vf, vf_round, HB_ROUND_HALF, vf)
 
-HB_INLINE vm vm_and(vm a, vm b) { return _mm256_and_ps(a, b); }
-HB_INLINE vm vm_or(vm a, vm b) { return _mm256_or_ps(a, b); }
-HB_INLINE vm vm_andnot(vm a, vm b) { return _mm256_andnot_ps(b, a); }
-HB_INLINE vm vm_not(vm a) { return _mm256_xor_ps(a, _mm256_castsi256_ps(_mm256_set1_epi32(-1))); }
-HB_INLINE unsigned vm_bits(vm a) { return (unsigned)_mm256_movemask_ps(a); }
+#define HB_CMP_LT(a, b) _mm256_cmp_ps(a, b, _CMP_LT_OQ)
+#define HB_CMP_LE(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
+#define HB_CMP_GT(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
+#define HB_CMP_GE(a, b) _mm256_cmp_ps(a, b, _CMP_GE_OQ)
+#define HB_CMP_EQ(a, b) _mm256_cmp_ps(a, b, _CMP_EQ_OQ)
+#define HB_CMP_NE(a, b) _mm256_cmp_ps(a, b, _CMP_NEQ_UQ)
+HB_HALVES2(vm, vf_lt, HB_CMP_LT, vf)
+HB_HALVES2(vm, vf_le, HB_CMP_LE, vf)
+HB_HALVES2(vm, vf_gt, HB_CMP_GT, vf)
+HB_HALVES2(vm, vf_ge, HB_CMP_GE, vf)
+HB_HALVES2(vm, vf_eq, HB_CMP_EQ, vf)
+HB_HALVES2(vm, vf_ne, HB_CMP_NE, vf)
 
-HB_INLINE vi vf_as_vi(vf a) { return _mm256_castps_si256(a); }
-HB_INLINE vf vi_as_vf(vi a) { return _mm256_castsi256_ps(a); }
-HB_INLINE vi vi_set1(int32_t a) { return _mm256_set1_epi32(a); }
-HB_INLINE vi vi_add(vi a, vi b) { return _mm256_add_epi32(a, b); }
-HB_INLINE vi vi_sub(vi a, vi b) { return _mm256_sub_epi32(a, b); }
-HB_INLINE vi vi_and(vi a, vi b) { return _mm256_and_si256(a, b); }
-HB_INLINE vi vi_or(vi a, vi b) { return _mm256_or_si256(a, b); }
-HB_INLINE vi vi_xor(vi a, vi b) { return _mm256_xor_si256(a, b); }
-HB_INLINE vi vi_mul(vi a, vi b) { return _mm256_mullo_epi32(a, b); } /* low 32 bits */
-HB_INLINE vi vi_shl(vi a, int n) { return _mm256_slli_epi32(a, n); }
-HB_INLINE vi vi_shr(vi a, int n) { return _mm256_srli_epi32(a, n); }
-HB_INLINE vm vi_eq(vi a, vi b) { return _mm256_castsi256_ps(_mm256_cmpeq_epi32(a, b)); }
-HB_INLINE vi vi_from_vf(vf a) { return _mm256_cvttps_epi32(a); }
-HB_INLINE vf vf_from_vi(vi a) { return _mm256_cvtepi32_ps(a); }
-HB_INLINE vf vf_gather(const float *base, vi idx) { return _mm256_i32gather_ps(base, idx, 4); }
+HB_HALVES2(vm, vm_and, _mm256_and_ps, vm)
+HB_HALVES2(vm, vm_or, _mm256_or_ps, vm)
+#define HB_ANDNOT(a, b) _mm256_andnot_ps(b, a)
+HB_HALVES2(vm, vm_andnot, HB_ANDNOT, vm)
+#define HB_NOT(a) _mm256_xor_ps(a, _mm256_castsi256_ps(_mm256_set1_epi32(-1)))
+HB_HALVES1(vm, vm_not, HB_NOT, vm)
+HB_INLINE unsigned vm_bits(vm a)
+{
+    return (unsigned)_mm256_movemask_ps(a.lo) | (unsigned)_mm256_movemask_ps(a.hi) << 8;
+}
 
-#define HB_PD_T __m256d
-#define HB_PD_ADD _mm256_add_pd
-#define HB_PD_SUB _mm256_sub_pd
-#define HB_PD_MUL _mm256_mul_pd
-#define HB_PD_DIV _mm256_div_pd
-#define HB_PD_SQRT _mm256_sqrt_pd
-#define HB_PD_MIN _mm256_min_pd
-#define HB_PD_MAX _mm256_max_pd
-#define HB_PD_FMA _mm256_fmadd_pd
-#define HB_PD_ROUND(a) _mm256_round_pd(a, HB_ROUND_NEAREST)
-#define HB_PD_SET1 _mm256_set1_pd
+HB_HALVES1(vi, vf_as_vi, _mm256_castps_si256, vf)
+HB_HALVES1(vf, vi_as_vf, _mm256_castsi256_ps, vi)
+HB_INLINE vi vi_set1(int32_t a) { vi r = { _mm256_set1_epi32(a), _mm256_set1_epi32(a) }; return r; }
+HB_HALVES2(vi, vi_add, _mm256_add_epi32, vi)
+HB_HALVES2(vi, vi_sub, _mm256_sub_epi32, vi)
+HB_HALVES2(vi, vi_and, _mm256_and_si256, vi)
+HB_HALVES2(vi, vi_or, _mm256_or_si256, vi)
+HB_HALVES2(vi, vi_xor, _mm256_xor_si256, vi)
+HB_HALVES2(vi, vi_mul, _mm256_mullo_epi32, vi) /* low 32 bits */
+HB_INLINE vi vi_shl(vi a, int n) { vi r = { _mm256_slli_epi32(a.lo, n), _mm256_slli_epi32(a.hi, n) }; return r; }
+HB_INLINE vi vi_shr(vi a, int n) { vi r = { _mm256_srli_epi32(a.lo, n), _mm256_srli_epi32(a.hi, n) }; return r; }
+HB_INLINE vm vi_eq(vi a, vi b)
+{
+    vm r = { _mm256_castsi256_ps(_mm256_cmpeq_epi32(a.lo, b.lo)), _mm256_castsi256_ps(_mm256_cmpeq_epi32(a.hi, b.hi)) };
+    return r;
+}
+HB_HALVES1(vi, vi_from_vf, _mm256_cvttps_epi32, vf)
+HB_HALVES1(vf, vf_from_vi, _mm256_cvtepi32_ps, vi)
+HB_INLINE vf vf_gather(const float *base, vi idx)
+{
+    vf r = { _mm256_i32gather_ps(base, idx.lo, 4), _mm256_i32gather_ps(base, idx.hi, 4) };
+    return r;
+}
+
+/* Doubles: each float half widens to two __m256d, so vdw is a pair of such pairs. */
+typedef struct { __m256d lo, hi; } hb_pd_pair;
+HB_HALVES2(hb_pd_pair, hb_pd_pair_add, _mm256_add_pd, hb_pd_pair)
+HB_HALVES2(hb_pd_pair, hb_pd_pair_sub, _mm256_sub_pd, hb_pd_pair)
+HB_HALVES2(hb_pd_pair, hb_pd_pair_mul, _mm256_mul_pd, hb_pd_pair)
+HB_HALVES2(hb_pd_pair, hb_pd_pair_div, _mm256_div_pd, hb_pd_pair)
+HB_HALVES2(hb_pd_pair, hb_pd_pair_min, _mm256_min_pd, hb_pd_pair)
+HB_HALVES2(hb_pd_pair, hb_pd_pair_max, _mm256_max_pd, hb_pd_pair)
+HB_HALVES3(hb_pd_pair, hb_pd_pair_fma, _mm256_fmadd_pd)
+HB_HALVES1(hb_pd_pair, hb_pd_pair_sqrt, _mm256_sqrt_pd, hb_pd_pair)
+#define HB_ROUND_PD_HALF(a) _mm256_round_pd(a, HB_ROUND_NEAREST)
+HB_HALVES1(hb_pd_pair, hb_pd_pair_round, HB_ROUND_PD_HALF, hb_pd_pair)
+HB_INLINE hb_pd_pair hb_pd_pair_set1(double a) { hb_pd_pair r = { _mm256_set1_pd(a), _mm256_set1_pd(a) }; return r; }
+
+#define HB_PD_T hb_pd_pair
+#define HB_PD_ADD hb_pd_pair_add
+#define HB_PD_SUB hb_pd_pair_sub
+#define HB_PD_MUL hb_pd_pair_mul
+#define HB_PD_DIV hb_pd_pair_div
+#define HB_PD_SQRT hb_pd_pair_sqrt
+#define HB_PD_MIN hb_pd_pair_min
+#define HB_PD_MAX hb_pd_pair_max
+#define HB_PD_FMA hb_pd_pair_fma
+#define HB_PD_ROUND hb_pd_pair_round
+#define HB_PD_SET1 hb_pd_pair_set1
 #include "simd_vdw_pair.h"
 
+HB_INLINE hb_pd_pair hb_pd_pair_from_ps(__m256 a)
+{
+    hb_pd_pair r = { _mm256_cvtps_pd(_mm256_castps256_ps128(a)), _mm256_cvtps_pd(_mm256_extractf128_ps(a, 1)) };
+    return r;
+}
+HB_INLINE __m256 hb_pd_pair_to_ps(hb_pd_pair a)
+{
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm256_cvtpd_ps(a.lo)), _mm256_cvtpd_ps(a.hi), 1);
+}
 HB_INLINE vdw vdw_from_vf(vf a)
 {
-    vdw r = { _mm256_cvtps_pd(_mm256_castps256_ps128(a)), _mm256_cvtps_pd(_mm256_extractf128_ps(a, 1)) };
+    vdw r = { hb_pd_pair_from_ps(a.lo), hb_pd_pair_from_ps(a.hi) };
     return r;
 }
 HB_INLINE vf vdw_to_vf(vdw a)
 {
-    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm256_cvtpd_ps(a.lo)), _mm256_cvtpd_ps(a.hi), 1);
+    vf r = { hb_pd_pair_to_ps(a.lo), hb_pd_pair_to_ps(a.hi) };
+    return r;
 }
 
 #endif
