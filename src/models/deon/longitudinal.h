@@ -85,13 +85,18 @@ HB_INLINE vf longitudinal_deon_single(const hb_longitudinal *lobe, vf cone_expon
     return vf_keep(significant, vf_mul(vf_exp_flush(e), factor));
 }
 
-/* cos(t) = sin(pi/2 - |t|) for t = t_hi + t_lo, |t| up to just beyond pi/2 (the float pi/2 lies
- * beyond it, where the cosine is negative, as eq. 7 has it), relative-accurate near the poles:
- * pi/2 - |t_hi| is exact there (Sterbenz) before the low parts are added. */
-HB_INLINE vf cos_near_pole(vf t_hi, vf t_lo)
+/* cos(t) = sin(pi/2 - |t| + low) for |t| up to just beyond pi/2 (the float pi/2 lies beyond it,
+ * where the cosine is negative, as eq. 7 has it), relative-accurate near the poles: pi/2 - |t| is
+ * exact there (Sterbenz) before low, pi/2's low part and any of t's own, is added. */
+HB_INLINE vf cos_near_pole(vf t, vf low)
 {
-    vf low = vf_fnma(t_lo, vf_copysign(vf_set1(1.0f), t_hi), vf_set1(-4.37113883e-8f)); /* pi/2's low part */
-    return vf_sin_halfpi(vf_add(vf_sub(vf_set1(1.57079637f), vf_abs(t_hi)), low));
+    return vf_sin_halfpi(vf_add(vf_sub(vf_set1(HB_PIO2_F), vf_abs(t)), low));
+}
+
+/* The low part for t = t_hi + t_lo: pi/2's low part less t_lo with t_hi's sign. */
+HB_INLINE vf pole_distance_low(vf t_hi, vf t_lo)
+{
+    return vf_fnma(t_lo, vf_copysign(vf_set1(1.0f), t_hi), vf_set1(HB_PIO2_LO));
 }
 
 /* M_p(v, theta_i, theta_o - shift) from angles in float. theta_o'' = theta_o - shift, reflected
@@ -111,7 +116,8 @@ HB_INLINE vf longitudinal_deon_angles_single(const hb_longitudinal *lobe, vf the
     vf sin_a = vf_sin_halfpi(vf_mul(vf_add(vf_sub(sum, c_hi), vf_sub(sum_error, c_lo)), vf_set1(0.5f)));
     vf theta_o_hi = vf_sub(signed_o, c_hi);
     vf theta_o_lo = vf_sub(vf_two_sum_error(signed_o, vf_neg(c_hi), theta_o_hi), c_lo);
-    vf cos_product = vf_mul(cos_near_pole(theta_i, vf_set1(0.0f)), cos_near_pole(theta_o_hi, theta_o_lo));
+    vf cos_product = vf_mul(cos_near_pole(theta_i, vf_set1(HB_PIO2_LO)),
+                            cos_near_pole(theta_o_hi, pole_distance_low(theta_o_hi, theta_o_lo)));
     vf inv_v = vf_set1(lobe->inv_v_f);
     vf cone_exponent = vf_mul(vf_mul(vf_add(sin_a, sin_a), sin_a), inv_v);
     return longitudinal_deon_single(lobe, cone_exponent, vf_mul(cos_product, inv_v), i0);
