@@ -14,6 +14,7 @@ static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
 #define MAX_PHI 4097
 #define MAX_CD 513
 #define MAX_WORK 1e8
+#define HB_TABLE_READ_PAD 4
 
 /* N rows at cos(theta_d) = cd[j] for the azimuths phi[0..n_phi), into out (n_cd rows). */
 static void build_rows(const hb_plan *plan, int n_cd, const double *cd, int n_phi, const float *phi, float *out)
@@ -67,7 +68,8 @@ hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error)
                               "table_tolerance %g needs a finer N_p table than %.3g node evaluations allow (this "
                               "beta_n and quality): loosen it or use the quadrature", tol, work);
         size_t nodes = (size_t)n_phi * (size_t)n_cd;
-        float *values = malloc(nodes * (size_t)texel * sizeof *values);
+        /* 4 floats of padding: the kernels read a row's two corners 4 floats at a time (azimuthal.h) */
+        float *values = calloc(nodes * (size_t)texel + HB_TABLE_READ_PAD, sizeof *values);
         float *mid_phi = malloc((size_t)n_cd * (size_t)n_phi * (size_t)texel * sizeof *mid_phi);
         float *mid_cd = malloc((size_t)n_cd * (size_t)n_phi * (size_t)texel * sizeof *mid_cd);
         float *phi = malloc(2 * (size_t)n_phi * sizeof *phi);

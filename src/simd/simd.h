@@ -11,6 +11,10 @@
  * in registers; GCC at -O2 keeps a loop with a large body rolled. Clang reads the same pragma. */
 #define HB_UNROLL _Pragma("GCC unroll 8")
 
+/* Besides element-wise arithmetic, each vocabulary loads table texels two ways: vf_gather(base, idx),
+ * one float per lane, and vf_gather4(base, idx, out), four consecutive floats per lane as four
+ * vectors (lane l of out[j] is base[idx_l + j]), by plain loads and a transpose: a texel's values
+ * sit side by side, and one gather instruction per value costs far more than its share of a load. */
 #if defined(HB_TARGET_SCALAR)
 #include "simd_scalar.h"
 #elif defined(HB_TARGET_SSE41)

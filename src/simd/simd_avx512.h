@@ -5,6 +5,8 @@
 #include <immintrin.h>
 #include <stdint.h>
 
+#include "simd_x86.h"
+
 #define HB_W 16
 #define HB_ISA_LABEL "avx512"
 
@@ -58,6 +60,21 @@ HB_INLINE vm vi_eq(vi a, vi b) { return _mm512_cmpeq_epi32_mask(a, b); }
 HB_INLINE vi vi_from_vf(vf a) { return _mm512_cvttps_epi32(a); }
 HB_INLINE vf vf_from_vi(vi a) { return _mm512_cvtepi32_ps(a); }
 HB_INLINE vf vf_gather(const float *base, vi idx) { return _mm512_i32gather_ps(idx, base, 4); }
+/* out[j], lane l = base[idx_l + j], j < 4: lanes k, k + 4, k + 8, k + 12 fill one register's four
+ * 128-bit lanes, transposed in place (simd.h). */
+HB_INLINE void vf_gather4(const float *base, vi idx, vf out[4])
+{
+    int32_t i[16];
+    _mm512_storeu_si512(i, idx);
+#define HB_LANE_QUAD(k)                                                                                    \
+    _mm512_insertf32x4(_mm512_insertf32x4(_mm512_insertf32x4(_mm512_castps128_ps512(_mm_loadu_ps(base + i[k])), \
+                                                             _mm_loadu_ps(base + i[k + 4]), 1),                \
+                                          _mm_loadu_ps(base + i[k + 8]), 2),                                   \
+                       _mm_loadu_ps(base + i[k + 12]), 3)
+    __m512 a[4] = { HB_LANE_QUAD(0), HB_LANE_QUAD(1), HB_LANE_QUAD(2), HB_LANE_QUAD(3) };
+#undef HB_LANE_QUAD
+    HB_TRANSPOSE4_IN_LANES(__m512, _mm512, a, out);
+}
 
 #define HB_PD_T __m512d
 #define HB_PD_ADD _mm512_add_pd

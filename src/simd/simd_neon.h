@@ -69,6 +69,19 @@ HB_INLINE vf vf_gather(const float *base, vi idx)
     const float g[4] = { base[i[0]], base[i[1]], base[i[2]], base[i[3]] };
     return vld1q_f32(g);
 }
+/* out[j], lane l = base[idx_l + j], j < 4: four loads and a 4 x 4 transpose (simd.h). */
+HB_INLINE void vf_gather4(const float *base, vi idx, vf out[4])
+{
+    int32_t i[4];
+    vst1q_s32(i, idx);
+    float32x4_t a0 = vld1q_f32(base + i[0]), a1 = vld1q_f32(base + i[1]);
+    float32x4_t a2 = vld1q_f32(base + i[2]), a3 = vld1q_f32(base + i[3]);
+    float32x4_t t0 = vtrn1q_f32(a0, a1), t1 = vtrn2q_f32(a0, a1), t2 = vtrn1q_f32(a2, a3), t3 = vtrn2q_f32(a2, a3);
+    out[0] = vreinterpretq_f32_f64(vtrn1q_f64(vreinterpretq_f64_f32(t0), vreinterpretq_f64_f32(t2)));
+    out[1] = vreinterpretq_f32_f64(vtrn1q_f64(vreinterpretq_f64_f32(t1), vreinterpretq_f64_f32(t3)));
+    out[2] = vreinterpretq_f32_f64(vtrn2q_f64(vreinterpretq_f64_f32(t0), vreinterpretq_f64_f32(t2)));
+    out[3] = vreinterpretq_f32_f64(vtrn2q_f64(vreinterpretq_f64_f32(t1), vreinterpretq_f64_f32(t3)));
+}
 
 #define HB_PD_T float64x2_t
 #define HB_PD_ADD vaddq_f64

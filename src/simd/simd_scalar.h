@@ -59,6 +59,11 @@ HB_INLINE vm vi_eq(vi a, vi b) { return a == b; }
 HB_INLINE vi vi_from_vf(vf a) { return (vi)a; }
 HB_INLINE vf vf_from_vi(vi a) { return (vf)a; }
 HB_INLINE vf vf_gather(const float *base, vi idx) { return base[idx]; }
+/* out[j] = base[idx + j], j < 4: four consecutive floats per lane as four vectors (simd.h). */
+HB_INLINE void vf_gather4(const float *base, vi idx, vf out[4])
+{
+    out[0] = base[idx], out[1] = base[idx + 1], out[2] = base[idx + 2], out[3] = base[idx + 3];
+}
 
 /* Round to nearest even without SSE4.1 or libm: adding 1.5 * 2^23 pushes the
  * fraction out of the mantissa. |a| >= 2^22 is already integral. */

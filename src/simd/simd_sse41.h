@@ -6,6 +6,8 @@
 #include <smmintrin.h>
 #include <stdint.h>
 
+#include "simd_x86.h"
+
 #define HB_W 4
 #define HB_ISA_LABEL "sse4.1"
 
@@ -73,6 +75,14 @@ HB_INLINE vf vf_gather(const float *base, vi idx)
     int32_t i[4];
     _mm_storeu_si128((__m128i *)i, idx);
     return _mm_setr_ps(base[i[0]], base[i[1]], base[i[2]], base[i[3]]);
+}
+/* out[j], lane l = base[idx_l + j], j < 4: four loads and a 4 x 4 transpose (simd.h). */
+HB_INLINE void vf_gather4(const float *base, vi idx, vf out[4])
+{
+    int32_t i[4];
+    _mm_storeu_si128((__m128i *)i, idx);
+    vf a[4] = { _mm_loadu_ps(base + i[0]), _mm_loadu_ps(base + i[1]), _mm_loadu_ps(base + i[2]), _mm_loadu_ps(base + i[3]) };
+    HB_TRANSPOSE4_IN_LANES(__m128, _mm, a, out);
 }
 
 HB_INLINE vdw vdw_from_vf(vf a)

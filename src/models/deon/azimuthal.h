@@ -284,44 +284,69 @@ HB_INLINE void deon_np_row(const hb_deon *d, float cos_theta_d, size_t n, const 
 }
 
 /* f = sum over the M_p groups of M_group N_group, N bilinear in (|phi|, sqrt(cos(theta_d))) from the
- * plan's table (slot s holds group leader table_leader[s]); M is per group leader. */
+ * plan's table (slot s holds group leader table_leader[s]); M is per group leader. A cell's two
+ * azimuth corners are 2 texels side by side in a row, 6 floats per slot, so each of the cell's two
+ * rows is read with vf_gather4 four floats at a time (the table has 4 floats of padding for the last
+ * group), and f takes one fused multiply-add per value with the weight times M of its corner and slot.
+ * `slots` is a constant at each call, so the loops unroll and every value's place is known. */
 HB_INLINE void deon_table_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3],
-                                 int channels)
+                                 const int channels, const int slots)
 {
     vf frac[2], weight[4];
     vi cell[2];
     cell[0] = table_cell(vf_mul(vf_abs(g->phi), vf_set1((float)(d->table_phi - 1) / HB_PI_F)), d->table_phi, &frac[0]);
     cell[1] = table_cell(vf_mul(vf_sqrt(g->cos_theta_d), vf_set1((float)(d->table_cd - 1))), d->table_cd, &frac[1]);
-    int texel = 3 * d->table_slots, offset[4];
-    int stride[2] = { texel, texel * d->table_phi };
-    vi base = cell_corners(2, cell, frac, stride, weight, offset), index[4];
+    const int texel = 3 * slots, pair = 2 * texel;
+    int stride[2] = { texel, texel * d->table_phi }, offset[4];
+    vi base = cell_corners(2, cell, frac, stride, weight, offset);
+    vf coef[4][HB_MAX_LOBES + 1]; /* corner k (bit 0: the next azimuth, bit 1: the next row) times M of slot s */
     HB_UNROLL
     for (int k = 0; k < 4; k++)
-        index[k] = vi_add(base, vi_set1(offset[k]));
+        HB_UNROLL
+        for (int s = 0; s < slots; s++)
+            coef[k][s] = vf_mul(weight[k], M[d->table_leader[s]]);
     for (int c = 0; c < 3; c++)
         out[c] = vf_set1(0.0f);
-    for (int s = 0; s < d->table_slots; s++) {
-        const float *slot = d->np_table + 3 * s;
-        vf m = M[d->table_leader[s]];
+    HB_UNROLL
+    for (int row = 0; row < 2; row++) {
         HB_UNROLL
-        for (int c = 0; c < channels; c++) {
-            vf n = vf_mul(weight[0], vf_gather(slot + c, index[0]));
+        for (int first = 0; first < pair; first += 4) {
+            vf value[4];
+            vf_gather4(d->np_table + offset[2 * row] + first, base, value);
             HB_UNROLL
-            for (int k = 1; k < 4; k++)
-                n = vf_fma(weight[k], vf_gather(slot + c, index[k]), n);
-            out[c] = vf_fma(m, n, out[c]);
+            for (int j = 0; j < 4; j++) {
+                int v = first + j, c = v % 3;
+                if (v < pair && c < channels)
+                    out[c] = vf_fma(coef[2 * row + v / texel][v % texel / 3], value[j], out[c]);
+            }
         }
     }
-    if (channels == 1) /* a grey fibre: one gather per corner and slot, copied */
+    if (channels == 1) /* a grey fibre: the table's channels are equal */
         out[1] = out[2] = out[0];
 }
 
+/* The slot counts of the standard shape as constants (R, TT, TRT, TRRT and the residual in up to five
+ * M_p groups); more slots take the same body with a run-time count. */
 HB_INLINE void deon_table(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
 {
-    if (d->channels == 1)
-        deon_table_shaped(d, g, M, out, 1);
-    else
-        deon_table_shaped(d, g, M, out, 3);
+    int channels = d->channels;
+#define HB_TABLE_SLOTS(n)                                                                             \
+    case n:                                                                                           \
+        if (channels == 1)                                                                            \
+            deon_table_shaped(d, g, M, out, 1, n);                                                    \
+        else                                                                                          \
+            deon_table_shaped(d, g, M, out, 3, n);                                                    \
+        return;
+    switch (d->table_slots) {
+    HB_TABLE_SLOTS(1)
+    HB_TABLE_SLOTS(2)
+    HB_TABLE_SLOTS(3)
+    HB_TABLE_SLOTS(4)
+    HB_TABLE_SLOTS(5)
+    default:
+        deon_table_shaped(d, g, M, out, 3, d->table_slots);
+    }
+#undef HB_TABLE_SLOTS
 }
 
 /* f = sum_p M_p N_p for the standard shape with M_p folded into the sum over nodes, so that three
