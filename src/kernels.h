@@ -120,6 +120,19 @@ typedef struct hb_detector {
 
 #define HB_LOBE_CHOICE_STEPS 32
 
+/* The highest explicit order of dFH11's standard shape (azimuthal.h, deon_shape). */
+#define HB_STANDARD_PMAX 3
+
+/* A standard-shape detector in units of its own width (azimuthal.h, deon_fused_shaped): with
+ * sigma = sqrt(log2(e) / (2 beta_n^2)), D_p(x) = gauss_norm 2^-(sigma x)^2, so the node sum works
+ * with sigma |phi| and sigma Phi(p, h) = slope gamma_t + offset[j] (eq. 8 less whole turns). */
+typedef struct hb_scaled_detector {
+    float scale;                        /* sigma */
+    float slope;                        /* 2 p sigma */
+    float period_hi, period_lo, inv_period; /* 2 pi sigma as two floats, and 1 / (2 pi sigma) */
+    float offset[HB_MAX_NODES];         /* sigma ((p mod 2) pi - 2 gamma_i) at node j */
+} hb_scaled_detector;
+
 /* Everything the dFH11 kernel reads, fixed at plan creation. */
 typedef struct hb_deon {
     unsigned lobes; /* bits p <= pmax, and HB_LOBE_RESIDUAL */
@@ -137,6 +150,8 @@ typedef struct hb_deon {
      * include eq. 10's 1/2 and dh/dgamma (plan.c, deon_nodes) */
     float gamma_i[HB_MAX_NODES], cos_gamma_i[HB_MAX_NODES], h[HB_MAX_NODES], weight[HB_MAX_NODES];
     hb_detector detector[HB_MAX_LOBES];
+    hb_scaled_detector scaled[HB_STANDARD_PMAX + 1]; /* the standard shape's detectors, per node */
+    int asin_narrow; /* eta >= 4/3: gamma_t = asin(h / eta') by vf_asin_narrow (|h / eta'| <= 3/4) */
     int fourier_terms; /* the most Fourier terms any lobe's detector uses (cos(n phi) to precompute) */
     hb_longitudinal longitudinal[HB_MAX_LOBES + 1]; /* index HB_LOBE_RESIDUAL: the residual lobe */
     /* lobes whose M_p is the same function (same v and shift) share one evaluation: m_group[p]
@@ -159,7 +174,6 @@ typedef struct hb_deon {
 
 /* Whether lobe p (an order up to pmax, or the residual) is in the plan's dFH11 sum, and whether it
  * is the first lobe of its M_p group (the one whose M_p is evaluated). */
-#define HB_STANDARD_PMAX 3
 
 static inline int hb_deon_lobe_on(const hb_deon *d, int p)
 {

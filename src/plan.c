@@ -418,6 +418,18 @@ static void derive_deon(hb_plan *plan)
     nodes = nodes < quality_levels[o->quality].min_nodes ? quality_levels[o->quality].min_nodes : nodes;
     nodes = nodes > HB_MAX_NODES ? HB_MAX_NODES : nodes;
     deon_nodes(d, o->quadrature_order > 0 ? o->quadrature_order : 2 * nodes);
+    for (int p = 0; p <= HB_STANDARD_PMAX && p <= o->pmax; p++) {
+        hb_scaled_detector *s = &d->scaled[p];
+        double sigma = sqrt(M_LOG2E / (2.0 * plan->beta_n[p] * plan->beta_n[p])), period = 2.0 * M_PI * sigma;
+        s->scale = (float)sigma;
+        s->slope = (float)(2.0 * p * sigma);
+        s->period_hi = (float)period;
+        s->period_lo = (float)(period - (double)s->period_hi);
+        s->inv_period = (float)(1.0 / period);
+        for (int j = 0; j < d->nodes; j++) /* eq. 8 at gamma_t = 0, p pi - 2 gamma_i, less floor(p / 2) turns */
+            s->offset[j] = (float)(sigma * ((p % 2) * M_PI - 2.0 * (double)d->gamma_i[j]));
+    }
+    d->asin_narrow = m->eta >= 4.0 / 3.0;
 }
 
 /* The largest |phi_hat(p, gamma) - p pi| over gamma in [-pi/2, pi/2] for index eta': the

@@ -91,6 +91,27 @@ HB_INLINE vf vf_exp2_flush(vf t)
     return vf_keep(normal, vf_mul(vf_fma(p, r, vf_set1(1.0f)), scale));
 }
 
+/* 2^-t for t >= 0, exactly 0 from t = 126.5 (2^-127 and below are not formed): the dFH11 kernels'
+ * detector Gaussians 2^-(sigma x)^2 and absorptions 2^-(mu' l log2 e), the hot path of the node sum.
+ * t is clamped to 127 and rounded to k by subtracting it from 1.5 2^23 + 127, whose low bits then
+ * hold 127 - k, the exponent field of 2^-k, one shift away; 2^r for |r| <= 1/2 by a degree-5
+ * minimax polynomial (7.5e-8 relative before rounding; one degree and two operations fewer than
+ * vf_exp2_flush, whose extra digit is below float's rounding). */
+HB_INLINE vf vf_exp2_neg(vf t)
+{
+    t = vf_min(t, vf_set1(127.0f));
+    vf biased = vf_sub(vf_set1(12583039.0f), t); /* 1.5 2^23 + 127 - t, rounded to an integer */
+    vf k = vf_sub(vf_set1(12583039.0f), biased); /* t rounded, exactly */
+    vf r = vf_sub(k, t);                         /* in [-1/2, 1/2], exactly (Sterbenz) */
+    vf p = vf_set1(1.3276472167819943e-3f);
+    p = vf_fma(p, r, vf_set1(9.6755413310213911e-3f));
+    p = vf_fma(p, r, vf_set1(5.5507132728753912e-2f));
+    p = vf_fma(p, r, vf_set1(2.4022119723969178e-1f));
+    p = vf_fma(p, r, vf_set1(6.9314696706526493e-1f));
+    p = vf_fma(p, r, vf_set1(1.0000000716546416f));
+    return vf_mul(p, vi_as_vf(vi_shl(vf_as_vi(biased), 23)));
+}
+
 /* e^x for an argument carried in double precision: the reduction x - k ln2 is
  * done in double, so a large |x| loses nothing to the float rounding of x. */
 HB_INLINE vf vf_exp_dw(vdw x)
@@ -185,6 +206,21 @@ HB_INLINE vf vf_asin_core(vf a, vm *big)
     p = vf_fma(p, z, vf_set1(7.4953002686e-2f));
     p = vf_fma(p, z, vf_set1(1.6666752422e-1f));
     return vf_fma(vf_mul(p, z), s, s);
+}
+
+/* asin(s) for |s| <= 3/4 given z = s^2: s + s z P(z), P of degree 6 fitted (minimax, relative) to
+ * (asin(s) - s) / (s z) on that range, 6e-8 relative before rounding; no square root and no
+ * reflection. dFH11's refraction angle asin(h / eta') stays in it for eta >= 4/3 (eta' >= eta). */
+HB_INLINE vf vf_asin_narrow(vf s, vf z)
+{
+    vf p = vf_set1(0.158733118466f);
+    p = vf_fma(p, z, vf_set1(-0.174444044826f));
+    p = vf_fma(p, z, vf_set1(0.131982111211f));
+    p = vf_fma(p, z, vf_set1(-0.00172306617339f));
+    p = vf_fma(p, z, vf_set1(0.0495011543431f));
+    p = vf_fma(p, z, vf_set1(0.0746580618054f));
+    p = vf_fma(p, z, vf_set1(0.166674719022f));
+    return vf_fma(vf_mul(s, z), p, s);
 }
 
 /* asin(x) for |x| <= 1; for |x| > 1/2, asin(a) = pi/2 - 2 asin(sqrt((1 - a)/2)). */

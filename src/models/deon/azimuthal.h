@@ -92,8 +92,9 @@ HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_med
     m->cos_theta_d = g->cos_theta_d;
     m->inv_eta_prime = vf_div(g->cos_theta_d, vf_sqrt(vf_sub(vf_set1(d->ior.eta * d->ior.eta), g->sin2_theta_d))); /* sec. 5 */
     vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(d->ior.inv_eta2), vf_set1(1.0f)));
+    vf inv_cos_theta_t = vf_div(vf_set1(1.0f), cos_theta_t);
     for (int c = 0; c < channels; c++)
-        m->mu_log2e[c] = vf_div(vf_set1(d->sigma_a_log2e[c]), cos_theta_t);
+        m->mu_log2e[c] = vf_mul(vf_set1(d->sigma_a_log2e[c]), inv_cos_theta_t);
 }
 
 /* What the paths through one offset h = sin(gamma_i) share across channels: the Fresnel factor f
@@ -349,50 +350,104 @@ HB_INLINE void deon_table(const hb_deon *d, const deon_geometry *g, const vf M[H
 #undef HB_TABLE_SLOTS
 }
 
+/* u less whole periods P = 2 pi sigma, into [-P/2, P/2] (wrap_angle in a detector's units). */
+HB_INLINE vf wrap_scaled(const hb_scaled_detector *s, vf u)
+{
+    vf k = vf_sub(vf_fma(u, vf_set1(s->inv_period), vf_set1(12582912.0f)), vf_set1(12582912.0f));
+    return vf_fnma(k, vf_set1(s->period_lo), vf_fnma(k, vf_set1(s->period_hi), u));
+}
+
+/* The distance min(u, P - u) of u in [0, P] to the nearest whole period: |wrap_scaled(u)|. */
+HB_INLINE vf fold_scaled(const hb_scaled_detector *s, vf u)
+{
+    return vf_min(u, vf_add(vf_sub(vf_set1(s->period_hi), u), vf_set1(s->period_lo)));
+}
+
+/* The standard shape's detector pair of lobe p at node j, D_p(phi - Phi) + D_p(-phi - Phi) of eq. 11
+ * without its factor 1 / (beta sqrt(2 pi)): 2^-w1^2 + 2^-w2^2 with w1, w2 = sigma (|phi| -+ Phi(p, h))
+ * wrapped, in the detector's units (hb_scaled_detector; sigma |phi| is in [0, P/2]). At a node
+ * 0 <= gamma_t <= gamma_i <= pi/2, so R's sigma Phi_0 = -2 sigma gamma_i lies in [-P/2, 0] and TT's
+ * sigma Phi_1 in [0, P/2]: one of each pair needs no wrap, the other only a fold from [0, P]. */
+HB_INLINE vf detector_pair_scaled(const hb_scaled_detector *s, int p, int j, vf scaled_phi, vf gamma_t)
+{
+    vf offset = vf_set1(s->offset[j]), w1, w2;
+    if (p == 0) {
+        w1 = fold_scaled(s, vf_sub(scaled_phi, offset)); /* sigma (|phi| + 2 gamma_i) */
+        w2 = vf_add(scaled_phi, offset);                 /* sigma (|phi| - 2 gamma_i) */
+    } else {
+        vf Phi = vf_fma(vf_set1(s->slope), gamma_t, offset); /* sigma Phi(p, h), eq. 8, less whole turns */
+        w1 = vf_sub(scaled_phi, Phi);
+        w2 = vf_add(scaled_phi, Phi);
+        w1 = p == 1 ? w1 : wrap_scaled(s, w1);
+        w2 = p == 1 ? fold_scaled(s, w2) : wrap_scaled(s, w2);
+    }
+    return vf_add(vf_exp2_neg(vf_mul(w1, w1)), vf_exp2_neg(vf_mul(w2, w2)));
+}
+
 /* f = sum_p M_p N_p for the standard shape with M_p folded into the sum over nodes, so that three
- * accumulators replace one N per lobe and channel. Per node j, with
- * s_p = weight_j M_p A_f[p] [D_p(phi - Phi_p) + D_p(-phi - Phi_p)] (0 for a lobe the plan leaves out)
- * and the residual's q = weight_j M_res A_f[4] / pi, the channel's sum over p of A(p, h) M_p D_p
- * (eqs. 10, 13) is s_0 + T (s_1 + T (s_2 + T (s_3 + T q / (1 - f T)))). M is per M_p group (the
- * group leader's index); with pdf, the sampling density's node sum as azimuthal_deon_shaped forms it. */
+ * accumulators replace one N per lobe and channel. Per node j, with the weighted attenuations
+ * a_p = weight_j A_f[p] (eq. 13 without T), pairs of eq. 11 and M'_p = M_p / (beta_p sqrt(2 pi)),
+ * s_p = a_p M'_p pair_p (0 for a lobe the plan leaves out) and the residual's q = a_4 M_res / pi,
+ * the channel's sum over p of A(p, h) M_p D_p (eqs. 10, 13) is
+ * s_0 + T (s_1 + T (s_2 + T (s_3 + T q / (1 - f T)))). The node's f (eq. 14), T (sec. 6, with
+ * 2 cos(gamma_t) per traversal, SPEC.md 4) and gamma_t are formed once for every lobe. M is per M_p
+ * group (the group leader's index); with pdf, the sampling density's node sum as
+ * azimuthal_deon_shaped forms it. */
 HB_INLINE void deon_fused_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
                                  vf out[3], deon_pdf_terms *pdf, deon_shape shape)
 {
     const int channels = shape.channels;
     deon_medium medium;
     deon_medium_of(d, g, &medium, channels);
-    vf M_lobe[HB_MAX_LOBES + 1];
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        M_lobe[p] = deon_lobe_on(d, p, shape) ? M[d->m_group[p]] : vf_set1(0.0f);
+    vf mu2[3], M_scaled[HB_STANDARD_PMAX + 1], scaled_phi[HB_STANDARD_PMAX + 1], abs_phi = vf_abs(g->phi);
+    HB_UNROLL
+    for (int c = 0; c < channels; c++)
+        mu2[c] = vf_add(medium.mu_log2e[c], medium.mu_log2e[c]); /* two cos(gamma_t) per traversal */
+    HB_UNROLL
+    for (int p = 0; p <= HB_STANDARD_PMAX; p++) {
+        M_scaled[p] = deon_lobe_on(d, p, shape) ? vf_mul(M[d->m_group[p]], vf_set1(d->detector[p].gauss_norm))
+                                                : vf_set1(0.0f);
+        scaled_phi[p] = vf_mul(abs_phi, vf_set1(d->scaled[p].scale));
+    }
+    vf M_residual = deon_lobe_on(d, HB_LOBE_RESIDUAL, shape)
+                        ? vf_mul(M[d->m_group[HB_LOBE_RESIDUAL]], vf_set1(HB_RESIDUAL_DETECTOR_PAIR))
+                        : vf_set1(0.0f);
     vf sum_R = vf_set1(0.0f), sum[3] = { vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f) };
     if (pdf)
         pdf->sum = vf_set1(0.0f);
     for (int j = 0; j < d->nodes; j++) {
-        deon_paths paths;
-        deon_node_paths(d, &medium, vf_set1(d->h[j]), vf_set1(d->gamma_i[j]), vf_set1(d->cos_gamma_i[j]), &paths,
-                        shape);
-        vf weight = vf_set1(d->weight[j]), pair[HB_LOBE_RESIDUAL + 1], s[HB_STANDARD_PMAX + 1];
+        vf sin_gamma_t = vf_mul(vf_set1(d->h[j]), medium.inv_eta_prime);
+        vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
+        vf gamma_t = d->asin_narrow ? vf_asin_narrow(sin_gamma_t, vf_mul(sin_gamma_t, sin_gamma_t)) : vf_asin(sin_gamma_t);
+        vf f = fresnel_dielectric(vf_mul(medium.cos_theta_d, vf_set1(d->cos_gamma_i[j])), &d->ior); /* eq. 14 */
+        vf weight = vf_set1(d->weight[j]), one_minus_f = vf_sub(vf_set1(1.0f), f), a[HB_STANDARD_PMAX + 2];
+        a[0] = vf_mul(weight, f);
+        a[1] = vf_mul(vf_mul(one_minus_f, one_minus_f), weight); /* (1 - f)^2 f^(p-1), eq. 13 */
+        HB_UNROLL
+        for (int p = 2; p <= HB_STANDARD_PMAX + 1; p++)
+            a[p] = vf_mul(a[p - 1], f);
+        vf T[3], pair[HB_STANDARD_PMAX + 1], s[HB_STANDARD_PMAX + 1];
+        HB_UNROLL
+        for (int c = 0; c < channels; c++)
+            T[c] = vf_exp2_neg(vf_mul(mu2[c], cos_gamma_t));
         HB_UNROLL
         for (int p = 0; p <= HB_STANDARD_PMAX; p++) {
-            pair[p] = deon_lobe_on(d, p, shape) ? detector_pair(&d->detector[p], g->phi, paths.Phi[p], NULL, shape)
-                                            : vf_set1(0.0f);
-            s[p] = vf_mul(vf_mul(weight, paths.A_f[p]), vf_mul(M_lobe[p], pair[p]));
+            pair[p] = deon_lobe_on(d, p, shape) ? detector_pair_scaled(&d->scaled[p], p, j, scaled_phi[p], gamma_t)
+                                                : vf_set1(0.0f);
+            s[p] = vf_mul(a[p], vf_mul(M_scaled[p], pair[p]));
         }
-        pair[HB_LOBE_RESIDUAL] = vf_set1(HB_RESIDUAL_DETECTOR_PAIR);
-        vf q = vf_mul(vf_mul(weight, paths.A_f[HB_STANDARD_PMAX + 1]),
-                      vf_mul(M_lobe[HB_LOBE_RESIDUAL], pair[HB_LOBE_RESIDUAL]));
+        vf q = vf_mul(a[HB_STANDARD_PMAX + 1], M_residual);
         sum_R = vf_add(sum_R, s[0]);
         vf series[3];
         HB_UNROLL
         for (int c = 0; c < channels; c++) {
-            vf T = paths.T[c];
-            series[c] = residual_series(paths.f, T);
-            vf inner = vf_fma(T, vf_mul(q, series[c]), s[3]);
-            inner = vf_fma(T, inner, s[2]);
-            inner = vf_fma(T, inner, s[1]);
-            sum[c] = vf_fma(T, inner, sum[c]);
+            series[c] = residual_series(f, T[c]);
+            vf inner = vf_fma(T[c], vf_mul(q, series[c]), s[3]);
+            inner = vf_fma(T[c], inner, s[2]);
+            inner = vf_fma(T[c], inner, s[1]);
+            sum[c] = vf_fma(T[c], inner, sum[c]);
         }
-        if (pdf) { /* m_p = M_p times A(p, h) averaged over the channels */
+        if (pdf) { /* m_p = M_p times A(p, h) averaged over the channels (the node's weight cancels) */
             vf A[3], T_power[3], mass = vf_set1(0.0f), detected = vf_set1(0.0f);
             for (int c = 0; c < 3; c++)
                 T_power[c] = vf_set1(1.0f);
@@ -400,13 +455,15 @@ HB_INLINE void deon_fused_shaped(const hb_deon *d, const deon_geometry *g, const
                 for (int c = 0; c < 3; c++) {
                     int k = channels == 1 ? 0 : c;
                     vf series_k = p == HB_STANDARD_PMAX + 1 ? series[k] : vf_set1(1.0f);
-                    A[c] = p == 0 ? paths.f : vf_mul(vf_mul(paths.A_f[p], T_power[c]), series_k);
-                    T_power[c] = vf_mul(T_power[c], paths.T[k]);
+                    A[c] = vf_mul(vf_mul(a[p], T_power[c]), series_k);
+                    T_power[c] = vf_mul(T_power[c], T[k]);
                 }
                 int lobe = p == HB_STANDARD_PMAX + 1 ? HB_LOBE_RESIDUAL : p;
-                vf m = vf_mul(M_lobe[lobe], channel_mean(A));
+                vf m = deon_lobe_on(d, lobe, shape) ? vf_mul(M[d->m_group[lobe]], channel_mean(A)) : vf_set1(0.0f);
+                vf detector = lobe == HB_LOBE_RESIDUAL ? vf_set1(HB_RESIDUAL_DETECTOR_PAIR)
+                                                       : vf_mul(pair[lobe], vf_set1(d->detector[lobe].gauss_norm));
                 mass = vf_add(mass, m);
-                detected = vf_fma(m, pair[lobe], detected);
+                detected = vf_fma(m, detector, detected);
             }
             pdf->sum = vf_fma(vf_set1(d->node_half_probability[j]),
                               vf_div(detected, vf_max(mass, vf_set1(1e-37f))), pdf->sum);
@@ -471,7 +528,8 @@ HB_INLINE void deon_geometry_angles(const hb_deon *d, vf theta_i, vf phi_i, vf t
 {
     vf sin_td, cos_td;
     g->phi = wrap_angle(vf_sub(phi_o, phi_i));
-    g->cos_phi = d->np_table ? vf_set1(1.0f) : vf_cos(g->phi); /* a table reads |phi| only */
+    /* read by Fourier detectors and eq. 12 only (a table reads |phi|, the standard shape sigma |phi|) */
+    g->cos_phi = !d->np_table && (d->fourier_terms > 0 || !d->r_fresnel_offset) ? vf_cos(g->phi) : vf_set1(1.0f);
     vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &cos_td);
     g->sin2_theta_d = vf_mul(sin_td, sin_td);
     g->cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
@@ -508,7 +566,7 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     vf sin_part = vf_fnma(wo[2], wi[0], vf_mul(wo[0], wi[2]));
     vf cos_part = vf_fma(wo[0], wi[0], vf_mul(wo[2], wi[2]));
     g.phi = vf_atan2(sin_part, cos_part);
-    g.cos_phi = d->np_table ? vf_set1(1.0f) : vf_cos(g.phi); /* a table reads |phi| only */
+    g.cos_phi = !d->np_table && d->fourier_terms > 0 ? vf_cos(g.phi) : vf_set1(1.0f); /* Fourier detectors only */
     vf cos_diff = vf_fma(ci, co, vf_mul(si, so)); /* cos(theta_o - theta_i) = cos(2 theta_d) */
     g.cos_theta_d = vf_sqrt(vf_max(vf_fma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
     g.sin2_theta_d = vf_max(vf_fnma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f));
