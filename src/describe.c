@@ -52,11 +52,13 @@ static void describe_deon(text *t, const hb_plan *plan)
         plan->material.alpha == 0.0 ? "; no tilt" : "");
     if (d->np_table)
         say(t, "N_p (eq. 10): bilinear from a %d x %d table per M_p group over sqrt(cos theta_d) x |phi| "
-               "(midpoint error %.2g of each group's peak), built with the order-%d Gauss-Legendre rule\n",
-            d->table_cd, d->table_phi, plan->table_error, d->order);
+               "(midpoint error %.2g of each group's peak), built with the order-%d Gauss-Legendre rule%s\n",
+            d->table_cd, d->table_phi, plan->table_error, d->order, d->mapped ? " (mapped)" : "");
     else
-        say(t, "N_p (eq. 10): order-%d Gauss-Legendre rule in gamma_i across the fibre, %d nodes per sample "
-               "(gamma_i >= 0, detected at +-phi), quality %s\n", d->order, d->nodes, quality_names[plan->options.quality]);
+        say(t, "N_p (eq. 10): order-%d Gauss-Legendre rule %s across the fibre, %d nodes per sample "
+               "(gamma_i >= 0, detected at +-phi), quality %s\n", d->order,
+            d->mapped ? "in u, gamma_i = (pi/2) asin(0.8 u) / asin(0.8)" : "in gamma_i", d->nodes,
+            quality_names[plan->options.quality]);
     for (int p = 0; p <= d->pmax && p < HB_MAX_LOBES; p++)
         if (d->lobes >> p & 1u)
             say(t, d->detector[p].fourier ? "  detector %s (eq. 11, beta_n %.3g): Fourier series, %d terms\n"

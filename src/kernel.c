@@ -300,12 +300,13 @@ HB_INLINE vf math_apply(hb_math_fn fn, vf a, vf b)
     switch (fn) {
     case HB_FN_EXP: return vf_exp(a);
     case HB_FN_EXP_FLUSH: return vf_exp_flush(a);
-    case HB_FN_EXP2_FLUSH: return vf_exp2_flush(a);
+    case HB_FN_EXP2_NEG: return vf_exp2_neg(a);
     case HB_FN_LOG: return vf_log(a);
     case HB_FN_LOG1P: return vf_log1p(a);
     case HB_FN_SIN: return vf_sin(a);
     case HB_FN_COS: return vf_cos(a);
     case HB_FN_ASIN: return vf_asin(a);
+    case HB_FN_ASIN_NARROW: return vf_asin_narrow(a, vf_mul(a, a));
     case HB_FN_ACOS: return vf_acos(a);
     case HB_FN_ATAN2: return vf_atan2(a, b);
     case HB_FN_SQRT: return vf_sqrt(a);

@@ -138,7 +138,8 @@ typedef struct hb_deon {
     unsigned lobes; /* bits p <= pmax, and HB_LOBE_RESIDUAL */
     int pmax;
     int channels;   /* 3, or 1 for a grey fibre (sigma_a the same in every channel: one computed, copied) */
-    int order; /* the Gauss-Legendre order in gamma_i over [-pi/2, pi/2] */
+    int order; /* the Gauss-Legendre order across the fibre: in gamma_i over [-pi/2, pi/2], or mapped */
+    int mapped; /* the quality rules' nodes, mapped (plan.c, HB_NODE_MAP); 0: the paper's rule in gamma_i */
     int standard; /* the default shape: pmax 3 (any lobe subset), every detector the nearest Gaussian
                    * alone, corrected absorption, R Fresnel per offset (azimuthal.h, deon_shape) */
     int nodes; /* its nodes with gamma_i >= 0: (order + 1) / 2 */
@@ -183,7 +184,7 @@ static inline int hb_deon_group_leader(const hb_deon *d, int p) { return hb_deon
 
 /* Functions of src/math/vmath.h exported for the accuracy tests. */
 typedef enum hb_math_fn {
-    HB_FN_EXP, HB_FN_EXP_FLUSH, HB_FN_EXP2_FLUSH, HB_FN_LOG, HB_FN_LOG1P, HB_FN_SIN, HB_FN_COS, HB_FN_ASIN, HB_FN_ACOS,
+    HB_FN_EXP, HB_FN_EXP_FLUSH, HB_FN_EXP2_NEG, HB_FN_LOG, HB_FN_LOG1P, HB_FN_SIN, HB_FN_COS, HB_FN_ASIN, HB_FN_ASIN_NARROW, HB_FN_ACOS,
     HB_FN_ATAN2, HB_FN_SQRT, HB_FN_I0, HB_FN_I0E, HB_FN_LOG_I0, HB_FN_COUNT
 } hb_math_fn;
 

@@ -260,21 +260,32 @@ static hb_status resolve_isa(hb_isa requested, hb_isa *isa, hb_error *error)
     return HB_OK;
 }
 
-/* Each quality level is an error target for N_p. Gauss-Legendre in gamma needs a node
- * count inversely proportional to the azimuthal roughness: measured against the
- * reference (white and brown hair, beta_n 0.02..1), nodes * beta_n = 2.8 keeps the
- * error under 1e-2, 3.6 under 1e-3 and 5 under 1e-4 (README, "Quality levels"), nodes
- * being the rule's points with gamma_i >= 0 (order 2 nodes, deon_nodes below). */
+/* Each quality level is an error target for f (SPEC.md section 6): 1e-2, 1e-3, 1e-4. The quality
+ * rules integrate N_p by Gauss-Legendre in a mapped variable (deon_nodes), whose node count the
+ * narrowest lobe sets: R's exit azimuth -2 gamma_i moves twice as fast as gamma_i, so its detector
+ * is beta_n / 2 wide in gamma_i. Measured against the reference (white, blond, brown and black hair,
+ * beta_m 0.05 and 0.3, beta_n 0.02..1, 512 directions), nodes = ceil(c / beta_n + d), at least
+ * min_nodes, meets each target with one to four nodes to spare (none at a few beta_n of 0.4..0.7)
+ * (README, "Quality levels"), nodes being the rule's points with gamma_i >= 0 (order 2 nodes). */
 static const struct {
-    double nodes_times_beta; /* nodes = ceil(this / smallest beta_n of the plan's lobes) */
+    double c, d; /* nodes = ceil(c / smallest beta_n of the plan's lobes + d) */
     int min_nodes;
     double detector_tolerance;
 } quality_levels[] = {
-    [HB_QUALITY_FAST] = { 2.8, 4, 1e-3 },
-    [HB_QUALITY_BALANCED] = { 3.6, 6, 1e-4 },
-    [HB_QUALITY_HIGH] = { 5.0, 8, 1e-6 },
-    [HB_QUALITY_REFERENCE] = { 5.0, 8, 1e-6 }, /* unused: the reference converges on its own */
+    [HB_QUALITY_FAST] = { 2.25, 1.0, 5, 1e-3 },
+    [HB_QUALITY_BALANCED] = { 2.7, 1.0, 8, 1e-4 },
+    [HB_QUALITY_HIGH] = { 3.05, 1.5, 10, 1e-6 },
+    [HB_QUALITY_REFERENCE] = { 3.05, 1.5, 10, 1e-6 }, /* unused: the reference converges on its own */
 };
+
+/* The map of the quality rules' nodes: gamma_i = (pi/2) asin(a u) / asin(a) for Gauss-Legendre
+ * points u in [-1, 1] (Kosloff and Tal-Ezer's map, J. Comput. Phys. 104, 1993), which spreads the
+ * points that Gauss-Legendre crowds toward h = +-1 over the middle of the fibre, where R's narrow
+ * detector moves; a = 0.8 keeps the mapped integrand analytic well beyond [-1, 1] (its branch points
+ * at u = +-1.25), so convergence stays geometric. At beta_n 0.3 it needs 8 / 9 / 11 nodes for
+ * 1e-2 / 1e-3 / 1e-4 where Gauss-Legendre in gamma_i needs 9 / 11 / 12 (the rules below take 9 / 10 /
+ * 12, the paper's order 35 is 18); at beta_n 0.02, 110 / 132 / 151 against 137 / 155 / 175. */
+#define HB_NODE_MAP 0.8
 
 /* dFH11 sec. 6 shifts: M_p is evaluated at theta_o - alpha_p with alpha_R = -2 alpha
  * (the R highlight moves toward the root for alpha > 0), alpha_TT = alpha, alpha_TRT = 3 alpha
@@ -346,19 +357,24 @@ static void derive_detector(hb_detector *d, double beta, double tol)
 
 /* eq. 10's integral over h in [-1, 1] by the order-n Gauss-Legendre rule in gamma_i over
  * [-pi/2, pi/2] (h = sin gamma_i, so the h^(1/2) behaviour of gamma_i at h = +-1 is smooth; the
- * weight carries dh = cos gamma_i dgamma_i and eq. 10's 1/2). By the symmetry of dFH11 sec. 6
+ * weight carries dh = cos gamma_i dgamma_i and eq. 10's 1/2), or with `mapped` in u of
+ * HB_NODE_MAP (the weight then carries dgamma_i / du too). By the symmetry of dFH11 sec. 6
  * (A even in h, Phi odd), nodes +-gamma pair into one node at gamma >= 0 detected at phi and -phi:
  * (n + 1) / 2 nodes are evaluated, the centre (n odd) with half its weight. The paper's
- * "quadrature of order 35" is n = 35: 18 nodes. */
-static void deon_nodes(hb_deon *d, int n)
+ * "quadrature of order 35" is n = 35 unmapped: 18 nodes. */
+static void deon_nodes(hb_deon *d, int n, int mapped)
 {
     double gamma[HB_MAX_QUADRATURE_ORDER], w[HB_MAX_QUADRATURE_ORDER];
-    hb_gauss_legendre(n, -M_PI_2, M_PI_2, gamma, w);
+    hb_gauss_legendre(n, -1.0, 1.0, gamma, w);
     d->order = n;
+    d->mapped = mapped;
     d->nodes = (n + 1) / 2;
+    const double a = HB_NODE_MAP, asin_a = asin(a);
     for (int j = 0; j < d->nodes; j++) {
         int k = n / 2 + j, centre = (n & 1) && j == 0;
-        double g = centre ? 0.0 : gamma[k]; /* the rule's centre is 0 up to rounding */
+        double u = centre ? 0.0 : gamma[k]; /* the rule's centre is 0 up to rounding */
+        double g = mapped ? M_PI_2 * asin(a * u) / asin_a : M_PI_2 * u;
+        w[k] *= mapped ? M_PI_2 * a / (asin_a * sqrt(1.0 - a * a * u * u)) : M_PI_2; /* dgamma_i / du */
         d->gamma_i[j] = (float)g;
         d->cos_gamma_i[j] = (float)cos(g);
         d->h[j] = (float)sin(g);
@@ -414,10 +430,13 @@ static void derive_deon(hb_plan *plan)
     double beta_min = HUGE_VAL;
     for (int p = 0; p <= o->pmax; p++)
         beta_min = fmin(beta_min, plan->beta_n[p]);
-    int nodes = (int)ceil(quality_levels[o->quality].nodes_times_beta / beta_min);
+    double rule = quality_levels[o->quality].c / beta_min + quality_levels[o->quality].d;
+    int nodes = rule > HB_MAX_NODES ? HB_MAX_NODES : (int)ceil(rule - 1e-9); /* 1e-9: c / beta is exact only in reals */
     nodes = nodes < quality_levels[o->quality].min_nodes ? quality_levels[o->quality].min_nodes : nodes;
-    nodes = nodes > HB_MAX_NODES ? HB_MAX_NODES : nodes;
-    deon_nodes(d, o->quadrature_order > 0 ? o->quadrature_order : 2 * nodes);
+    if (o->quadrature_order > 0)
+        deon_nodes(d, o->quadrature_order, 0); /* the paper's rule, of the caller's order */
+    else
+        deon_nodes(d, 2 * nodes, 1);
     for (int p = 0; p <= HB_STANDARD_PMAX && p <= o->pmax; p++) {
         hb_scaled_detector *s = &d->scaled[p];
         double sigma = sqrt(M_LOG2E / (2.0 * plan->beta_n[p] * plan->beta_n[p])), period = 2.0 * M_PI * sigma;

@@ -71,32 +71,14 @@ HB_INLINE vf vf_exp_flush(vf x)
     return vf_keep(normal, vf_mul(vf_exp_reduced(r), scale));
 }
 
-/* 2^t for t <= 127, 0 below -126 (no denormal is formed): the kernels' detectors and absorptions,
- * whose exponents the plan scales by log2(e) in advance. t is rounded to k by adding 1.5 2^23
- * (exact for |t| < 2^22; the sum's low bits are k, so 2^k's exponent field is one integer add and
- * shift away), 2^r for |r| <= 1/2 by the Cephes exp2f polynomial (2e-9 relative before rounding). */
-HB_INLINE vf vf_exp2_flush(vf t)
-{
-    vm normal = vf_ge(t, vf_set1(-126.0f));
-    t = vf_max(t, vf_set1(-126.0f));
-    vf shifted = vf_add(t, vf_set1(12582912.0f));
-    vf r = vf_sub(t, vf_sub(shifted, vf_set1(12582912.0f)));
-    vf p = vf_set1(1.535336188319500e-4f);
-    p = vf_fma(p, r, vf_set1(1.339887440266574e-3f));
-    p = vf_fma(p, r, vf_set1(9.618437357674640e-3f));
-    p = vf_fma(p, r, vf_set1(5.550332471162809e-2f));
-    p = vf_fma(p, r, vf_set1(2.402264791363012e-1f));
-    p = vf_fma(p, r, vf_set1(6.931472028550421e-1f));
-    vf scale = vi_as_vf(vi_shl(vi_add(vf_as_vi(shifted), vi_set1(127)), 23));
-    return vf_keep(normal, vf_mul(vf_fma(p, r, vf_set1(1.0f)), scale));
-}
-
 /* 2^-t for t >= 0, exactly 0 from t = 126.5 (2^-127 and below are not formed): the dFH11 kernels'
- * detector Gaussians 2^-(sigma x)^2 and absorptions 2^-(mu' l log2 e), the hot path of the node sum.
- * t is clamped to 127 and rounded to k by subtracting it from 1.5 2^23 + 127, whose low bits then
- * hold 127 - k, the exponent field of 2^-k, one shift away; 2^r for |r| <= 1/2 by a degree-5
- * minimax polynomial (7.5e-8 relative before rounding; one degree and two operations fewer than
- * vf_exp2_flush, whose extra digit is below float's rounding). */
+ * detector Gaussians 2^-(sigma x)^2 and absorptions 2^-(mu' l log2 e), whose exponents the plan
+ * scales by log2(e) in advance; the hot path of the node sum. t is clamped to 127 and rounded to k
+ * by subtracting it from 1.5 2^23 + 127 (exact for t < 2^22): the difference's low bits then hold
+ * 127 - k, the exponent field of 2^-k, one shift away. 2^r for |r| <= 1/2 by a degree-5 minimax
+ * polynomial, 7.5e-8 relative before rounding: 2.9 ulp in all (1.3 of them where 2^r < 1 and the
+ * ulp is finer). Degree 6 gives 1.2 ulp for 4.5% of the balanced dFH11 kernel's time, digits far
+ * below every quality's error target (README, "Vector math accuracy"). */
 HB_INLINE vf vf_exp2_neg(vf t)
 {
     t = vf_min(t, vf_set1(127.0f));
@@ -393,7 +375,7 @@ HB_INLINE vf vf_normal_quantile(vf u)
 }
 
 /* x - 2 pi k in [-pi, pi] for |x| < 2^24, with 2 pi split in two floats; k = x / 2 pi rounded by
- * adding 1.5 2^23 (as in vf_exp2_flush: two additions instead of a multiply and a rounding). */
+ * adding 1.5 2^23 (as in vf_exp2_neg: two additions instead of a multiply and a rounding). */
 HB_INLINE vf wrap_angle(vf x)
 {
     vf k = vf_sub(vf_fma(x, vf_set1(0.159154943f), vf_set1(12582912.0f)), vf_set1(12582912.0f));

@@ -56,12 +56,12 @@ HB_INLINE vf detector_pair(const hb_detector *d, vf phi, vf Phi, const vf *cos_n
         return sum;
     }
     vf x1 = wrap_angle(vf_sub(phi, Phi)), x2 = wrap_angle(vf_neg(vf_add(phi, Phi)));
-    vf sum = vf_set1(0.0f), exponent = vf_set1(-d->log2e_over_two_beta2);
+    vf sum = vf_set1(0.0f), exponent = vf_set1(d->log2e_over_two_beta2);
     int terms = shape.standard ? 0 : d->terms;
     for (int k = -terms; k <= terms; k++) {
         vf d1 = vf_sub(x1, vf_set1(HB_TWO_PI_F * (float)k)), d2 = vf_sub(x2, vf_set1(HB_TWO_PI_F * (float)k));
-        sum = vf_add(sum, vf_exp2_flush(vf_mul(vf_mul(d1, d1), exponent)));
-        sum = vf_add(sum, vf_exp2_flush(vf_mul(vf_mul(d2, d2), exponent)));
+        sum = vf_add(sum, vf_exp2_neg(vf_mul(vf_mul(d1, d1), exponent)));
+        sum = vf_add(sum, vf_exp2_neg(vf_mul(vf_mul(d2, d2), exponent)));
     }
     return vf_mul(sum, vf_set1(d->gauss_norm));
 }
@@ -120,7 +120,7 @@ HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf 
                                                      : vf_add(cos_gamma_t, cos_gamma_t);
     HB_UNROLL
     for (int c = 0; c < shape.channels; c++)
-        out->T[c] = vf_exp2_flush(vf_neg(vf_mul(m->mu_log2e[c], path)));
+        out->T[c] = vf_exp2_neg(vf_mul(m->mu_log2e[c], path));
     out->Phi[0] = vf_mul(vf_set1(-2.0f), gamma_i); /* eq. 8, p = 0 */
     out->A_f[0] = f;
     out->A_f[1] = vf_mul(vf_sub(vf_set1(1.0f), f), vf_sub(vf_set1(1.0f), f)); /* (1 - f)^2 f^(p-1), eq. 13 */
