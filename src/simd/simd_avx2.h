@@ -97,29 +97,19 @@ HB_INLINE vf vf_gather(const float *base, vi idx)
     vf r = { _mm256_i32gather_ps(base, idx.lo, 4), _mm256_i32gather_ps(base, idx.hi, 4) };
     return r;
 }
-/* Eight lanes' four floats from i[0..7]: lanes k and k + 4 share a register's two 128-bit lanes,
- * transposed in place. */
-HB_INLINE void hb_gather4_half(const float *base, const int32_t *i, __m256 out[4])
-{
-#define HB_LANE_PAIR(k) _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(base + i[k])), _mm_loadu_ps(base + i[k + 4]), 1)
-    __m256 a[4] = { HB_LANE_PAIR(0), HB_LANE_PAIR(1), HB_LANE_PAIR(2), HB_LANE_PAIR(3) };
-#undef HB_LANE_PAIR
-    HB_TRANSPOSE4_IN_LANES(__m256, _mm256, a, out);
-}
-/* out[j], lane l = base[idx_l + j], j < 4: 128-bit loads and in-lane transposes, no gather (simd.h). */
+/* out[j], lane l = base[idx_l + j], j < 4: 128-bit loads and in-lane transposes, no gather (simd.h).
+ * In each half, lanes k and k + 4 share a register's two 128-bit lanes. */
 HB_INLINE void vf_gather4(const float *base, vi idx, vf out[4])
 {
     int32_t i[16];
     _mm256_storeu_si256((__m256i *)i, idx.lo);
     _mm256_storeu_si256((__m256i *)(i + 8), idx.hi);
-    __m256 lo[4], hi[4];
-    hb_gather4_half(base, i, lo);
-    hb_gather4_half(base, i + 8, hi);
-    HB_UNROLL
-    for (int j = 0; j < 4; j++) {
-        out[j].lo = lo[j];
-        out[j].hi = hi[j];
-    }
+#define HB_LANE_PAIR(k) _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(base + i[k])), _mm_loadu_ps(base + i[k + 4]), 1)
+    HB_TRANSPOSE4_IN_LANES(__m256, _mm256, HB_LANE_PAIR(0), HB_LANE_PAIR(1), HB_LANE_PAIR(2), HB_LANE_PAIR(3), out[0].lo,
+                           out[1].lo, out[2].lo, out[3].lo);
+    HB_TRANSPOSE4_IN_LANES(__m256, _mm256, HB_LANE_PAIR(8), HB_LANE_PAIR(9), HB_LANE_PAIR(10), HB_LANE_PAIR(11), out[0].hi,
+                           out[1].hi, out[2].hi, out[3].hi);
+#undef HB_LANE_PAIR
 }
 
 /* Doubles: each float half widens to two __m256d, so vdw is a pair of such pairs. */

@@ -71,9 +71,9 @@ HB_INLINE void vf_gather4(const float *base, vi idx, vf out[4])
                                                              _mm_loadu_ps(base + i[k + 4]), 1),                \
                                           _mm_loadu_ps(base + i[k + 8]), 2),                                   \
                        _mm_loadu_ps(base + i[k + 12]), 3)
-    __m512 a[4] = { HB_LANE_QUAD(0), HB_LANE_QUAD(1), HB_LANE_QUAD(2), HB_LANE_QUAD(3) };
+    HB_TRANSPOSE4_IN_LANES(__m512, _mm512, HB_LANE_QUAD(0), HB_LANE_QUAD(1), HB_LANE_QUAD(2), HB_LANE_QUAD(3), out[0], out[1],
+                           out[2], out[3]);
 #undef HB_LANE_QUAD
-    HB_TRANSPOSE4_IN_LANES(__m512, _mm512, a, out);
 }
 
 #define HB_PD_T __m512d

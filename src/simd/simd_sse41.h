@@ -81,8 +81,8 @@ HB_INLINE void vf_gather4(const float *base, vi idx, vf out[4])
 {
     int32_t i[4];
     _mm_storeu_si128((__m128i *)i, idx);
-    vf a[4] = { _mm_loadu_ps(base + i[0]), _mm_loadu_ps(base + i[1]), _mm_loadu_ps(base + i[2]), _mm_loadu_ps(base + i[3]) };
-    HB_TRANSPOSE4_IN_LANES(__m128, _mm, a, out);
+    HB_TRANSPOSE4_IN_LANES(__m128, _mm, _mm_loadu_ps(base + i[0]), _mm_loadu_ps(base + i[1]), _mm_loadu_ps(base + i[2]),
+                           _mm_loadu_ps(base + i[3]), out[0], out[1], out[2], out[3]);
 }
 
 HB_INLINE vdw vdw_from_vf(vf a)
