@@ -385,7 +385,7 @@ static int run_once(const char *name, long repeats)
 
 /* Multi-core scaling: threads in the bench only (the library never starts any), each pinned to its
  * core, evaluating the same immutable plan into its own output. */
-enum { SCALING_REPEATS = 20, MAX_THREADS = 64 };
+enum { SCALING_REPEATS = 200, MAX_THREADS = 64 };
 
 typedef struct worker {
     const hb_plan *plan;

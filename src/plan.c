@@ -265,7 +265,7 @@ static hb_status resolve_isa(hb_isa requested, hb_isa *isa, hb_error *error)
  * narrowest lobe sets: R's exit azimuth -2 gamma_i moves twice as fast as gamma_i, so its detector
  * is beta_n / 2 wide in gamma_i. Measured against the reference (white, blond, brown and black hair,
  * beta_m 0.05 and 0.3, beta_n 0.02..1, 512 directions), nodes = ceil(c / beta_n + d), at least
- * min_nodes, meets each target with one to four nodes to spare (none at a few beta_n of 0.4..0.7)
+ * min_nodes, meets each target with one to four nodes to spare (none for fast at 0.7, balanced at 0.4)
  * (README, "Quality levels"), nodes being the rule's points with gamma_i >= 0 (order 2 nodes). */
 static const struct {
     double c, d; /* nodes = ceil(c / smallest beta_n of the plan's lobes + d) */
