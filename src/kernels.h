@@ -175,7 +175,6 @@ typedef struct hb_deon {
 
 /* Whether lobe p (an order up to pmax, or the residual) is in the plan's dFH11 sum, and whether it
  * is the first lobe of its M_p group (the one whose M_p is evaluated). */
-
 static inline int hb_deon_lobe_on(const hb_deon *d, int p)
 {
     return (d->lobes >> p & 1u) && (p <= d->pmax || p == HB_LOBE_RESIDUAL);

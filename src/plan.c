@@ -283,8 +283,8 @@ static const struct {
  * points that Gauss-Legendre crowds toward h = +-1 over the middle of the fibre, where R's narrow
  * detector moves; a = 0.8 keeps the mapped integrand analytic well beyond [-1, 1] (its branch points
  * at u = +-1.25), so convergence stays geometric. At beta_n 0.3 it needs 8 / 9 / 11 nodes for
- * 1e-2 / 1e-3 / 1e-4 where Gauss-Legendre in gamma_i needs 9 / 11 / 12 (the rules below take 9 / 10 /
- * 12, the paper's order 35 is 18); at beta_n 0.02, 110 / 132 / 151 against 128 / 153 / 175. */
+ * 1e-2 / 1e-3 / 1e-4 where Gauss-Legendre in gamma_i needs 9 / 11 / 12 (the quality rules above take
+ * 9 / 10 / 12, the paper's order 35 is 18); at beta_n 0.02, 110 / 132 / 151 against 128 / 153 / 175. */
 #define HB_NODE_MAP 0.8
 
 /* dFH11 sec. 6 shifts: M_p is evaluated at theta_o - alpha_p with alpha_R = -2 alpha
