@@ -13,14 +13,31 @@
 
 #include "hairbsdf.h"
 #include "plot.h"
+#include "readme.h"
 
 enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
+
+#if defined(__clang__)
+#define HB_COMPILER "clang " __clang_version__
+#elif defined(__GNUC__)
+#define HB_COMPILER "gcc " __VERSION__
+#else
+#define HB_COMPILER "an unnamed compiler"
+#endif
+#if defined(__x86_64__)
+#define HB_ARCH_NAME "an x86-64 CPU"
+#elif defined(__aarch64__)
+#define HB_ARCH_NAME "an AArch64 CPU"
+#else
+#define HB_ARCH_NAME "a CPU"
+#endif
 
 /* What a row times: hb_eval_angles, hb_sample_angles or hb_pdf_angles. */
 typedef enum bench_op { OP_EVAL, OP_SAMPLE, OP_PDF } bench_op;
 
 typedef struct row {
     const char *model, *term, *variant;
+    int config; /* index in configs[] */
     hb_isa isa;
     double min_ns, median_ns, max_rel_err;
 } row;
@@ -119,8 +136,9 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, row
     return 1;
 }
 
-/* Budget lines: model term variant isa ns. Returns the number of rows over budget. */
-static int check_budgets(const char *path, const row *rows, int nrows)
+/* Budget lines: model term variant isa ns. Writes a verdict per row to verdicts and returns the
+ * number of rows over budget. */
+static int check_budgets(const char *path, const row *rows, int nrows, FILE *verdicts)
 {
     FILE *f = fopen(path, "r");
     if (!f) {
@@ -141,18 +159,18 @@ static int check_budgets(const char *path, const row *rows, int nrows)
                 continue;
             checked++;
             if (r->min_ns > budget) {
-                printf("OVER BUDGET: %s %s %s on %s: %.2f ns/sample > %.2f\n", model, term, variant, isa, r->min_ns,
-                       budget);
+                fprintf(verdicts, "OVER BUDGET: %s %s %s on %s: %.2f ns/sample > %.2f\n", model, term, variant, isa,
+                        r->min_ns, budget);
                 over++;
             } else {
-                printf("budget ok: %s %s %s on %s: %.2f ns/sample <= %.2f\n", model, term, variant, isa, r->min_ns,
-                       budget);
+                fprintf(verdicts, "budget ok: %s %s %s on %s: %.2f ns/sample <= %.2f\n", model, term, variant, isa,
+                        r->min_ns, budget);
             }
         }
     }
     fclose(f);
     if (!checked)
-        printf("no budget row matched this machine's ISAs\n");
+        fprintf(verdicts, "no budget row matched this machine's ISAs\n");
     return over;
 }
 
@@ -174,6 +192,7 @@ typedef struct config {
     hb_azimuthal azimuthal; /* dFH11: N_p by quadrature or from the plan's table */
     int untilted;           /* the effect rows: alpha = 0 (dFH11: one M_p for lobes of equal roughness) */
     double eccentricity;    /* an elliptical fibre (MJC03, HHH22) */
+    const char *label;      /* what the row measures, in the README's table */
 } config;
 
 /* What each row measures: dFH11's M_p alone and its full model (R..TRRT + residual, RGB) per
@@ -186,69 +205,107 @@ typedef struct config {
  * (against the reference quality's pdf: dFH11's procedure with the high-quality node set, HHH22's
  * by adaptive quadrature). */
 static const config configs[] = {
-    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "deon", "longitudinal", "abramowitz-high", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "deon", "full", "order35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "deon", "full", "order35-high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "deon", "full", "table-fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0 },
-    { "deon", "full", "table-balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0 },
-    { "deon", "full", "table-high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0 },
+    { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 M_p alone (eq. 7, A&S I0), float (fast, balanced)" },
+    { "deon", "longitudinal", "abramowitz-high", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 M_p alone, double where it matters (high, reference)" },
+    { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 M_p alone with eq. 15's series (error against the series in double)" },
+    { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 full, R..TRRT + residual, RGB: fast" },
+    { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 full: balanced" },
+    { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 full: high" },
+    { "deon", "full", "order35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 full: the paper's order 35 (18 nodes), float M_p" },
+    { "deon", "full", "order35-high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 full: order 35, double M_p (as at high)" },
+    { "deon", "full", "table-fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0,
+      "dFH11 full, N_p from the table: fast" },
+    { "deon", "full", "table-balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0,
+      "dFH11 full, N_p from the table: balanced" },
+    { "deon", "full", "table-high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0,
+      "dFH11 full, N_p from the table: high" },
     { "marschner", "longitudinal", "gaussian", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0,
-      HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "MJC03 longitudinal term alone" },
+    { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "MJC03 full, R + TT + TRT with caustics, RGB" },
     { "huang", "R", "analytic", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
-    { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R, GGX 0.1, App. A closed form (no G)" },
+    { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R with Smith G, Simpson (peak-following): fast (16 panels)" },
+    { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R with G: balanced (32 panels)" },
+    { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R with G: high (64 panels)" },
     { "huang", "R", "G-paper-step", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R with G, the paper's rule (steps of 0.7 roughness)" },
     { "deon", "sample", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 sampling: w_i, pdf and weight f/pdf (error: the weight's), balanced" },
     { "deon", "pdf", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 sampling pdf alone (error: against the reference quality's pdf), balanced" },
     { "huang", "sample", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R sampling with G: w_i, pdf and weight (error: the weight's), balanced" },
     { "huang", "pdf", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R sampling pdf alone (error: against adaptive quadrature), balanced" },
     { "huang", "all", "mc-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
-      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R + TT + TRT, Monte-Carlo TT/TRT: fast (error: one estimate's noise)" },
     { "huang", "all", "mc-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R + TT + TRT, Monte-Carlo TT/TRT: balanced" },
     { "huang", "all", "table-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R + TT + TRT, TT/TRT from the table: fast (error: where f is under 1% of the peak)" },
     { "huang", "all", "table-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 R + TT + TRT, TT/TRT from the table: balanced" },
     { "huang", "TT+TRT", "table-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG & ~1u, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG & ~1u, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 TT + TRT table lookup alone, balanced" },
     { "huang", "sample-all", "balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 sampling with TT and TRT (one traced path; no reference), balanced" },
     { "huang", "pdf-all", "balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "HHH22 sampling pdf with TT and TRT, balanced" },
     /* what each effect costs: the balanced dFH11 row without TRT and above (dark hair), without the tilt,
      * R alone; MJC03 R alone and R + TT; HHH22's R lobe on an elliptical fibre */
     { "deon", "effects", "R+TT", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
-      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "effect: dFH11 balanced, R + TT only (dark hair)" },
     { "deon", "effects", "untilted", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0,
+      "effect: dFH11 balanced, alpha = 0 (one M_p for every lobe)" },
     { "deon", "effects", "R+TT-untilted", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0,
+      "effect: dFH11 balanced, R + TT, alpha = 0" },
     { "deon", "effects", "R", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
-      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "effect: dFH11 balanced, R only (black hair)" },
     { "marschner", "effects", "R", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "effect: MJC03, R only" },
     { "marschner", "effects", "R+TT", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "effect: MJC03, R + TT" },
     { "marschner", "effects", "elliptical", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.5 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.5,
+      "effect: MJC03, elliptical fibre (e 0.5)" },
     { "huang", "effects", "G-balanced-elliptical", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.5 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.5,
+      "effect: HHH22 R with G, balanced, elliptical fibre (e 0.5)" },
     { "huang", "effects", "G-balanced-untilted", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
-      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0 },
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0,
+      "effect: HHH22 R with G, balanced, no tilt" },
 };
 
 /* The options of a configuration (quality and ISA left to the caller where they differ). */
@@ -349,6 +406,101 @@ static void reference_of(const hb_material *m, const config *c)
     hb_plan_destroy(plan);
 }
 
+/* ns per sample with three significant digits, as the README prints them. */
+static void put_ns(FILE *f, double ns)
+{
+    fprintf(f, ns < 10.0 ? " %.2f |" : ns < 100.0 ? " %.1f |" : " %.0f |", ns);
+}
+
+/* "model name" of /proc/cpuinfo, or what the compiler knows of the architecture. */
+static void cpu_name(char *name, size_t size)
+{
+    snprintf(name, size, "%s", HB_ARCH_NAME);
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    char line[512];
+    while (f && fgets(line, sizeof line, f)) {
+        char *colon = strchr(line, ':');
+        if (strncmp(line, "model name", 10) == 0 && colon) {
+            snprintf(name, size, "%s", colon + 2);
+            name[strcspn(name, "\n")] = '\0';
+            break;
+        }
+    }
+    if (f)
+        fclose(f);
+}
+
+/* The README's bench region (readme.h): what ran where, one line per configuration with its ns/sample
+ * on each ISA (the budgets' AVX2 first), the error and speed-up over scalar of the first ISA there,
+ * then the multi-core line and the budgets' verdicts. */
+static void write_readme(const char *path, const row *rows, int nrows, const char *scaling_text,
+                         const char *budget_text)
+{
+    static const hb_isa columns[] = { HB_ISA_AVX2, HB_ISA_AVX512, HB_ISA_NEON, HB_ISA_SSE41, HB_ISA_SCALAR };
+    enum { NCOLUMNS = sizeof columns / sizeof columns[0] };
+    int present[NCOLUMNS] = { 0 };
+    for (int k = 0; k < nrows; k++)
+        for (int c = 0; c < NCOLUMNS; c++)
+            present[c] |= rows[k].isa == columns[c];
+    char cpu[256], date[32];
+    cpu_name(cpu, sizeof cpu);
+    time_t now = time(NULL);
+    strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
+    char *text = NULL;
+    size_t size = 0;
+    FILE *f = open_memstream(&text, &size);
+    if (!f)
+        return;
+    fprintf(f, "`make bench`, %s, %s (%ld cores), %s -O2; one pinned core, batches of %d directions (half near\n"
+               "the specular cone), blond hair (sigma_a = 0.1/0.25/0.6, beta_m 0.1, beta_n 0.3, alpha 0.035). ns per\n"
+               "sample: the minimum over repeated batches. Error: max over %d samples and 3 channels of\n"
+               "|f - f_ref| / max(|f_ref|, 1e-3 peak) against the double reference of the same configuration\n"
+               "(SPEC.md section 6), on the first ISA shown; speed-up: that ISA against scalar. Written by\n"
+               "`make bench` itself.\n\n| what |",
+            date, cpu, sysconf(_SC_NPROCESSORS_ONLN), HB_COMPILER, BATCH, NREF);
+    for (int c = 0; c < NCOLUMNS; c++)
+        if (present[c])
+            fprintf(f, " ns/sample %s |", hb_isa_name(columns[c]));
+    fprintf(f, " max error | speed-up |\n|---|");
+    for (int c = 0; c < NCOLUMNS; c++)
+        if (present[c])
+            fprintf(f, "---|");
+    fprintf(f, "---|---|\n");
+    for (size_t ci = 0; ci < N_CONFIGS; ci++) {
+        const row *by_isa[NCOLUMNS] = { NULL }, *first = NULL, *scalar = NULL;
+        for (int k = 0; k < nrows; k++)
+            for (int c = 0; c < NCOLUMNS; c++)
+                if (rows[k].config == (int)ci && rows[k].isa == columns[c])
+                    by_isa[c] = &rows[k];
+        for (int c = 0; c < NCOLUMNS; c++)
+            first = first ? first : by_isa[c];
+        scalar = by_isa[NCOLUMNS - 1];
+        if (!first)
+            continue;
+        fprintf(f, "| %s |", configs[ci].label);
+        for (int c = 0; c < NCOLUMNS; c++)
+            if (present[c]) {
+                if (by_isa[c])
+                    put_ns(f, by_isa[c]->min_ns);
+                else
+                    fprintf(f, " - |");
+            }
+        if (isnan(first->max_rel_err))
+            fprintf(f, " - |");
+        else
+            fprintf(f, " %.1e |", first->max_rel_err);
+        if (scalar)
+            fprintf(f, " %.1fx |\n", scalar->min_ns / first->min_ns);
+        else
+            fprintf(f, " - |\n");
+    }
+    fprintf(f, "\n```\n%s%s```\n", scaling_text, budget_text);
+    fclose(f);
+    if (!bench_update_readme(path, text))
+        printf("wrote the bench region of %s\n", path);
+    free(text);
+}
+
 /* --once CONFIG: evaluate one batch of CONFIG on $HB_ISA `repeats` times (default once) and exit,
  * for callgrind (make bench-instr counts the instructions inside hb_eval_angles) or, repeated,
  * for a sampling profiler such as perf record. */
@@ -387,28 +539,19 @@ static int run_once(const char *name, long repeats)
  * core, evaluating the same immutable plan into its own output. */
 enum { SCALING_REPEATS = 200, MAX_THREADS = 64 };
 
-typedef struct worker {
-    const hb_plan *plan;
-    int core;
-} worker;
-
 static void *worker_run(void *arg)
 {
-    const worker *w = arg;
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    CPU_SET(w->core, &set);
-    pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+    const hb_plan *plan = arg;
     float *planes = malloc(3 * BATCH * sizeof *planes);
     for (int r = 0; planes && r < SCALING_REPEATS; r++)
-        hb_eval_angles(w->plan, BATCH, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
+        hb_eval_angles(plan, BATCH, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
                        (hb_rgb_soa){ planes, planes + BATCH, planes + 2 * BATCH }, NULL);
     free(planes);
     return NULL;
 }
 
-/* Samples per second of the balanced dFH11 plan on 1..cores threads. */
-static void scaling(const hb_material *m)
+/* Samples per second of the balanced dFH11 plan on 1..cores threads, written to report. */
+static void scaling(const hb_material *m, FILE *report)
 {
     hb_options o;
     hb_options_default(&o);
@@ -418,34 +561,42 @@ static void scaling(const hb_material *m)
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     cores = cores < 1 ? 1 : cores > MAX_THREADS ? MAX_THREADS : cores;
     double one = 0.0;
-    printf("Multi-core scaling (dFH11 full model, balanced, %s, batches of %d per thread):\n", hb_isa_name(hb_plan_isa(plan)),
-           BATCH);
+    fprintf(report, "Multi-core scaling (dFH11 full model, balanced, %s, %d batches of %d per thread):\n",
+            hb_isa_name(hb_plan_isa(plan)), SCALING_REPEATS, BATCH);
     for (long n = 1; n <= cores; n++) {
         pthread_t threads[MAX_THREADS];
-        worker workers[MAX_THREADS];
         double t0 = now_ns();
-        for (long k = 0; k < n; k++) {
-            workers[k] = (worker){ plan, (int)k };
-            pthread_create(&threads[k], NULL, worker_run, &workers[k]);
+        for (long k = 0; k < n; k++) { /* each thread starts on its core: pinned in its attributes, not by
+                                          * itself, which it could only do once core 0 (main's) let it run */
+            cpu_set_t set;
+            CPU_ZERO(&set);
+            CPU_SET((int)k, &set);
+            pthread_attr_t attr;
+            pthread_attr_init(&attr);
+            pthread_attr_setaffinity_np(&attr, sizeof set, &set);
+            pthread_create(&threads[k], &attr, worker_run, plan);
+            pthread_attr_destroy(&attr);
         }
         for (long k = 0; k < n; k++)
             pthread_join(threads[k], NULL);
         double rate = (double)n * SCALING_REPEATS * BATCH / ((now_ns() - t0) * 1e-9) / 1e6;
         one = n == 1 ? rate : one;
-        printf("  %ld thread%s: %.2f Msamples/s (%.2fx one thread)\n", n, n > 1 ? "s" : "", rate, rate / one);
+        fprintf(report, "  %ld thread%s: %.2f Msamples/s (%.2fx one thread)\n", n, n > 1 ? "s" : "", rate, rate / one);
     }
     hb_plan_destroy(plan);
 }
 
 int main(int argc, char **argv)
 {
-    const char *budgets = NULL, *results_dir = NULL, *only = "", *only_isa = NULL, *once = NULL;
+    const char *budgets = NULL, *results_dir = NULL, *only = "", *only_isa = NULL, *once = NULL, *readme = NULL;
     long repeats = 1;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--budgets") == 0 && i + 1 < argc)
             budgets = argv[++i];
         else if (strcmp(argv[i], "--results") == 0 && i + 1 < argc)
             results_dir = argv[++i];
+        else if (strcmp(argv[i], "--readme") == 0 && i + 1 < argc)
+            readme = argv[++i];
         else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc)
             only = argv[++i];
         else if (strcmp(argv[i], "--isa") == 0 && i + 1 < argc)
@@ -460,8 +611,8 @@ int main(int argc, char **argv)
             return 0;
         } else {
             fprintf(stderr,
-                    "usage: %s [--budgets FILE] [--results DIR] [--only PREFIX] [--isa NAME] | --list | --once "
-                    "MODEL/TERM/VARIANT [--repeat N]\n",
+                    "usage: %s [--budgets FILE] [--results DIR] [--readme README.md] [--only PREFIX] [--isa NAME] | "
+                    "--list | --once MODEL/TERM/VARIANT [--repeat N]\n",
                     argv[0]);
             return 2;
         }
@@ -499,7 +650,7 @@ int main(int argc, char **argv)
             hb_options o;
             options_of(c, &o);
             o.isa = (hb_isa)isa;
-            row r = { c->model, c->term, c->variant, HB_ISA_SCALAR, 0, 0, 0 };
+            row r = { c->model, c->term, c->variant, (int)ci, HB_ISA_SCALAR, 0, 0, 0 };
             if (time_plan(&mc, &o, c->op, &r))
                 rows[nrows++] = r;
         }
@@ -546,8 +697,14 @@ int main(int argc, char **argv)
         else
             printf("wrote %s and %s\n", csv, svg);
     }
-    if (!partial)
-        scaling(&m);
+    char *scaling_text = NULL, *budget_text = NULL;
+    size_t scaling_size = 0, budget_size = 0;
+    FILE *scaling_out = open_memstream(&scaling_text, &scaling_size);
+    if (!partial && scaling_out)
+        scaling(&m, scaling_out);
+    if (scaling_out)
+        fclose(scaling_out);
+    printf("%s", scaling_text ? scaling_text : "");
     if (results_dir && !partial) { /* what tolerance and budget plans choose from (options.calibration) */
         char path[512];
         snprintf(path, sizeof path, "%s/calibration.csv", results_dir);
@@ -563,5 +720,14 @@ int main(int argc, char **argv)
         else
             printf("wrote %s\n", path);
     }
-    return budgets && check_budgets(budgets, rows, nrows) ? 1 : 0;
+    FILE *budget_out = open_memstream(&budget_text, &budget_size);
+    int over = budgets && budget_out ? check_budgets(budgets, rows, nrows, budget_out) : 0;
+    if (budget_out)
+        fclose(budget_out);
+    printf("%s", budget_text ? budget_text : "");
+    if (readme && !partial)
+        write_readme(readme, rows, nrows, scaling_text ? scaling_text : "", budget_text ? budget_text : "");
+    free(scaling_text);
+    free(budget_text);
+    return over ? 1 : 0;
 }
