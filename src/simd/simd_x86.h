@@ -4,11 +4,12 @@
 #define HB_SIMD_X86_H
 
 /* o0..o3 get element 0..3 of a0..a3 in each 128-bit lane: T is the register type, P the intrinsic
- * prefix (_mm, _mm256, _mm512). Four unpacks and four shuffles, all in registers. */
+ * prefix (_mm, _mm256, _mm512). Each input is evaluated once; four unpacks and four shuffles. */
 #define HB_TRANSPOSE4_IN_LANES(T, P, a0, a1, a2, a3, o0, o1, o2, o3)                              \
     do {                                                                                          \
-        T t0_ = P##_unpacklo_ps((a0), (a1)), t1_ = P##_unpackhi_ps((a0), (a1));                   \
-        T t2_ = P##_unpacklo_ps((a2), (a3)), t3_ = P##_unpackhi_ps((a2), (a3));                   \
+        T a0_ = (a0), a1_ = (a1), a2_ = (a2), a3_ = (a3);                                         \
+        T t0_ = P##_unpacklo_ps(a0_, a1_), t1_ = P##_unpackhi_ps(a0_, a1_);                       \
+        T t2_ = P##_unpacklo_ps(a2_, a3_), t3_ = P##_unpackhi_ps(a2_, a3_);                       \
         (o0) = P##_shuffle_ps(t0_, t2_, 0x44);                                                    \
         (o1) = P##_shuffle_ps(t0_, t2_, 0xee);                                                    \
         (o2) = P##_shuffle_ps(t1_, t3_, 0x44);                                                    \
