@@ -489,19 +489,18 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
 
 /* f for the plan's shape: a table plan looks N up per M_p group, the standard shape folds M_p into
  * the node sum (above), any other sums N_p per lobe first and adds the lobes of equal M_p before
- * multiplying, so each distinct M_p is evaluated once. M_p comes from a caller-supplied evaluator so the angle and vector entry points
- * share everything else. */
-#define HB_DEON_EVAL(d, g, out, longitudinal_of_lobe)                                   \
+ * multiplying, so each distinct M_p is evaluated once. groups_of_sample(M) fills M per group leader
+ * (longitudinal_deon_groups_*) so the angle and vector entry points share everything else. */
+#define HB_DEON_EVAL(d, g, out, groups_of_sample)                                       \
     do {                                                                                \
-        if ((d)->standard || (d)->np_table) {                                           \
-            vf m_[HB_MAX_LOBES + 1];                                                    \
-            for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++)                              \
-                if (hb_deon_group_leader((d), p_))                                      \
-                    m_[p_] = longitudinal_of_lobe(&(d)->longitudinal[p_]);              \
-            if ((d)->np_table)                                                          \
-                deon_table((d), (g), m_, (out));                                        \
-            else                                                                        \
-                deon_fused((d), (g), m_, (out), NULL);                                  \
+        vf m_[HB_MAX_LOBES + 1];                                                        \
+        groups_of_sample(m_);                                                           \
+        if ((d)->np_table) {                                                            \
+            deon_table((d), (g), m_, (out));                                            \
+            break;                                                                      \
+        }                                                                               \
+        if ((d)->standard) {                                                            \
+            deon_fused((d), (g), m_, (out), NULL);                                      \
             break;                                                                      \
         }                                                                               \
         vf N[HB_MAX_LOBES + 1][3];                                                      \
@@ -517,9 +516,8 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
         for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                \
             if (!hb_deon_group_leader((d), p_))                                         \
                 continue;                                                               \
-            vf m_ = longitudinal_of_lobe(&(d)->longitudinal[p_]);                       \
             for (int c_ = 0; c_ < 3; c_++)                                              \
-                (out)[c_] = vf_fma(m_, (N)[p_][c_], (out)[c_]);                         \
+                (out)[c_] = vf_fma(m_[p_], (N)[p_][c_], (out)[c_]);                     \
         }                                                                               \
     } while (0)
 
@@ -530,8 +528,14 @@ HB_INLINE void deon_geometry_angles(const hb_deon *d, vf theta_i, vf phi_i, vf t
     g->phi = wrap_angle(vf_sub(phi_o, phi_i));
     /* read by Fourier detectors and eq. 12 only (a table reads |phi|, the standard shape sigma |phi|) */
     g->cos_phi = !d->np_table && (d->fourier_terms > 0 || !d->r_fresnel_offset) ? vf_cos(g->phi) : vf_set1(1.0f);
-    vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &cos_td);
-    g->sin2_theta_d = vf_mul(sin_td, sin_td);
+    vf theta_d = vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i));
+    if (d->np_table) { /* a table reads cos(theta_d) alone: one sine polynomial, no reduction */
+        cos_td = cos_near_pole(theta_d, vf_set1(HB_PIO2_LO));
+        g->sin2_theta_d = vf_fnma(cos_td, cos_td, vf_set1(1.0f));
+    } else {
+        vf_sincos(theta_d, &sin_td, &cos_td);
+        g->sin2_theta_d = vf_mul(sin_td, sin_td);
+    }
     g->cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
     g->cos_half_io = vf_set1(1.0f);
     if (!d->r_fresnel_offset) { /* two more sine-cosine pairs only for eq. 12 */
@@ -548,9 +552,9 @@ HB_INLINE void deon_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, v
 {
     deon_geometry g;
     deon_geometry_angles(d, theta_i, phi_i, theta_o, phi_o, &g);
-#define HB_M_ANGLES(lobe) longitudinal_deon_angles((lobe), theta_i, theta_o, i0)
-    HB_DEON_EVAL(d, &g, out, HB_M_ANGLES);
-#undef HB_M_ANGLES
+#define HB_GROUPS_ANGLES(M) longitudinal_deon_groups_angles(d, theta_i, theta_o, i0, (M))
+    HB_DEON_EVAL(d, &g, out, HB_GROUPS_ANGLES);
+#undef HB_GROUPS_ANGLES
 }
 
 /* f from unit vectors: the geometry comes from dot products, no trigonometry but one atan2. */
@@ -572,9 +576,9 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     g.sin2_theta_d = vf_max(vf_fnma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f));
     vf dot = vf_mul(vf_mul(inv_i, inv_o), vf_fma(wi[0], wo[0], vf_fma(wi[1], wo[1], vf_mul(wi[2], wo[2]))));
     g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
-#define HB_M_VECTORS(lobe) longitudinal_deon_vectors((lobe), wi, wo, i0)
-    HB_DEON_EVAL(d, &g, out, HB_M_VECTORS);
-#undef HB_M_VECTORS
+#define HB_GROUPS_VECTORS(M) longitudinal_deon_groups_vectors(d, wi, wo, i0, (M))
+    HB_DEON_EVAL(d, &g, out, HB_GROUPS_VECTORS);
+#undef HB_GROUPS_VECTORS
 }
 
 #endif

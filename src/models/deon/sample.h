@@ -36,12 +36,12 @@ HB_INLINE vf deon_lobe_choice_at(const hb_deon *d, vf theta_o, vf c[HB_MAX_LOBES
     return total;
 }
 
-/* M_g(theta_i, theta_o) for every group leader g. */
+/* M_g(theta_i, theta_o) for every group leader g, 0 for the other lobes. */
 HB_INLINE void deon_longitudinal_groups(const hb_deon *d, vf theta_i, vf theta_o, hb_i0 i0, vf M[HB_MAX_LOBES + 1])
 {
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        M[p] = hb_deon_group_leader(d, p) ? longitudinal_deon_angles(&d->longitudinal[p], theta_i, theta_o, i0)
-                                       : vf_set1(0.0f);
+        M[p] = vf_set1(0.0f);
+    longitudinal_deon_groups_angles(d, theta_i, theta_o, i0, M);
 }
 
 /* Step 1: theta_i from the mixture sum_g c_g M_g (c normalised by their sum). */
