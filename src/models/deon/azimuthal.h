@@ -487,39 +487,37 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
 }
 
-/* f for the plan's shape: a table plan looks N up per M_p group, the standard shape folds M_p into
- * the node sum (above), any other sums N_p per lobe first and adds the lobes of equal M_p before
- * multiplying, so each distinct M_p is evaluated once. groups_of_sample(M) fills M per group leader
- * (longitudinal_deon_groups_*) so the angle and vector entry points share everything else. */
-#define HB_DEON_EVAL(d, g, out, groups_of_sample)                                       \
-    do {                                                                                \
-        vf m_[HB_MAX_LOBES + 1];                                                        \
-        groups_of_sample(m_);                                                           \
-        if ((d)->np_table) {                                                            \
-            deon_table((d), (g), m_, (out));                                            \
-            break;                                                                      \
-        }                                                                               \
-        if ((d)->standard) {                                                            \
-            deon_fused((d), (g), m_, (out), NULL);                                      \
-            break;                                                                      \
-        }                                                                               \
-        vf N[HB_MAX_LOBES + 1][3];                                                      \
-        azimuthal_deon((d), (g), N, NULL);                                              \
-        (out)[0] = (out)[1] = (out)[2] = vf_set1(0.0f);                                 \
-        for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                \
-            int g_ = (d)->m_group[p_];                                                  \
-            if (g_ == p_ || !hb_deon_lobe_on((d), p_))                                  \
-                continue;                                                               \
-            for (int c_ = 0; c_ < 3; c_++)                                              \
-                (N)[g_][c_] = vf_add((N)[g_][c_], (N)[p_][c_]);                         \
-        }                                                                               \
-        for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                \
-            if (!hb_deon_group_leader((d), p_))                                         \
-                continue;                                                               \
-            for (int c_ = 0; c_ < 3; c_++)                                              \
-                (out)[c_] = vf_fma(m_[p_], (N)[p_][c_], (out)[c_]);                     \
-        }                                                                               \
-    } while (0)
+/* f for the plan's shape from M per group leader (longitudinal_deon_groups_*): a table plan looks N
+ * up per M_p group, the standard shape folds M_p into the node sum (above), any other sums N_p per
+ * lobe first and adds the lobes of equal M_p before multiplying, so each distinct M_p is evaluated
+ * once. The angle and vector entry points share everything but M and the geometry. */
+HB_INLINE void deon_eval(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
+{
+    if (d->np_table) {
+        deon_table(d, g, M, out);
+        return;
+    }
+    if (d->standard) {
+        deon_fused(d, g, M, out, NULL);
+        return;
+    }
+    vf N[HB_MAX_LOBES + 1][3];
+    azimuthal_deon(d, g, N, NULL);
+    out[0] = out[1] = out[2] = vf_set1(0.0f);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        int group = d->m_group[p];
+        if (group == p || !hb_deon_lobe_on(d, p))
+            continue;
+        for (int c = 0; c < 3; c++)
+            N[group][c] = vf_add(N[group][c], N[p][c]);
+    }
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        if (!hb_deon_group_leader(d, p))
+            continue;
+        for (int c = 0; c < 3; c++)
+            out[c] = vf_fma(M[p], N[p][c], out[c]);
+    }
+}
 
 /* deon_geometry from angles. */
 HB_INLINE void deon_geometry_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, vf phi_o, deon_geometry *g)
@@ -552,9 +550,9 @@ HB_INLINE void deon_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, v
 {
     deon_geometry g;
     deon_geometry_angles(d, theta_i, phi_i, theta_o, phi_o, &g);
-#define HB_GROUPS_ANGLES(M) longitudinal_deon_groups_angles(d, theta_i, theta_o, i0, (M))
-    HB_DEON_EVAL(d, &g, out, HB_GROUPS_ANGLES);
-#undef HB_GROUPS_ANGLES
+    vf M[HB_MAX_LOBES + 1];
+    longitudinal_deon_groups_angles(d, theta_i, theta_o, i0, M);
+    deon_eval(d, &g, M, out);
 }
 
 /* f from unit vectors: the geometry comes from dot products, no trigonometry but one atan2. */
@@ -576,9 +574,9 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     g.sin2_theta_d = vf_max(vf_fnma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f));
     vf dot = vf_mul(vf_mul(inv_i, inv_o), vf_fma(wi[0], wo[0], vf_fma(wi[1], wo[1], vf_mul(wi[2], wo[2]))));
     g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
-#define HB_GROUPS_VECTORS(M) longitudinal_deon_groups_vectors(d, wi, wo, i0, (M))
-    HB_DEON_EVAL(d, &g, out, HB_GROUPS_VECTORS);
-#undef HB_GROUPS_VECTORS
+    vf M[HB_MAX_LOBES + 1];
+    longitudinal_deon_groups_vectors(d, wi, wo, i0, M);
+    deon_eval(d, &g, M, out);
 }
 
 #endif

@@ -137,7 +137,7 @@ HB_INLINE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const de
                         vf out[3])
 {
     deon_pdf_terms terms = { M, vf_set1(0.0f) };
-    if (d->standard) { /* f as hb_eval computes it (azimuthal.h, HB_DEON_EVAL), so weight = f / pdf */
+    if (d->standard) { /* f as hb_eval computes it (azimuthal.h, deon_eval), so weight = f / pdf */
         deon_fused(d, g, M, out, &terms);
     } else {
         vf N[HB_MAX_LOBES + 1][3];
