@@ -229,14 +229,16 @@ HB_INLINE vf vf_acos(vf x)
 
 /* atan2(y, x) in [-pi, pi]: atan of t = min(|x|,|y|)/max(|x|,|y|) in [0, 1]
  * (reduced by pi/4 above tan(pi/8), Cephes atanf polynomial), then reflected
- * into the right octant. atan2(+-0, +-0) follows the C library's signs. */
+ * into the right octant. The reduced argument (t - 1)/(t + 1) is formed as
+ * (min - max)/(min + max), so one division serves both cases (and its rounding
+ * is not compounded with t's). atan2(+-0, +-0) follows the C library's signs. */
 HB_INLINE vf vf_atan2(vf y, vf x)
 {
     vf ay = vf_abs(y), ax = vf_abs(x);
     vf num = vf_min(ay, ax), den = vf_max(ay, ax);
-    vf t = vf_select(vf_eq(den, vf_set1(0.0f)), vf_set1(0.0f), vf_div(num, den));
-    vm mid = vf_gt(t, vf_set1(0.414213562f));
-    t = vf_select(mid, vf_div(vf_sub(t, vf_set1(1.0f)), vf_add(t, vf_set1(1.0f))), t);
+    vm mid = vf_gt(num, vf_mul(den, vf_set1(0.414213562f)));
+    vf t = vf_div(vf_select(mid, vf_sub(num, den), num), vf_select(mid, vf_add(num, den), den));
+    t = vf_select(vf_eq(den, vf_set1(0.0f)), vf_set1(0.0f), t);
     vf z = vf_mul(t, t);
     vf p = vf_set1(8.05374449538e-2f);
     p = vf_fma(p, z, vf_set1(-1.38776856032e-1f));
