@@ -20,7 +20,8 @@ typedef struct hb_longitudinal {
      * constants rounded, and the shift c of theta_o'' = sign * theta_o - c as a float pair
      * c_hi + c_lo for the three cases of the pole reflection (none, above pi/2, below -pi/2). */
     int single;
-    float inv_v_f, log_norm_f, cos_shift_f, sin_shift_f;
+    float inv_v_f, cos_shift_f, sin_shift_f;
+    float inv_v_log2e_f, log2_norm_f; /* log2(e) / v and log2(norm), for the float path's 2^-t */
     float shift_hi[3], shift_lo[3];
 } hb_longitudinal;
 

@@ -318,7 +318,8 @@ static void derive_longitudinal(hb_longitudinal *l, double v, double shift, hb_q
     l->sin_shift = sin(shift);
     l->single = quality < HB_QUALITY_HIGH;
     l->inv_v_f = (float)l->inv_v;
-    l->log_norm_f = (float)l->log_norm;
+    l->inv_v_log2e_f = (float)(l->inv_v * M_LOG2E);
+    l->log2_norm_f = (float)(l->log_norm * M_LOG2E);
     l->cos_shift_f = (float)l->cos_shift;
     l->sin_shift_f = (float)l->sin_shift;
     /* theta_o - shift reflected across a pole: pi - (theta_o - shift) = -theta_o - (-shift - pi),

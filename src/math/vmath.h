@@ -17,6 +17,7 @@
 #define HB_PIO2_D 1.5707963267948966
 #define HB_TWO_PI_F 6.28318548f
 #define HB_TWO_PI_LO -1.74845553e-7f
+#define HB_LOG2E_F 1.44269504f
 
 HB_INLINE vf vf_poly2(vf x, float c0, float c1, float c2)
 {
@@ -268,10 +269,9 @@ HB_INLINE vf vf_i0_small_minus1(vf x)
     return vf_mul(t, q);
 }
 
-/* A&S 9.8.2: sqrt(x) e^-x I0(x) for x >= 3.75, a polynomial in 3.75/x. */
-HB_INLINE vf vf_i0_large_poly(vf x)
+/* A&S 9.8.2: sqrt(x) e^-x I0(x) for x >= 3.75, a polynomial in u = 3.75/x. */
+HB_INLINE vf vf_i0_large_poly_u(vf u)
 {
-    vf u = vf_div(vf_set1(3.75f), x);
     vf p = vf_set1(0.00392377f);
     p = vf_fma(p, u, vf_set1(-0.01647633f));
     p = vf_fma(p, u, vf_set1(0.02635537f));
@@ -283,6 +283,16 @@ HB_INLINE vf vf_i0_large_poly(vf x)
     return vf_fma(p, u, vf_set1(0.39894228f));
 }
 
+HB_INLINE vf vf_i0_large_poly(vf x) { return vf_i0_large_poly_u(vf_div(vf_set1(3.75f), x)); }
+
+/* e^-x I0(x) for x >= 3.75 (A&S 9.8.2): the polynomial times 1/sqrt(x) = sqrt(u) / sqrt(3.75),
+ * one division for both, so the square root runs beside the polynomial rather than after it. */
+HB_INLINE vf vf_i0e_large(vf x)
+{
+    vf u = vf_div(vf_set1(3.75f), x);
+    return vf_mul(vf_i0_large_poly_u(u), vf_mul(vf_sqrt(u), vf_set1(0.516397779f)));
+}
+
 /* The modified Bessel function I0 (A&S 9.8.1 and 9.8.2); +Inf beyond |x| = 91.9. */
 HB_INLINE vf vf_i0(vf x)
 {
@@ -290,7 +300,7 @@ HB_INLINE vf vf_i0(vf x)
     vf small = vf_add(vf_set1(1.0f), vf_i0_small_minus1(vf_min(ax, vf_set1(3.75f))));
     vf xl = vf_max(ax, vf_set1(3.75f));
     vf half = vf_exp(vf_mul(vf_set1(0.5f), xl)); /* e^x as a square keeps x up to 2 * 88 */
-    vf large = vf_mul(vf_mul(half, vf_div(vf_i0_large_poly(xl), vf_sqrt(xl))), half);
+    vf large = vf_mul(vf_mul(half, vf_i0e_large(xl)), half);
     return vf_select(vf_le(ax, vf_set1(3.75f)), small, large);
 }
 
@@ -301,7 +311,7 @@ HB_INLINE vf vf_i0e(vf x)
     vf xs = vf_min(ax, vf_set1(3.75f));
     vf small = vf_mul(vf_exp(vf_neg(xs)), vf_add(vf_set1(1.0f), vf_i0_small_minus1(xs)));
     vf xl = vf_max(ax, vf_set1(3.75f));
-    vf large = vf_div(vf_i0_large_poly(xl), vf_sqrt(xl));
+    vf large = vf_i0e_large(xl);
     return vf_select(vf_le(ax, vf_set1(3.75f)), small, large);
 }
 

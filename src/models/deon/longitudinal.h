@@ -53,7 +53,7 @@ HB_INLINE void i0_scaled(vf x, hb_i0 i0, vf *exponent, vf *factor)
         vf xs = vf_min(ax, vf_set1(3.75f)), xl = vf_max(ax, vf_set1(3.75f));
         *exponent = vf_keep(small, vf_neg(x));
         vf i0_small = vf_add(vf_set1(1.0f), vf_i0_small_minus1(xs)); /* A&S 9.8.1 */
-        vf i0e_large = vf_div(vf_i0_large_poly(xl), vf_sqrt(xl));     /* A&S 9.8.2 */
+        vf i0e_large = vf_i0e_large(xl);                             /* A&S 9.8.2 */
         *factor = vf_select(small, i0_small, i0e_large);
     }
 }
@@ -72,17 +72,20 @@ HB_INLINE vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_su
     return vf_keep(significant, vf_mul(vf_exp_dw(e_clamped), factor));
 }
 
-/* The float path of dFH11 eq. 7 (plans below HB_QUALITY_HIGH), from the exponent's
- * (1 - cos(theta_i + theta_o')) / v and x, both in float. The exponent carries about two ulps
- * of relative error, so M_p's relative error grows as 1e-7 (1 + that exponent): within 1e-6
- * on the lobe and 2e-5 at M_p = 1e-30 of the peak (README, "Quality levels"). */
-HB_INLINE vf longitudinal_deon_single(const hb_longitudinal *lobe, vf cone_exponent, vf x, hb_i0 i0)
+/* The float path of dFH11 eq. 7 (plans below HB_QUALITY_HIGH), from the cone exponent in bits,
+ * (1 - cos(theta_i + theta_o')) log2(e) / v, and x, both in float:
+ * M_p = 2^-t factor, t = cone - log2(norm) - exponent log2(e), by vf_exp2_neg (the plan scales
+ * 1/v and the norm by log2(e) in advance, so this costs no multiply; |exponent| <= 3.75 keeps the
+ * rounding of log2(e) itself below 1e-7 in t). The exponent carries about two ulps of relative
+ * error, so M_p's relative error grows as 1e-7 (1 + that exponent): within 1e-6 on the lobe and
+ * 2e-5 at M_p = 1e-30 of the peak (README, "Quality levels"). */
+HB_INLINE vf longitudinal_deon_single(const hb_longitudinal *lobe, vf cone_bits, vf x, hb_i0 i0)
 {
     vf exponent, factor;
     i0_scaled(x, i0, &exponent, &factor);
-    vf e = vf_add(vf_sub(vf_set1(lobe->log_norm_f), cone_exponent), exponent);
-    vm significant = vf_ge(e, vf_set1((float)HB_MP_EXPONENT_FLOOR));
-    return vf_keep(significant, vf_mul(vf_exp_flush(e), factor));
+    vf t = vf_fnma(exponent, vf_set1(HB_LOG2E_F), vf_sub(cone_bits, vf_set1(lobe->log2_norm_f)));
+    vm significant = vf_le(t, vf_set1((float)(-HB_MP_EXPONENT_FLOOR * 1.4426950408889634)));
+    return vf_keep(significant, vf_mul(vf_exp2_neg(t), factor));
 }
 
 /* cos(t) = sin(pi/2 - |t| + low) for |t| up to just beyond pi/2 (the float pi/2 lies beyond it,
@@ -111,13 +114,13 @@ HB_INLINE deon_inclinations deon_inclinations_of(vf theta_i, vf theta_o)
     return in;
 }
 
-/* The float path's first stage from angles: the exponent (1 - cos(theta_i + theta_o'')) / v and
+/* The float path's first stage from angles: the cone exponent (1 - cos(theta_i + theta_o'')) log2(e) / v and
  * x = cos(theta_i) cos(theta_o'') / v of M_p(v, theta_i, theta_o - shift). theta_o'' = theta_o - shift, reflected
  * across a pole when it passes one, is s theta_o - c with s = +-1 and c = c_hi + c_lo per case;
  * a = (theta_i + theta_o'')/2 and theta_o'' itself come from exact TwoSums, so their errors
  * stay relative near the cone (a -> 0) and pi/2 - |theta_o''| near a pole. Then
  *     1 - cos(theta_i + theta_o'') = 2 sin^2 a,  x = cos(theta_i) cos(theta_o'') / v. */
-HB_INLINE void longitudinal_cone_angles(const hb_longitudinal *lobe, const deon_inclinations *in, vf *cone_exponent,
+HB_INLINE void longitudinal_cone_angles(const hb_longitudinal *lobe, const deon_inclinations *in, vf *cone_bits,
                                         vf *x)
 {
     vf theta_i = in->theta_i, theta_o = in->theta_o;
@@ -132,16 +135,15 @@ HB_INLINE void longitudinal_cone_angles(const hb_longitudinal *lobe, const deon_
     vf theta_o_hi = vf_sub(signed_o, c_hi);
     vf theta_o_lo = vf_sub(vf_two_sum_error(signed_o, vf_neg(c_hi), theta_o_hi), c_lo);
     vf cos_product = vf_mul(in->cos_theta_i, cos_near_pole(theta_o_hi, pole_distance_low(theta_o_hi, theta_o_lo)));
-    vf inv_v = vf_set1(lobe->inv_v_f);
-    *cone_exponent = vf_mul(vf_mul(vf_add(sin_a, sin_a), sin_a), inv_v);
-    *x = vf_mul(cos_product, inv_v);
+    *cone_bits = vf_mul(vf_mul(vf_add(sin_a, sin_a), sin_a), vf_set1(lobe->inv_v_log2e_f));
+    *x = vf_mul(cos_product, vf_set1(lobe->inv_v_f));
 }
 
 HB_INLINE vf longitudinal_deon_angles_single(const hb_longitudinal *lobe, const deon_inclinations *in, hb_i0 i0)
 {
-    vf cone_exponent, x;
-    longitudinal_cone_angles(lobe, in, &cone_exponent, &x);
-    return longitudinal_deon_single(lobe, cone_exponent, x, i0);
+    vf cone_bits, x;
+    longitudinal_cone_angles(lobe, in, &cone_bits, &x);
+    return longitudinal_deon_single(lobe, cone_bits, x, i0);
 }
 
 /* theta - shift in double, reflected across a pole into [-pi/2, pi/2]: pi - t above
@@ -202,8 +204,9 @@ HB_INLINE void inclination(vf x, vf y, vf z, vf *sin_theta, vf *cos_theta)
 /* The float path's first stage from unit vectors: 1 - cos(theta_i + theta_o') = ((cos theta_i - cos theta_o')^2 +
  * (sin theta_i + sin theta_o')^2) / 2, a sum of squares that cannot cancel; its terms carry the
  * float rounding of the sines and cosines (about 1e-7 in angle), so the exponent's error near
- * the cone grows as sqrt(exponent / v) 1e-7 (README, "Quality levels"). */
-HB_INLINE void longitudinal_cone_vectors(const hb_longitudinal *lobe, const vf wi[3], const vf wo[3], vf *cone_exponent,
+ * the cone grows as sqrt(exponent / v) 1e-7 (README, "Quality levels"). The exponent is in bits, as
+ * longitudinal_deon_single takes it. */
+HB_INLINE void longitudinal_cone_vectors(const hb_longitudinal *lobe, const vf wi[3], const vf wo[3], vf *cone_bits,
                                          vf *x)
 {
     vf si, ci, so, co;
@@ -213,16 +216,15 @@ HB_INLINE void longitudinal_cone_vectors(const hb_longitudinal *lobe, const vf w
     vf co_shifted = vf_abs(vf_fma(co, cs, vf_mul(so, ss))); /* cos(theta_o - shift), reflected to >= 0 */
     vf so_shifted = vf_fnma(co, ss, vf_mul(so, cs));
     vf dc = vf_sub(ci, co_shifted), ds = vf_add(si, so_shifted);
-    vf inv_v = vf_set1(lobe->inv_v_f);
-    *cone_exponent = vf_mul(vf_fma(dc, dc, vf_mul(ds, ds)), vf_mul(vf_set1(0.5f), inv_v));
-    *x = vf_mul(vf_mul(ci, co_shifted), inv_v);
+    *cone_bits = vf_mul(vf_fma(dc, dc, vf_mul(ds, ds)), vf_set1(0.5f * lobe->inv_v_log2e_f));
+    *x = vf_mul(vf_mul(ci, co_shifted), vf_set1(lobe->inv_v_f));
 }
 
 HB_INLINE vf longitudinal_deon_vectors_single(const hb_longitudinal *lobe, const vf wi[3], const vf wo[3], hb_i0 i0)
 {
-    vf cone_exponent, x;
-    longitudinal_cone_vectors(lobe, wi, wo, &cone_exponent, &x);
-    return longitudinal_deon_single(lobe, cone_exponent, x, i0);
+    vf cone_bits, x;
+    longitudinal_cone_vectors(lobe, wi, wo, &cone_bits, &x);
+    return longitudinal_deon_single(lobe, cone_bits, x, i0);
 }
 
 /* M_p(v, theta_i, theta_o - shift) from unit vectors, all in double up to x. The
@@ -248,7 +250,7 @@ HB_INLINE vf longitudinal_deon_vectors(const hb_longitudinal *lobe, const vf wi[
  * operations and the kernels are bound by its latency, not by throughput: the float path's first
  * stage runs for every group before any second stage (I0 and the exponential), so the groups'
  * chains lie side by side in the instruction stream and overlap (dFH11 table path on AVX2: 13.0 ->
- * 11.2 ns per sample, balanced 39.6 -> 37.0). cone_of_lobe(lobe, &cone_exponent, &x) is that first
+ * 11.2 ns per sample, balanced 39.6 -> 37.0). cone_of_lobe(lobe, &cone_bits, &x) is that first
  * stage at the sample, longitudinal_of_lobe(lobe) the whole of M_p (the double path). */
 #define HB_DEON_GROUPS_M(d, M, i0, cone_of_lobe, longitudinal_of_lobe)                                 \
     do {                                                                                              \
@@ -269,7 +271,7 @@ HB_INLINE void longitudinal_deon_groups_angles(const hb_deon *d, vf theta_i, vf 
                                                vf M[HB_MAX_LOBES + 1])
 {
     deon_inclinations in = deon_inclinations_of(theta_i, theta_o);
-#define HB_CONE_ANGLES(lobe, cone_exponent, x) longitudinal_cone_angles((lobe), &in, (cone_exponent), (x))
+#define HB_CONE_ANGLES(lobe, cone_bits, x) longitudinal_cone_angles((lobe), &in, (cone_bits), (x))
 #define HB_M_ANGLES(lobe) longitudinal_deon_inclinations((lobe), &in, i0)
     HB_DEON_GROUPS_M(d, M, i0, HB_CONE_ANGLES, HB_M_ANGLES);
 #undef HB_M_ANGLES
@@ -280,7 +282,7 @@ HB_INLINE void longitudinal_deon_groups_angles(const hb_deon *d, vf theta_i, vf 
 HB_INLINE void longitudinal_deon_groups_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb_i0 i0,
                                                 vf M[HB_MAX_LOBES + 1])
 {
-#define HB_CONE_VECTORS(lobe, cone_exponent, x) longitudinal_cone_vectors((lobe), wi, wo, (cone_exponent), (x))
+#define HB_CONE_VECTORS(lobe, cone_bits, x) longitudinal_cone_vectors((lobe), wi, wo, (cone_bits), (x))
 #define HB_M_VECTORS(lobe) longitudinal_deon_vectors((lobe), wi, wo, i0)
     HB_DEON_GROUPS_M(d, M, i0, HB_CONE_VECTORS, HB_M_VECTORS);
 #undef HB_M_VECTORS
