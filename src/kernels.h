@@ -28,7 +28,7 @@ typedef struct hb_longitudinal {
 /* MJC03's unit-area Gaussian M_p = g(mean, beta; theta_h). */
 typedef struct hb_gaussian_lobe {
     float mean;          /* alpha_p, the shift of the lobe in theta_h */
-    float inv_two_beta2; /* 1 / (2 beta^2) */
+    float log2e_over_two_beta2; /* log2(e) / (2 beta^2): g = norm 2^-(x^2 log2e_over_two_beta2) */
     float norm;          /* 1 / (beta sqrt(2 pi)) */
 } hb_gaussian_lobe;
 
@@ -45,9 +45,9 @@ typedef struct hb_marschner {
     int eccentric;        /* TRT sees eta*(phi_h) (MJC03), not eta */
     float eta2_minus_one, inv_eta2;
     float eta_star_mean, eta_star_swing; /* eta* = mean + swing cos(2 phi_h) = mean + swing cos(phi_i + phi_o) */
-    float sigma_a[3];
+    float sigma_a_log2e[3]; /* sigma_a log2(e), for the transmittances 2^-(mu' log2 e l) */
     hb_gaussian_lobe lobe[3];
-    float caustic_inv_two_w2, caustic_norm, caustic_width; /* the fade and glint Gaussian g(w_c; x) */
+    float caustic_log2e_over_two_w2, caustic_norm, caustic_width; /* the fade and glint Gaussian g(w_c; x) */
     float inv_caustic_fade, caustic_limit, glint_scale;
 } hb_marschner;
 

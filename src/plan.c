@@ -480,7 +480,7 @@ static void derive_marschner(hb_plan *plan)
         plan->marschner_beta[p] = beta;
         plan->marschner_mean[p] = mean;
         k->lobe[p].mean = (float)mean;
-        k->lobe[p].inv_two_beta2 = (float)(1.0 / (2.0 * beta * beta));
+        k->lobe[p].log2e_over_two_beta2 = (float)(M_LOG2E / (2.0 * beta * beta));
         k->lobe[p].norm = (float)(1.0 / (beta * sqrt(2.0 * M_PI)));
     }
     k->lobes = plan->options.lobes == HB_LOBES_DEFAULT ? 7u : plan->options.lobes;
@@ -488,7 +488,7 @@ static void derive_marschner(hb_plan *plan)
     k->eta2_minus_one = (float)((m->eta - 1.0) * (m->eta + 1.0));
     k->inv_eta2 = (float)(1.0 / (m->eta * m->eta));
     for (int c = 0; c < 3; c++)
-        k->sigma_a[c] = absorption_float(plan->sigma_a[c]);
+        k->sigma_a_log2e[c] = absorption_float(plan->sigma_a[c] * M_LOG2E);
     /* eta* (MJC03 sec. 4.4) with the axis ratio a = sqrt(1 - e^2): eta1 = 2(eta - 1) a^2 - eta + 2
      * at phi_h = 0 (both directions along z, the minor axis), eta2 = 2(eta - 1) / a^2 - eta + 2 at
      * phi_h = pi/2; clamped to 1.0001 where a very flat fibre would take it below 1 */
@@ -510,7 +510,7 @@ static void derive_marschner(hb_plan *plan)
     }
     k->trt_branches = marschner_cubic_span(2, plan->eta_star_min) > M_PI - 1e-6 ? 3 : 1;
     k->caustic_width = (float)m->caustic_width;
-    k->caustic_inv_two_w2 = (float)(1.0 / (2.0 * m->caustic_width * m->caustic_width));
+    k->caustic_log2e_over_two_w2 = (float)(M_LOG2E / (2.0 * m->caustic_width * m->caustic_width));
     k->caustic_norm = (float)(1.0 / (m->caustic_width * sqrt(2.0 * M_PI)));
     k->inv_caustic_fade = (float)(1.0 / m->caustic_fade);
     k->caustic_limit = (float)m->caustic_limit;

@@ -53,9 +53,10 @@ HB_INLINE mjc_index bravais_index(vf eta2_minus_one, vf cos_theta_d, int p)
 {
     mjc_index ix;
     vf cos_d = vf_max(cos_theta_d, vf_set1(HB_MJC_COS_THETA_D_FLOOR));
-    vf q = vf_sqrt(vf_fma(cos_d, cos_d, eta2_minus_one)), inv_q = vf_div(vf_set1(1.0f), q);
-    ix.eta_perp = vf_div(q, cos_d);
-    ix.inv_eta_perp = vf_mul(cos_d, inv_q);
+    vf q2 = vf_fma(cos_d, cos_d, eta2_minus_one), q = vf_sqrt(q2);
+    vf inv_q_cos_d = vf_div(vf_set1(1.0f), vf_mul(q, cos_d)); /* one division for eta' and 1/eta' */
+    ix.eta_perp = vf_mul(q2, inv_q_cos_d);
+    ix.inv_eta_perp = vf_mul(vf_mul(cos_d, cos_d), inv_q_cos_d);
     ix.eta_par = vf_mul(vf_add(eta2_minus_one, vf_set1(1.0f)), ix.inv_eta_perp);
     vf c = vf_atan2(cos_d, vf_sqrt(eta2_minus_one));
     ix.cubic_a = vf_mul(c, vf_set1(-8.0f * (float)p / 31.0062767f));
@@ -65,7 +66,7 @@ HB_INLINE mjc_index bravais_index(vf eta2_minus_one, vf cos_theta_d, int p)
 
 /* Everything the attenuation of one sample needs besides the root. */
 typedef struct mjc_absorption {
-    vf mu[3]; /* mu_a' = sigma_a / cos(theta_t) (MJC03 sec. 4.2; theta_t the refracted inclination) */
+    vf mu_log2e[3]; /* mu_a' log2(e), mu_a' = sigma_a / cos(theta_t) (MJC03 sec. 4.2; theta_t the refracted inclination) */
 } mjc_absorption;
 
 /* A(p, h) at gamma_i (the survey's "Finding A"): (1 - F(eta', eta'', gamma_i))^2
@@ -84,7 +85,7 @@ HB_INLINE void attenuation_marschner(const hb_marschner *m, int p, const mjc_ind
     vf path = m->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gt, cos_gt)) : vf_add(cos_gt, cos_gt);
     path = vf_mul(path, vf_set1((float)p));
     for (int c = 0; c < 3; c++)
-        out[c] = vf_mul(base, vf_exp_flush(vf_neg(vf_mul(ab->mu[c], path))));
+        out[c] = vf_mul(base, vf_exp2_neg(vf_mul(ab->mu_log2e[c], path)));
 }
 
 /* N_R = F(eta', eta'', gamma_i) |cos(phi / 2)| / 4 at gamma_i = -phi / 2 (p = 0 of the survey's N_p). */
@@ -162,8 +163,8 @@ HB_INLINE void caustic_marschner(const hb_marschner *m, int p, const mjc_index *
     vf t = vf_fnma(vf_mul(x, x), vf_fnma(vf_set1(2.0f), x, vf_set1(3.0f)), vf_set1(1.0f)); /* 1 - smoothstep */
     vf centred = centre_on_lobe(phi, p);
     vf d_plus = wrap_angle(vf_sub(centred, phi_c)), d_minus = wrap_angle(vf_add(centred, phi_c));
-    vf g_plus = vf_exp_flush(vf_mul(vf_mul(d_plus, d_plus), vf_set1(-m->caustic_inv_two_w2)));
-    vf g_minus = vf_exp_flush(vf_mul(vf_mul(d_minus, d_minus), vf_set1(-m->caustic_inv_two_w2)));
+    vf g_plus = vf_exp2_neg(vf_mul(vf_mul(d_plus, d_plus), vf_set1(m->caustic_log2e_over_two_w2)));
+    vf g_minus = vf_exp2_neg(vf_mul(vf_mul(d_minus, d_minus), vf_set1(m->caustic_log2e_over_two_w2)));
     vf fade = vf_mul(vf_fnma(t, g_plus, vf_set1(1.0f)), vf_fnma(t, g_minus, vf_set1(1.0f)));
     vf A[3];
     attenuation_marschner(m, p, ix, ab, s, c, A);
@@ -186,8 +187,9 @@ HB_INLINE void marschner_f(const hb_marschner *m, const mjc_geometry *g, vf out[
     mjc_index ix = bravais_index(eta2_minus_one, g->cos_theta_d, 1);
     mjc_absorption ab;
     vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(m->inv_eta2), vf_set1(1.0f)));
+    vf inv_cos_theta_t = vf_div(vf_set1(1.0f), cos_theta_t);
     for (int c = 0; c < 3; c++)
-        ab.mu[c] = vf_div(vf_set1(m->sigma_a[c]), cos_theta_t);
+        ab.mu_log2e[c] = vf_mul(vf_set1(m->sigma_a_log2e[c]), inv_cos_theta_t);
     for (int c = 0; c < 3; c++)
         out[c] = vf_set1(0.0f);
     if (m->lobes & 1u) {

@@ -11,11 +11,11 @@
  * cos^2(theta_d) is floored so the term stays finite. */
 #define HB_MJC_COS2_THETA_D_FLOOR 1e-8f
 
-/* M_p = g(alpha_p, beta_p; theta_h), the unit-area Gaussian (MJC03 sec. 4.2). */
+/* M_p = g(alpha_p, beta_p; theta_h), the unit-area Gaussian (MJC03 sec. 4.2), as norm 2^-(x^2 log2(e) / (2 beta^2)). */
 HB_INLINE vf gaussian_marschner(const hb_gaussian_lobe *lobe, vf theta_h)
 {
     vf x = vf_sub(theta_h, vf_set1(lobe->mean));
-    return vf_mul(vf_exp_flush(vf_mul(vf_mul(x, x), vf_set1(-lobe->inv_two_beta2))), vf_set1(lobe->norm));
+    return vf_mul(vf_exp2_neg(vf_mul(vf_mul(x, x), vf_set1(lobe->log2e_over_two_beta2))), vf_set1(lobe->norm));
 }
 
 /* cos(theta_i) / cos^2(theta_d), the factor every lobe shares (SPEC.md section 2). */
