@@ -1,15 +1,18 @@
-# hairbsdf. `make` builds the libraries and the tool, `make test` runs the tests on
-# every ISA this CPU has, `make bench` times the kernels against bench/budgets.txt.
-# `make test CROSS=aarch64` cross-compiles with gcc-aarch64-linux-gnu and runs the
-# suite under qemu-aarch64. `make CC=clang` builds with clang.
+# hairbsdf. `make` builds the libraries and the tool into build/<arch>-<compiler>/, `make test`
+# runs the quick tier of the tests on every ISA this CPU has, `make check` the long tier,
+# `make bench` times the kernels against bench/budgets.txt, `make demo` shows the main job.
+# `make test CROSS=aarch64` cross-compiles with gcc-aarch64-linux-gnu and runs the suite under
+# qemu-aarch64. `make CC=clang` builds with clang.
 
 MAKEFLAGS += --no-builtin-rules
 .SUFFIXES:
 
 CROSS ?=
+STRIP ?= strip
 ifeq ($(CROSS),aarch64)
   CC := aarch64-linux-gnu-gcc
   AR := aarch64-linux-gnu-ar
+  STRIP := aarch64-linux-gnu-strip
   ARCH := aarch64
   RUN := qemu-aarch64
   LDSTATIC := -static
@@ -71,22 +74,27 @@ ifeq ($(OPENEXR),1)
 endif
 
 LIB_SRCS := src/dispatch.c src/plan.c src/eval.c src/status.c src/quadrature.c src/furnace.c src/sample.c src/sample_plan.c src/huang_table.c src/deon_table.c src/calibration.c src/plan_select.c src/describe.c src/ref/deon_ref.c src/ref/deon_sample_ref.c src/ref/marschner_ref.c src/ref/huang_ref.c src/ref/huang_sample_ref.c src/ref/huang_internal_ref.c
-LIB_OBJS := $(LIB_SRCS:%.c=$(B)/%.o) $(ISAS:%=$(B)/kernel_%.o)
+# Compiled once per ISA into $(B)/<isa>/: each model's kernels and the ISA's table of them.
+KERNEL_SRCS := src/isa/kernels.c src/models/deon/kernels.c src/models/marschner/kernels.c src/models/huang/kernels.c
+KERNEL_OBJS := $(foreach isa,$(ISAS),$(KERNEL_SRCS:%.c=$(B)/$(isa)/%.o))
+LIB_OBJS := $(LIB_SRCS:%.c=$(B)/%.o) $(KERNEL_OBJS)
 TOOL_SRCS := $(wildcard tools/*.c)
 TEST_SRCS := $(wildcard tests/*.c)
 FUZZ_TARGETS := fuzz_cli fuzz_eval
 BENCH_SRCS := $(wildcard bench/*.c)
 
 STATIC_LIB := $(B)/libhairbsdf.a
-SHARED_LIB := $(B)/libhairbsdf.so
+HB_SO_MAJOR := 0
+SHARED_LIB := $(B)/libhairbsdf.so.$(HB_SO_MAJOR)
+SHARED_LINK := $(B)/libhairbsdf.so
 TOOL := $(B)/hairbsdf
 EXAMPLE := $(B)/example_minimal
 ENGINE_EXAMPLE := $(B)/example_engine
 TEST_BIN := $(B)/hairbsdf_tests
 BENCH_BIN := $(B)/hairbsdf_bench
 
-.PHONY: all test bench bench-instr calibration demo images fuzz fuzz-run install clean
-all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LIB)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE)
+.PHONY: all test check bench bench-instr calibration demo images fuzz fuzz-run install clean
+all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LINK)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE)
 
 $(B)/%.o: %.c
 	@mkdir -p $(dir $@)
@@ -96,9 +104,16 @@ $(B)/%.o: %.c
 # (an internal compiler error) on some of their max-reductions.
 $(B)/tests/%.o: ALL_CFLAGS += -fno-tree-vectorize -Itools
 
-$(B)/kernel_%.o: src/kernel.c
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ISA_FLAGS_$*) -D$(ISA_MACRO_$*) -MMD -MP -c $< -o $@
+# Kernel units carry line tables and function names (-g1: backtraces, perf and callgrind annotate
+# by line): the locations of every variable of their inlined vector code took two thirds of their
+# compile time and memory. KERNEL_CFLAGS=-g gives them full debug information.
+KERNEL_CFLAGS ?= -g1
+define KERNEL_RULE
+$(B)/$(1)/%.o: %.c
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$(ALL_CFLAGS) $$(KERNEL_CFLAGS) $$(ISA_FLAGS_$(1)) -D$$(ISA_MACRO_$(1)) -MMD -MP -c $$< -o $$@
+endef
+$(foreach isa,$(ISAS),$(eval $(call KERNEL_RULE,$(isa))))
 
 $(STATIC_LIB): $(LIB_OBJS)
 	rm -f $@
@@ -107,7 +122,8 @@ $(STATIC_LIB): $(LIB_OBJS)
 $(SHARED_LIB): $(LIB_OBJS)
 	$(CC) -shared -Wl,-soname,libhairbsdf.so.$(HB_SO_MAJOR) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
-HB_SO_MAJOR := 0
+$(SHARED_LINK): $(SHARED_LIB)
+	ln -sf $(notdir $<) $@
 
 $(TOOL): $(TOOL_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) $(EXR_LIBS)
@@ -126,11 +142,18 @@ $(B)/bench/%.o: ALL_CFLAGS += -Itools
 $(BENCH_BIN): $(BENCH_SRCS:%.c=$(B)/%.o) $(B)/tools/plot.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) -lpthread
 
-# The runner loops over every ISA this CPU has (or only $HB_ISA when it is set)
-# and drives the CLI through HB_TOOL.
+# The runner loops over every ISA this CPU has (or only $HB_ISA when it is set) and drives the
+# CLI through HB_TOOL. `make test` is the quick tier, `make check` the long one (every case of
+# every test); TEST_FLAGS=--verbose prints each test's measurements.
+TEST_FLAGS ?=
+RUN_TESTS = HB_TOOL="$(strip $(RUN) $(TOOL))" HB_TEST_EMULATED=$(if $(RUN),1,0) $(RUN) $(TEST_BIN) $(TEST_FLAGS)
 test: $(TEST_BIN) $(TOOL) $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%)
-	for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t tests/fuzz/corpus/$$t || exit 1; done
-	HB_TOOL="$(strip $(RUN) $(TOOL))" HB_TEST_EMULATED=$(if $(RUN),1,0) $(RUN) $(TEST_BIN)
+	@for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t tests/fuzz/corpus/$$t || exit 1; done
+	@$(RUN_TESTS)
+
+check: $(TEST_BIN) $(TOOL) $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%)
+	@for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t tests/fuzz/corpus/$$t || exit 1; done
+	@$(RUN_TESTS) --long
 
 # The fuzz harnesses without libFuzzer, replaying the kept corpus (make test runs them).
 $(B)/replay_fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(B)/tools/csv.o $(B)/tools/cli_options.o $(STATIC_LIB)
@@ -155,7 +178,8 @@ bench-instr: $(BENCH_BIN)
 
 # The main job on the default material: which ISA runs, the README example, f for a few
 # directions (d'Eon 2011, full model, and its double reference beside it), the white furnace
-# by lobe, and the accuracy-and-cost table (budgets are enforced by make bench only).
+# by lobe, the lobe images, and a few rows of the accuracy-and-cost table on the best ISA
+# (budgets are enforced by make bench only).
 DEMO_ROWS := theta_i,phi_i,theta_o,phi_o\n0.3,0,-0.37,0.5\n0.3,0,-0.2,3.0\n-1,0,1,2\n1.5,0,-1.5,3\n
 demo: all $(BENCH_BIN)
 	$(RUN) $(TOOL) isa
@@ -173,7 +197,7 @@ demo: all $(BENCH_BIN)
 	$(RUN) $(TOOL) dump --model huang --tt-trt table --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_huang.png
 	$(RUN) $(TOOL) plan --model deon --eumelanin 1.8 --tolerance 1e-2
 	@echo "lobe images: $(B)/lobes_deon.png, $(B)/lobes_marschner.png, $(B)/lobes_huang.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
-	$(RUN) $(BENCH_BIN)
+	$(RUN) $(BENCH_BIN) --demo
 
 # libFuzzer (clang): CLI parsing and plan creation + evaluation, FUZZ_SECONDS per target; the
 # corpus of interesting inputs is kept in tests/fuzz/corpus/ and replayed by later runs.
@@ -210,10 +234,12 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
 	install -m 644 include/hairbsdf.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 $(STATIC_LIB) $(DESTDIR)$(PREFIX)/lib/
-	install -m 755 $(SHARED_LIB) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so.$(HB_SO_MAJOR)
+	install -m 755 $(SHARED_LIB) $(DESTDIR)$(PREFIX)/lib/
 	ln -sf libhairbsdf.so.$(HB_SO_MAJOR) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(HB_SO_MAJOR).1|' hairbsdf.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/hairbsdf.pc
 	install -m 755 $(TOOL) $(DESTDIR)$(PREFIX)/bin/
+	$(STRIP) --strip-debug $(DESTDIR)$(PREFIX)/lib/libhairbsdf.a $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so.$(HB_SO_MAJOR) \
+	  $(DESTDIR)$(PREFIX)/bin/$(notdir $(TOOL))
 
 clean:
 	rm -rf build

@@ -586,10 +586,24 @@ static void scaling(const hb_material *m, FILE *report)
     hb_plan_destroy(plan);
 }
 
+/* --demo (make demo): a handful of rows, each model's real-time and budgeted configurations, on
+ * the best ISA alone. */
+static int is_demo_row(const char *label)
+{
+    static const char *const demo_rows[] = { "deon/full/fast", "deon/full/balanced", "deon/full/high",
+                                             "deon/full/table-balanced", "marschner/full/closed-form",
+                                             "huang/R/analytic", "huang/R/G-balanced", "huang/TT+TRT/table-balanced" };
+    for (size_t k = 0; k < sizeof demo_rows / sizeof demo_rows[0]; k++)
+        if (!strcmp(label, demo_rows[k]))
+            return 1;
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *budgets = NULL, *results_dir = NULL, *only = "", *only_isa = NULL, *once = NULL, *readme = NULL;
     long repeats = 1;
+    int demo = 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--budgets") == 0 && i + 1 < argc)
             budgets = argv[++i];
@@ -601,6 +615,8 @@ int main(int argc, char **argv)
             only = argv[++i];
         else if (strcmp(argv[i], "--isa") == 0 && i + 1 < argc)
             only_isa = argv[++i];
+        else if (strcmp(argv[i], "--demo") == 0)
+            demo = 1;
         else if (strcmp(argv[i], "--once") == 0 && i + 1 < argc)
             once = argv[++i];
         else if (strcmp(argv[i], "--repeat") == 0 && i + 1 < argc && atol(argv[i + 1]) > 0)
@@ -611,7 +627,7 @@ int main(int argc, char **argv)
             return 0;
         } else {
             fprintf(stderr,
-                    "usage: %s [--budgets FILE] [--results DIR] [--readme README.md] [--only PREFIX] [--isa NAME] | "
+                    "usage: %s [--budgets FILE] [--results DIR] [--readme README.md] [--only PREFIX] [--isa NAME] [--demo] | "
                     "--list | --once MODEL/TERM/VARIANT [--repeat N]\n",
                     argv[0]);
             return 2;
@@ -639,13 +655,14 @@ int main(int argc, char **argv)
         const config *c = &configs[ci];
         char label[64];
         snprintf(label, sizeof label, "%s/%s/%s", c->model, c->term, c->variant);
-        if (strncmp(label, only, strlen(only)) != 0)
+        if (strncmp(label, only, strlen(only)) != 0 || (demo && !is_demo_row(label)))
             continue;
         hb_material mc;
         material_of(c, &mc);
         reference_of(&mc, c);
         for (int isa = HB_ISA_SCALAR; isa < HB_ISA_COUNT; isa++) {
-            if (!hb_isa_available((hb_isa)isa) || (only_isa && strcmp(only_isa, hb_isa_name((hb_isa)isa))))
+            if (!hb_isa_available((hb_isa)isa) || (only_isa && strcmp(only_isa, hb_isa_name((hb_isa)isa))) ||
+                (demo && isa != (int)hb_isa_best()))
                 continue;
             hb_options o;
             options_of(c, &o);
@@ -665,15 +682,18 @@ int main(int argc, char **argv)
             if (rows[j].isa == HB_ISA_SCALAR && !strcmp(rows[j].variant, rows[k].variant) &&
                 !strcmp(rows[j].term, rows[k].term) && !strcmp(rows[j].model, rows[k].model))
                 scalar = rows[j].min_ns;
-        printf("| %s | %s | %s | %s | %.2f | %.2f | %.1f | %.1e | %.1fx |\n", rows[k].model, rows[k].term, rows[k].variant,
+        char speedup[16] = "-"; /* no scalar row in a partial run */
+        if (scalar > 0.0)
+            snprintf(speedup, sizeof speedup, "%.1fx", scalar / rows[k].min_ns);
+        printf("| %s | %s | %s | %s | %.2f | %.2f | %.1f | %.1e | %s |\n", rows[k].model, rows[k].term, rows[k].variant,
                hb_isa_name(rows[k].isa), rows[k].min_ns, rows[k].median_ns, 1e3 / rows[k].min_ns,
-               rows[k].max_rel_err, scalar / rows[k].min_ns);
+               rows[k].max_rel_err, speedup);
     }
     /* per model: a CSV of every row and an SVG of the full model's error against time */
     static const char *const models[][2] = { { "deon", "d'Eon 2011 full model" },
                                              { "marschner", "Marschner 2003 full model" },
                                              { "huang", "Huang 2022 R lobe" } };
-    int partial = *only || only_isa; /* a partial run leaves the results of the last full run alone */
+    int partial = *only || only_isa || demo; /* a partial run leaves the results of the last full run alone */
     for (int mi = 0; mi < 3 && results_dir && !partial; mi++) {
         static bench_point points[N_CONFIGS * HB_ISA_COUNT], full[N_CONFIGS * HB_ISA_COUNT];
         static char labels[N_CONFIGS * HB_ISA_COUNT][48];

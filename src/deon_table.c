@@ -21,7 +21,7 @@ static void build_rows(const hb_plan *plan, int n_cd, const double *cd, int n_ph
 {
     size_t row = (size_t)n_phi * (size_t)plan->deon.table_slots * 3;
     for (int j = 0; j < n_cd; j++)
-        plan->kernels->deon_np_row(&plan->deon, (float)cd[j], (size_t)n_phi, phi, out + (size_t)j * row);
+        plan->kernels->deon->np_row(&plan->deon, (float)cd[j], (size_t)n_phi, phi, out + (size_t)j * row);
 }
 
 /* Uniform node coordinates in [0, hi]; with `half`, the midpoints. */

@@ -7,22 +7,22 @@
 #include "hairbsdf.h"
 #include "kernels.h"
 
-extern const hb_kernels hb_kernels_scalar;
+extern const hb_kernels hb_scalar_kernels;
 #if defined(__x86_64__) || defined(__i386__)
-extern const hb_kernels hb_kernels_sse41, hb_kernels_avx2, hb_kernels_avx512;
+extern const hb_kernels hb_sse41_kernels, hb_avx2_kernels, hb_avx512_kernels;
 #include <cpuid.h>
 #elif defined(__aarch64__)
-extern const hb_kernels hb_kernels_neon;
+extern const hb_kernels hb_neon_kernels;
 #endif
 
 static const hb_kernels *const compiled_in[HB_ISA_COUNT] = {
-    [HB_ISA_SCALAR] = &hb_kernels_scalar,
+    [HB_ISA_SCALAR] = &hb_scalar_kernels,
 #if defined(__x86_64__) || defined(__i386__)
-    [HB_ISA_SSE41] = &hb_kernels_sse41,
-    [HB_ISA_AVX2] = &hb_kernels_avx2,
-    [HB_ISA_AVX512] = &hb_kernels_avx512,
+    [HB_ISA_SSE41] = &hb_sse41_kernels,
+    [HB_ISA_AVX2] = &hb_avx2_kernels,
+    [HB_ISA_AVX512] = &hb_avx512_kernels,
 #elif defined(__aarch64__)
-    [HB_ISA_NEON] = &hb_kernels_neon,
+    [HB_ISA_NEON] = &hb_neon_kernels,
 #endif
 };
 

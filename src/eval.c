@@ -42,16 +42,16 @@ hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb
         invalid = hb_ref_eval_angles(plan, n, in, out);
     } else if (plan->options.term == HB_TERM_LONGITUDINAL) {
         if (plan->options.model == HB_MODEL_MARSCHNER)
-            k->marschner_longitudinal_angles(&plan->marschner.lobe[HB_LOBE_R], n, in, out.r, &invalid);
+            k->marschner->longitudinal_angles(&plan->marschner.lobe[HB_LOBE_R], n, in, out.r, &invalid);
         else
-            k->longitudinal_angles[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, &invalid);
+            k->deon->longitudinal_angles[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, &invalid);
         spread_channels(n, out);
     } else if (plan->options.model == HB_MODEL_MARSCHNER) {
-        k->marschner_angles(&plan->marschner, n, in, out, &invalid);
+        k->marschner->angles(&plan->marschner, n, in, out, &invalid);
     } else if (plan->options.model == HB_MODEL_HUANG) {
-        k->huang_angles(&plan->huang, n, in, out, &invalid);
+        k->huang->angles(&plan->huang, n, in, out, &invalid);
     } else {
-        k->deon_angles[plan->options.i0](&plan->deon, n, in, out, &invalid);
+        k->deon->angles[plan->options.i0](&plan->deon, n, in, out, &invalid);
     }
     report_invalid(report, invalid);
     return HB_OK;
@@ -70,16 +70,16 @@ hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_r
         invalid = hb_ref_eval_vectors(plan, n, in, out);
     } else if (plan->options.term == HB_TERM_LONGITUDINAL) {
         if (plan->options.model == HB_MODEL_MARSCHNER)
-            k->marschner_longitudinal_vectors(&plan->marschner.lobe[HB_LOBE_R], n, in, out.r, &invalid);
+            k->marschner->longitudinal_vectors(&plan->marschner.lobe[HB_LOBE_R], n, in, out.r, &invalid);
         else
-            k->longitudinal_vectors[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, &invalid);
+            k->deon->longitudinal_vectors[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, &invalid);
         spread_channels(n, out);
     } else if (plan->options.model == HB_MODEL_MARSCHNER) {
-        k->marschner_vectors(&plan->marschner, n, in, out, &invalid);
+        k->marschner->vectors(&plan->marschner, n, in, out, &invalid);
     } else if (plan->options.model == HB_MODEL_HUANG) {
-        k->huang_vectors(&plan->huang, n, in, out, &invalid);
+        k->huang->vectors(&plan->huang, n, in, out, &invalid);
     } else {
-        k->deon_vectors[plan->options.i0](&plan->deon, n, in, out, &invalid);
+        k->deon->vectors[plan->options.i0](&plan->deon, n, in, out, &invalid);
     }
     report_invalid(report, invalid);
     return HB_OK;

@@ -91,7 +91,7 @@ hb_status hb_plan_build_huang_table(hb_plan *plan, hb_error *error)
         for (int m = 0; m < t->n_phi_i; m++) {
             double theta_i = -M_PI_2 + M_PI * i / (t->n_theta_i - 1);
             double phi_i = t->n_phi_i > 1 ? M_PI_2 * m / (t->n_phi_i - 1) : 0.0;
-            plan->kernels->huang_table_row(h, (float)theta_i, (float)phi_i, &build,
+            plan->kernels->huang->table_row(h, (float)theta_i, (float)phi_i, &build,
                                            values + ((size_t)i * (size_t)t->n_phi_i + (size_t)m) * row);
         }
     free(grid);

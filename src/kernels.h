@@ -1,5 +1,5 @@
-/* The table of kernels one ISA translation unit (src/kernel.c) exports, and the
- * plain constants those kernels read from a plan. Internal. */
+/* The tables of kernels each ISA's translation units export (src/isa/kernels.c and each
+ * model's kernels.c), and the plain constants those kernels read from a plan. Internal. */
 #ifndef HB_KERNELS_H
 #define HB_KERNELS_H
 
@@ -222,31 +222,52 @@ typedef void (*hb_huang_table_row_fn)(const hb_huang *huang, float theta_i, floa
 
 typedef void (*hb_deon_np_row_fn)(const hb_deon *deon, float cos_theta_d, size_t n, const float *phi, float *out);
 
-typedef struct hb_kernels {
-    hb_isa isa;
-    int width; /* float lanes */
+/* Each model's kernels for one ISA (src/models/<model>/kernels.c, compiled once per ISA). */
+typedef struct hb_deon_kernels {
     hb_longitudinal_angles_fn longitudinal_angles[2];   /* indexed by hb_i0 */
     hb_longitudinal_vectors_fn longitudinal_vectors[2]; /* indexed by hb_i0 */
-    hb_deon_angles_fn deon_angles[2];                   /* indexed by hb_i0 */
-    hb_deon_vectors_fn deon_vectors[2];
-    hb_deon_sample_fn deon_sample[2];                   /* indexed by hb_i0 */
-    hb_deon_pdf_fn deon_pdf[2];
-    hb_deon_np_row_fn deon_np_row; /* one row of the N_p table, out[(k * slots + s) * 3 + c] */
-    hb_gaussian_angles_fn marschner_longitudinal_angles;
-    hb_gaussian_vectors_fn marschner_longitudinal_vectors;
-    hb_marschner_angles_fn marschner_angles;
-    hb_marschner_vectors_fn marschner_vectors;
-    hb_huang_angles_fn huang_angles;
-    hb_huang_vectors_fn huang_vectors;
-    hb_huang_sample_fn huang_sample;
-    hb_huang_pdf_fn huang_pdf;
-    hb_huang_table_row_fn huang_table_row;
+    hb_deon_angles_fn angles[2];                        /* indexed by hb_i0 */
+    hb_deon_vectors_fn vectors[2];
+    hb_deon_sample_fn sample[2];
+    hb_deon_pdf_fn pdf[2];
+    hb_deon_np_row_fn np_row; /* one row of the N_p table, out[(k * slots + s) * 3 + c] */
+    void (*detector_map)(const hb_detector *d, size_t n, const float *x, float *out); /* D_p(x), for tests */
+} hb_deon_kernels;
+
+typedef struct hb_marschner_kernels {
+    hb_gaussian_angles_fn longitudinal_angles;
+    hb_gaussian_vectors_fn longitudinal_vectors;
+    hb_marschner_angles_fn angles;
+    hb_marschner_vectors_fn vectors;
     /* the real roots of gamma^3 + P gamma + Q = 0 the kernels find, for tests: roots[3 * i + k],
      * NaN where root k does not exist */
     void (*cubic_map)(size_t n, const float *P, const float *Q, float *roots);
+} hb_marschner_kernels;
+
+typedef struct hb_huang_kernels {
+    hb_huang_angles_fn angles;
+    hb_huang_vectors_fn vectors;
+    hb_huang_sample_fn sample;
+    hb_huang_pdf_fn pdf;
+    hb_huang_table_row_fn table_row;
+} hb_huang_kernels;
+
+/* One ISA's kernels (src/isa/kernels.c). */
+typedef struct hb_kernels {
+    hb_isa isa;
+    int width; /* float lanes */
+    const hb_deon_kernels *deon;
+    const hb_marschner_kernels *marschner;
+    const hb_huang_kernels *huang;
     void (*math_map)(hb_math_fn fn, size_t n, const float *a, const float *b, float *out);
-    void (*detector_map)(const hb_detector *d, size_t n, const float *x, float *out); /* D_p(x), for tests */
 } hb_kernels;
+
+/* Symbols shared between the library's translation units and kept out of a shared library's exports. */
+#if defined(__ELF__) && (defined(__GNUC__) || defined(__clang__))
+#define HB_INTERNAL __attribute__((visibility("hidden")))
+#else
+#define HB_INTERNAL
+#endif
 
 /* NULL when the ISA is not compiled in or not supported by this CPU. */
 const hb_kernels *hb_kernels_for(hb_isa isa);

@@ -94,9 +94,9 @@ hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sa
     if (!plan->kernels)
         invalid = sample_ref(plan, dims, n, in, out);
     else if (plan->options.model == HB_MODEL_HUANG)
-        plan->kernels->huang_sample(&plan->huang, n, in, out, &invalid);
+        plan->kernels->huang->sample(&plan->huang, n, in, out, &invalid);
     else
-        plan->kernels->deon_sample[plan->options.i0](&plan->deon, n, in, out, &invalid);
+        plan->kernels->deon->sample[plan->options.i0](&plan->deon, n, in, out, &invalid);
     if (report)
         report->invalid = invalid;
     return HB_OK;
@@ -118,9 +118,9 @@ hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *
             invalid += !ok;
         }
     } else if (plan->options.model == HB_MODEL_HUANG) {
-        plan->kernels->huang_pdf(&plan->huang, n, in, pdf, &invalid);
+        plan->kernels->huang->pdf(&plan->huang, n, in, pdf, &invalid);
     } else {
-        plan->kernels->deon_pdf[plan->options.i0](&plan->deon, n, in, pdf, &invalid);
+        plan->kernels->deon->pdf[plan->options.i0](&plan->deon, n, in, pdf, &invalid);
     }
     if (report)
         report->invalid = invalid;

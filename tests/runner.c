@@ -1,5 +1,7 @@
-/* Runs every test: ISA-independent ones once, the others once per ISA this CPU has
- * (or only $HB_ISA). Options: --filter SUBSTRING, --seed N, --list. */
+/* Runs every test: ISA-independent ones once, the others once per ISA this CPU has (or those
+ * listed in $HB_TEST_ISAS, comma-separated, else $HB_ISA), one line per test. Options: --long (the long tier: every test's full case set; the
+ * default is the quick tier's subset of cases), --verbose (each test's measurements), --filter
+ * SUBSTRING, --seed N, --list. */
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,14 +9,17 @@
 
 #include "test.h"
 
-#define MAX_REPORTED_FAILURES 6
+/* A failing check prints this many lines per test and ISA, then a count of the rest. */
+#define MAX_REPORTED_FAILURES 20
+
+static int verbose;
 
 void hb_test_fail(hb_test_ctx *t, const char *file, int line, const char *fmt, ...)
 {
     if (t->failures++ < MAX_REPORTED_FAILURES) {
         va_list ap;
         va_start(ap, fmt);
-        printf("    FAIL %s:%d: ", file, line);
+        printf("    FAIL [%s] %s:%d: ", t->isa == HB_ISA_AUTO ? "-" : hb_isa_name(t->isa), file, line);
         vprintf(fmt, ap);
         printf("\n");
         va_end(ap);
@@ -23,9 +28,11 @@ void hb_test_fail(hb_test_ctx *t, const char *file, int line, const char *fmt, .
 
 void hb_test_note(hb_test_ctx *t, const char *fmt, ...)
 {
+    if (!verbose)
+        return;
     va_list ap;
     va_start(ap, fmt);
-    printf("    %s: ", t->name);
+    printf("    %s [%s]: ", t->name, t->isa == HB_ISA_AUTO ? "-" : hb_isa_name(t->isa));
     vprintf(fmt, ap);
     printf("\n");
     va_end(ap);
@@ -99,11 +106,29 @@ static uint64_t name_hash(const char *s)
     return h;
 }
 
+/* Whether the comma-separated list names isa. */
+static int isa_listed(const char *list, hb_isa isa)
+{
+    const char *name = hb_isa_name(isa);
+    size_t length = strlen(name);
+    for (const char *p = list; *p; p += strcspn(p, ","), p += *p == ',')
+        if (strncmp(p, name, length) == 0 && (p[length] == ',' || p[length] == '\0'))
+            return 1;
+    return 0;
+}
+
+static double seconds_now(void)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
+}
+
 int main(int argc, char **argv)
 {
     const char *filter = NULL;
     uint64_t seed = 20261124;
-    int list = 0;
+    int list = 0, long_tier = 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--filter") == 0 && i + 1 < argc)
             filter = argv[++i];
@@ -111,8 +136,12 @@ int main(int argc, char **argv)
             seed = strtoull(argv[++i], NULL, 0);
         else if (strcmp(argv[i], "--list") == 0)
             list = 1;
+        else if (strcmp(argv[i], "--long") == 0)
+            long_tier = 1;
+        else if (strcmp(argv[i], "--verbose") == 0 || strcmp(argv[i], "-v") == 0)
+            verbose = 1;
         else {
-            fprintf(stderr, "usage: %s [--filter SUBSTRING] [--seed N] [--list]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--long] [--verbose] [--filter SUBSTRING] [--seed N] [--list]\n", argv[0]);
             return 2;
         }
     }
@@ -120,45 +149,56 @@ int main(int argc, char **argv)
     int emulated = emulation && *emulation && strcmp(emulation, "0") != 0;
     hb_isa isas[HB_ISA_COUNT];
     int nisa = 0;
-    const char *env = getenv("HB_ISA");
+    const char *env = getenv("HB_TEST_ISAS");
+    if (!env || !*env)
+        env = getenv("HB_ISA");
     for (int i = HB_ISA_SCALAR; i < HB_ISA_COUNT; i++)
-        if (hb_isa_available((hb_isa)i) && (!env || !*env || hb_isa_from_name(env) == (hb_isa)i))
+        if (hb_isa_available((hb_isa)i) && (!env || !*env || isa_listed(env, (hb_isa)i)))
             isas[nisa++] = (hb_isa)i;
-    printf("seed %llu (rerun with --seed %llu)%s; ISAs:", (unsigned long long)seed, (unsigned long long)seed,
-           emulated ? ", emulated: heavy model tests run fewer cases" : "");
+    printf("%s tier, seed %llu (rerun with --seed %llu)%s; ISAs:", long_tier ? "long" : "quick",
+           (unsigned long long)seed, (unsigned long long)seed, emulated ? ", emulated" : "");
     for (int i = 0; i < nisa; i++)
         printf(" %s", hb_isa_name(isas[i]));
     printf("\n");
 
     unsigned passed = 0, failed = 0;
+    double start = seconds_now();
     for (size_t s = 0; s < sizeof suites / sizeof suites[0]; s++) {
         for (const hb_test *test = suites[s]; test->name; test++) {
             if (filter && !strstr(test->name, filter))
                 continue;
+            if (list) {
+                printf("%s [%s]\n", test->name, test->per_isa ? "every ISA" : "-");
+                continue;
+            }
             int runs = test->per_isa ? nisa : 1;
+            char failing[64] = "";
+            double t0 = seconds_now();
             for (int r = 0; r < runs; r++) {
                 hb_test_ctx t = { test->name, test->per_isa ? isas[r] : HB_ISA_AUTO, NULL,
-                                  seed ^ name_hash(test->name), 0, emulated };
+                                  seed ^ name_hash(test->name), 0, !long_tier, emulated };
                 t.kernels = test->per_isa ? hb_kernels_for(t.isa) : NULL;
-                if (list) {
-                    printf("%s [%s]\n", test->name, test->per_isa ? hb_isa_name(t.isa) : "-");
-                    continue;
-                }
-                struct timespec t0, t1;
-                clock_gettime(CLOCK_MONOTONIC, &t0);
                 test->run(&t);
-                clock_gettime(CLOCK_MONOTONIC, &t1);
-                double ms = (t1.tv_sec - t0.tv_sec) * 1e3 + (t1.tv_nsec - t0.tv_nsec) / 1e6;
-                printf("%s %s [%s] %.0f ms\n", t.failures ? "FAIL" : "ok  ", test->name,
-                       test->per_isa ? hb_isa_name(t.isa) : "-", ms);
                 fflush(stdout);
-                if (t.failures)
+                if (t.failures > MAX_REPORTED_FAILURES)
+                    printf("    ... and %u more failed checks\n", t.failures - MAX_REPORTED_FAILURES);
+                if (t.failures) {
                     failed++;
-                else
+                    size_t used = strlen(failing);
+                    snprintf(failing + used, sizeof failing - used, " %s", test->per_isa ? hb_isa_name(t.isa) : "-");
+                } else {
                     passed++;
+                }
             }
+            double ms = (seconds_now() - t0) * 1e3;
+            if (*failing)
+                printf("FAIL %s [%s ] %.0f ms\n", test->name, failing, ms);
+            else
+                printf("ok   %s%s %.0f ms\n", test->name, test->per_isa ? " [every ISA]" : "", ms);
+            fflush(stdout);
         }
     }
-    printf("%u passed, %u failed\n", passed, failed);
+    if (!list)
+        printf("%.1f s\n%u passed, %u failed\n", seconds_now() - start, passed, failed);
     return failed ? 1 : 0;
 }

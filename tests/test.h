@@ -1,5 +1,6 @@
-/* A plain C test runner: named tests, some run once per available ISA, seedable
- * random cases. The last line of output is "N passed, N failed". */
+/* A plain C test runner: named tests, some run once per available ISA, seedable random cases,
+ * two tiers (quick: a subset of the heavy tests' cases; long: all of them). The last line of
+ * output is "N passed, N failed", counting each test once per ISA it ran on. */
 #ifndef HB_TEST_H
 #define HB_TEST_H
 
@@ -17,7 +18,8 @@ typedef struct hb_test_ctx {
     const hb_kernels *kernels; /* the ISA's table, NULL for ISA-independent tests */
     uint64_t rng;              /* seeded per test from the run's seed */
     unsigned failures;
-    int emulated; /* running under qemu ($HB_TEST_EMULATED): heavy ISA-independent tests use fewer cases */
+    int quick;    /* the quick tier (make test): heavy tests run a subset of their cases; 0: the long tier */
+    int emulated; /* running under qemu ($HB_TEST_EMULATED): nothing that needs the native machine (valgrind) */
 } hb_test_ctx;
 
 typedef struct hb_test {

@@ -99,7 +99,7 @@ static void analytic_matches_numeric_double(hb_test_ctx *t)
             if (!plan)
                 return;
             directions(t, alpha[a], 1, ti, pi, to, po);
-            int cases = t->emulated ? N / 8 : N;
+            int cases = t->quick ? N / 8 : N;
             for (int k = 0; k < cases; k++) {
                 double closed = hb_ref_huang_r_integral_analytic(plan, ti[k], pi[k], to[k], po[k]);
                 double numeric = hb_ref_huang_r_integral(plan, ti[k], pi[k], to[k], po[k], 0);
@@ -174,8 +174,8 @@ static double worst_error(hb_test_ctx *t, huang_setup s, int vectors, int grazin
     float ti[N], pi[N], to[N], po[N];
     double worst = 0.0;
     size_t roughnesses = sizeof kernel_roughness / sizeof kernel_roughness[0];
-    size_t alphas = t->emulated ? 1 : sizeof kernel_alpha / sizeof kernel_alpha[0]; /* qemu: fewer cases */
-    for (size_t r = t->emulated ? 1 : 0; r < roughnesses; r += t->emulated ? 2 : 1)
+    size_t alphas = t->quick ? 1 : sizeof kernel_alpha / sizeof kernel_alpha[0]; /* quick tier: fewer cases */
+    for (size_t r = t->quick ? 1 : 0; r < roughnesses; r += t->quick ? 2 : 1)
         for (size_t a = 0; a < alphas; a++) {
             s.roughness = kernel_roughness[r];
             s.alpha = kernel_alpha[a];
@@ -216,7 +216,7 @@ static void numeric_kernel(hb_test_ctx *t)
         { HB_NDF_GGX, HB_SHADOWING_NONE, 0.0, { 2.5e-3, 4e-4, 6e-5 } },
         { HB_NDF_GGX, HB_SHADOWING_NONE, 0.8, { 7e-3, 1.5e-3, 2.5e-4 } },
         { HB_NDF_GGX, HB_SHADOWING_SMITH, 0.0, { 3.5e-2, 8e-3, 3.5e-3 } },
-        { HB_NDF_GGX, HB_SHADOWING_SMITH, 0.8, { 7e-2, 3e-2, 5.5e-3 } }, /* fast: 4.8e-2 on the qemu subset */
+        { HB_NDF_GGX, HB_SHADOWING_SMITH, 0.8, { 7e-2, 3e-2, 5.5e-3 } }, /* fast: 4.8e-2 on the quick subset */
         { HB_NDF_BECKMANN, HB_SHADOWING_NONE, 0.0, { 1.4e-2, 1e-3, 1.6e-4 } },
         { HB_NDF_BECKMANN, HB_SHADOWING_NONE, 0.8, { 2.6e-2, 2e-3, 2e-4 } },
         { HB_NDF_BECKMANN, HB_SHADOWING_SMITH, 0.0, { 1.4e-2, 1e-3, 1.3e-4 } },

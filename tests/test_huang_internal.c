@@ -125,7 +125,7 @@ static void test_internal_unbiased(hb_test_ctx *t)
 {
     static float ti[DRAWS], pi[DRAWS], to[DRAWS], po[DRAWS], f[3][DRAWS];
     for (int k = 0; k < CONVERGENCE; k++) {
-        if (t->emulated && k % 3)
+        if (t->quick && k % 3)
             continue;
         const internal_case *c = &convergence_cases[k];
         hb_plan *plan = internal_plan(t, c, TT_TRT, HB_ISA_AUTO, 7u);
@@ -182,7 +182,7 @@ static void test_internal_reciprocal(hb_test_ctx *t)
                 return;
             int points = lobe == HB_LOBE_TT ? 48 : 12, which = lobe == HB_LOBE_TRT;
             for (int j = 0; j < 3; j++) {
-                if ((t->emulated && j % 2) || (which && k > 0)) /* TRT's 5D quadrature: one fibre */
+                if ((t->quick && j % 2) || (which && k > 0)) /* TRT's 5D quadrature: one fibre */
                     continue;
                 const double *q = pairs[which][j];
                 double a[2][3], b[2][3];
@@ -306,7 +306,7 @@ static void test_internal_hard_cases(hb_test_ctx *t)
  * elliptical fibres and other models are refused. */
 static void test_internal_orders(hb_test_ctx *t)
 {
-    long paths = t->emulated ? 20000 : 100000;
+    long paths = t->quick ? 20000 : 100000;
     const internal_case absorbing = { HB_NDF_GGX, 0.3, 0.0, 0.0, 1, 0.1, 0, 0, 0, 0 };
     static const double thetas[] = { 0.0, 0.8 };
     for (int k = 0; k < 2; k++) {

@@ -61,10 +61,10 @@ static void test_table_matches_estimator(hb_test_ctx *t)
 {
     static float ti[PAIRS * DRAWS], pi[PAIRS * DRAWS], to[PAIRS * DRAWS], po[PAIRS * DRAWS], f[3][PAIRS * DRAWS];
     static double mean[PAIRS], standard[PAIRS];
-    int draws = t->emulated ? DRAWS / 4 : DRAWS;
+    int draws = t->quick ? DRAWS / 4 : DRAWS;
     for (int k = 0; k < CASES; k++) {
         const table_case *c = &table_cases[k];
-        if ((t->emulated || t->isa == HB_ISA_SCALAR) && (c->roughness < 0.2 || c->eccentricity > 0.0))
+        if ((t->quick || t->isa == HB_ISA_SCALAR) && (c->roughness < 0.2 || c->eccentricity > 0.0))
             continue; /* the two costly builds: the SIMD ISAs on x86 run them */
         hb_plan *mc = table_plan(t, c, HB_TT_TRT_MC, HB_QUALITY_HIGH, t->isa);
         hb_plan *table = table_plan(t, c, HB_TT_TRT_TABLE, HB_QUALITY_BALANCED, t->isa);
@@ -123,7 +123,7 @@ static void test_table_matches_reference(hb_test_ctx *t)
 {
     for (int k = 0; k < CASES; k++) {
         const table_case *c = &table_cases[k];
-        if (t->emulated && (c->roughness < 0.2 || c->eccentricity > 0.0))
+        if (t->quick && (c->roughness < 0.2 || c->eccentricity > 0.0))
             continue;
         hb_plan *table = table_plan(t, c, HB_TT_TRT_TABLE, HB_QUALITY_BALANCED, HB_ISA_AUTO);
         if (!table)

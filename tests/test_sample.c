@@ -37,11 +37,11 @@ static hb_plan *deon_plan(hb_test_ctx *t, double beta_m, double beta_n, double a
 static void test_sample_furnace(hb_test_ctx *t)
 {
     static const double betas[] = { 0.1, 0.3, 0.5, 0.7, 0.9 }, thetas[] = { 0.0, -0.7, 1.3 };
-    size_t n = t->emulated ? 5000 : 100000;
+    size_t n = t->quick ? 5000 : 100000;
     double worst_mean = 0.0, worst_single = 0.0, worst_tilted = 0.0;
     for (int a = 0; a < 5; a++)
         for (int b = 0; b < 5; b++) {
-            if (t->emulated && (a + b) % 4)
+            if (t->quick && (a + b) % 4)
                 continue;
             for (int tilted = 0; tilted < 2; tilted++) {
                 if (tilted && (a + b) % 2) /* the tilted case on half of the pairs */
@@ -81,10 +81,10 @@ static void test_sample_consistency(hb_test_ctx *t)
 {
     static const double pairs[][2] = { { 0.2, 0.3 }, { 0.3, 0.5 }, { 0.5, 0.9 }, { 0.15, 0.7 } };
     static const double thetas[] = { 0.2, -0.9 };
-    size_t n_sampled = t->emulated ? 20000 : 100000, n_uniform = t->emulated ? 40000 : MAX_SAMPLES;
+    size_t n_sampled = t->quick ? 20000 : 100000, n_uniform = t->quick ? 40000 : MAX_SAMPLES;
     double worst = 0.0;
     for (int c = 0; c < 4; c++) {
-        if (t->emulated && c % 2)
+        if (t->quick && c % 2)
             continue;
         hb_plan *plan = deon_plan(t, pairs[c][0], pairs[c][1], 0.035, 0.25, HB_QUALITY_BALANCED, HB_ISA_AUTO);
         if (!plan)
@@ -98,7 +98,7 @@ static void test_sample_consistency(hb_test_ctx *t)
             }
             sampled /= (double)n_sampled;
             /* uniform directions: sin(theta) = 2 u - 1, phi = 2 pi u' - pi; pdf 1 / (4 pi) */
-            int reps = t->emulated ? 3 : 5;
+            int reps = t->quick ? 3 : 5;
             for (int rep = 0; rep < reps; rep++) {
                 float *u[2] = { buf->u[0], buf->u[1] };
                 hb_uniforms(hb_test_next_seed(t), 0, n_uniform, 2, u);
@@ -143,7 +143,7 @@ static void test_sample_chi_square(hb_test_ctx *t)
         { 0.15, 0.15, -0.05, 0.05, 1.45, 0.0 },
     };
     static double prob[NT * NP];
-    size_t n = t->emulated ? 20000 : MAX_SAMPLES;
+    size_t n = t->quick ? 20000 : MAX_SAMPLES;
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         hb_plan *plan = deon_plan(t, cases[c].beta_m, cases[c].beta_n, cases[c].alpha, cases[c].sigma_a,
                                   HB_QUALITY_BALANCED, HB_ISA_AUTO);
@@ -174,7 +174,7 @@ static void test_sample_reference(hb_test_ctx *t)
         { 0.3, 0.3, 0.035, 0.0, 0.5 }, { 0.1, 0.2, 0.035, 0.5, -1.2 }, { 0.02, 0.05, 0.0, 0.1, 0.3 },
         { 0.9, 1.5, -0.1, 3.0, 1.5 }, { 0.01, 0.02, 0.035, 0.0, 1.5707963 }, { 0.01, 0.3, 0.0, 1e3, -0.3 },
     };
-    size_t n = t->emulated ? 100 : 400;
+    size_t n = t->quick ? 100 : 400;
     double worst_direction = 0.0, worst_pdf = 0.0, worst_weight = 0.0;
     size_t flips = 0, total = 0;
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
@@ -222,7 +222,7 @@ static void test_sample_reference_quality(hb_test_ctx *t)
     hb_plan *plan = deon_plan(t, 0.3, 0.3, 0.0, 0.0, HB_QUALITY_REFERENCE, HB_ISA_AUTO);
     if (!plan)
         return;
-    size_t n = t->emulated ? 50 : 300;
+    size_t n = t->quick ? 50 : 300;
     hb_test_sample_batch(t, plan, n, 0.4, 0.0, hb_test_next_seed(t));
     double worst = 0.0;
     for (size_t i = 0; i < n; i++)

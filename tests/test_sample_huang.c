@@ -66,14 +66,14 @@ enum { CASES = sizeof cases / sizeof cases[0], NT = 24, NP = 48 };
 static void test_huang_sample_chi_square(hb_test_ctx *t)
 {
     static double prob[NT * NP];
-    size_t n = t->emulated ? 20000 : HB_TEST_MAX_SAMPLES;
+    size_t n = t->quick ? 20000 : HB_TEST_MAX_SAMPLES;
     for (int c = 0; c < CASES; c++) {
-        if (t->emulated && c % 4 != 2) /* under qemu: the Beckmann cases, grazing and at a pole */
+        if (t->quick && c % 4 != 2) /* quick tier: the Beckmann cases, grazing and at a pole */
             continue;
         hb_plan *plan = huang_plan(t, &cases[c], HB_QUALITY_BALANCED, HB_ISA_AUTO);
         if (!plan)
             return;
-        double integral = hb_test_cell_integrals(plan, 1, cases[c].theta_o, cases[c].phi_o, NT, NP, t->emulated ? 2 : 4, 6,
+        double integral = hb_test_cell_integrals(plan, 1, cases[c].theta_o, cases[c].phi_o, NT, NP, t->quick ? 2 : 4, 6,
                                                  prob);
         unsigned long long seed = hb_test_next_seed(t);
         hb_test_sample_batch(t, plan, n, cases[c].theta_o, cases[c].phi_o, seed);
@@ -96,10 +96,10 @@ static void test_huang_sample_chi_square(hb_test_ctx *t)
  * the same D, the pdf's with G1(w_o) alone and over a larger window). */
 static void test_huang_sample_albedo(hb_test_ctx *t)
 {
-    size_t n = t->emulated ? 20000 : 100000;
+    size_t n = t->quick ? 20000 : 100000;
     static double cell[NT * NP];
     for (int c = 0; c < CASES; c++) {
-        if (t->emulated && c % 4 != 0) /* under qemu: a circular and an elliptical GGX case */
+        if (t->quick && c % 4 != 0) /* quick tier: a circular and an elliptical GGX case */
             continue;
         hb_plan *plan = huang_plan(t, &cases[c], HB_QUALITY_HIGH, HB_ISA_AUTO);
         if (!plan)
@@ -121,7 +121,7 @@ static void test_huang_sample_albedo(hb_test_ctx *t)
         mean /= (double)n;
         double sigma = sqrt(fmax(mean2 / (double)n - mean * mean, 0.0) / (double)n);
         /* the albedo: the integral of f over w_i, by the cells of the chi-square test */
-        double albedo = hb_test_cell_integrals(plan, 0, cases[c].theta_o, cases[c].phi_o, NT, NP, t->emulated ? 1 : 4, 6,
+        double albedo = hb_test_cell_integrals(plan, 0, cases[c].theta_o, cases[c].phi_o, NT, NP, t->quick ? 1 : 4, 6,
                                                cell);
         char text[160];
         describe(&cases[c], text, sizeof text);
@@ -140,7 +140,7 @@ static void test_huang_sample_albedo(hb_test_ctx *t)
  * the adaptive-quadrature pdf, hb_pdf_angles returns the sampled pdf bit for bit, weights are f / pdf. */
 static void test_huang_sample_reference(hb_test_ctx *t)
 {
-    size_t n = t->emulated ? 60 : 200;
+    size_t n = t->quick ? 60 : 200;
     double worst_direction = 0.0, worst_pdf = 0.0, worst_weight = 0.0;
     for (int c = 0; c < CASES; c++) {
         hb_plan *plan = huang_plan(t, &cases[c], HB_QUALITY_HIGH, t->isa);
@@ -258,13 +258,13 @@ static void test_huang_path_chi_square(hb_test_ctx *t)
 {
     enum { MAX_CELLS = PATH_NT * PATH_NP };
     static double mean[MAX_CELLS], var[MAX_CELLS], count[MAX_CELLS];
-    /* under qemu (a pdf takes ~6 ms there): one GGX case on a 8 x 16 grid, 16 points a cell */
-    size_t n = t->emulated ? 20000 : 100000;
-    int nt = t->emulated ? PATH_NT / 2 : PATH_NT, np = t->emulated ? PATH_NP / 2 : PATH_NP;
-    int jitter = t->emulated ? PATH_JITTER / 4 : PATH_JITTER, per_cell = jitter * jitter, cells_all = nt * np;
+    /* quick tier: one GGX case on a 8 x 16 grid, 16 points a cell */
+    size_t n = t->quick ? 20000 : 100000;
+    int nt = t->quick ? PATH_NT / 2 : PATH_NT, np = t->quick ? PATH_NP / 2 : PATH_NP;
+    int jitter = t->quick ? PATH_JITTER / 4 : PATH_JITTER, per_cell = jitter * jitter, cells_all = nt * np;
     int points = cells_all * per_cell;
     for (int c = 0; c < PATH_CASES; c++) {
-        if (t->emulated && c != 0)
+        if (t->quick && c != 0)
             continue;
         const huang_case *pc = &path_cases[c];
         hb_plan *plan = huang_plan(t, pc, HB_QUALITY_HIGH, HB_ISA_AUTO);
@@ -339,9 +339,9 @@ static void test_huang_path_chi_square(hb_test_ctx *t)
  * standard errors per channel. */
 static void test_huang_path_albedo(hb_test_ctx *t)
 {
-    size_t n = t->emulated ? 20000 : 100000;
+    size_t n = t->quick ? 20000 : 100000;
     for (int c = 0; c < PATH_CASES; c++) {
-        if (t->emulated && c != 0)
+        if (t->quick && c != 0)
             continue;
         const huang_case *pc = &path_cases[c];
         hb_plan *plan = huang_plan(t, pc, HB_QUALITY_BALANCED, HB_ISA_AUTO);
@@ -407,7 +407,7 @@ static void test_huang_path_isa(hb_test_ctx *t)
     static const float phis[] = { 0.0f, 3.14159274f, -3.14159274f, 2.0f };
     static const float edges[] = { 0.0f, 0.99999994f, 1e-30f, 0.5f };
     static float ref_ti[N], ref_pi[N], ref_pdf[N], ref_w[3][N];
-    const size_t n = t->emulated ? N / 4 : N; /* under qemu a sample takes milliseconds */
+    const size_t n = t->quick ? N / 4 : N; /* quick tier: a quarter */
     for (size_t k = 0; k < sizeof materials / sizeof materials[0]; k++) {
         hb_plan *plan = huang_plan(t, &materials[k], HB_QUALITY_FAST, t->isa);
         hb_plan *scalar = huang_plan(t, &materials[k], HB_QUALITY_FAST, HB_ISA_SCALAR);

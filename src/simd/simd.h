@@ -7,6 +7,11 @@
 /* Everything in the vocabulary and the math built on it is forced inline: a kernel
  * is one straight-line body per vector of samples, never a call per operation. */
 #define HB_INLINE static inline __attribute__((always_inline))
+/* A stage that several kernels of one translation unit share (f from the geometry and M_p, the
+ * internal paths of a fibre): one out-of-line copy per unit instead of one inlined into every
+ * kernel and I0 variant, which is what bounds each unit's compile time and memory. Its vectors
+ * cross the call through memory: a few loads and stores per block against hundreds of operations. */
+#define HB_STAGE static __attribute__((noinline))
 /* Unrolls the loop that follows (over lobes, channels, streams) so its arrays of vectors can live
  * in registers; GCC at -O2 keeps a loop with a large body rolled. Clang reads the same pragma. */
 #define HB_UNROLL _Pragma("GCC unroll 8")

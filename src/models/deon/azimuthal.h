@@ -491,7 +491,7 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
  * up per M_p group, the standard shape folds M_p into the node sum (above), any other sums N_p per
  * lobe first and adds the lobes of equal M_p before multiplying, so each distinct M_p is evaluated
  * once. The angle and vector entry points share everything but M and the geometry. */
-HB_INLINE void deon_eval(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
+HB_STAGE void deon_eval(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
 {
     if (d->np_table) {
         deon_table(d, g, M, out);

@@ -76,7 +76,7 @@ HB_INLINE vf deon_sample_theta(const hb_deon *d, const vf c[HB_MAX_LOBES + 1], v
 }
 
 /* Steps 2 and 3: phi = phi_o - phi_i given theta_i. */
-HB_INLINE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf theta_i, vf theta_o, const vf u[2])
+HB_STAGE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf theta_i, vf theta_o, const vf u[2])
 {
     /* the node, by the plan's cumulative weights, and u[0] rescaled within it */
     vf lo = vf_set1(0.0f), hi = vf_set1(d->node_cdf[0]);
@@ -133,7 +133,7 @@ HB_INLINE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf 
 }
 
 /* f (RGB) and the sampling pdf at given angles; M: each group's M_p at these angles. */
-HB_INLINE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o,
+HB_STAGE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o,
                         vf out[3])
 {
     deon_pdf_terms terms = { M, vf_set1(0.0f) };

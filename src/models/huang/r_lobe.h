@@ -316,7 +316,7 @@ HB_INLINE vf r_integral_steps(const hb_huang *h, const huang_directions *d, cons
 
 /* f_R = F(w_o . w_h) / (8 cos(theta_o) a) * integral, a = sqrt(1 - e^2 sin^2 phi_o) the fibre's
  * projected half width (eqs. 12, 27, 28; f = S cos(theta_i)). */
-HB_INLINE vf huang_r(const hb_huang *h, const huang_directions *d)
+HB_STAGE vf huang_r(const hb_huang *h, const huang_directions *d)
 {
     huang_r_geometry g = huang_r_geometry_of(h, d);
     vf integral = h->analytic ? r_integral_ggx_analytic(h, &g)

@@ -59,7 +59,7 @@ HB_INLINE huang_o_window huang_o_window_of(const hb_huang *h, vf cos_to, vf sin_
 }
 
 /* pdf at a direction pair (in the frame phi_i = 0). */
-HB_INLINE vf huang_pdf(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g, const huang_o_window *w)
+HB_STAGE vf huang_pdf(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g, const huang_o_window *w)
 {
     vf pi = vf_set1(HB_PI_F), two_pi = vf_set1(HB_TWO_PI_F), zero = vf_set1(0.0f);
     /* w_o's window in delta = phi_h - phi_m: centre phi_h - phi_o, half width w->half; w_h . w_m > 0

@@ -171,7 +171,7 @@ HB_INLINE v3 fibre_direction(vf cos_t, vf sin_t, vf cos_p, vf sin_p)
 }
 
 /* The pdf of w_i (eq. 33 in expectation) for w_o, keyed by the sample's index. */
-HB_INLINE vf huang_path_pdf(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vi index)
+HB_STAGE vf huang_path_pdf(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vi index)
 {
     vf zero = vf_set1(0.0f), sti, cti, sto, cto, spi, cpi, spo, cpo;
     vf_sincos(theta_i, &sti, &cti);

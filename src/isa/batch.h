@@ -1,0 +1,151 @@
+/* The batch loop every kernel entry point shares, for the ISA this translation unit is
+ * compiled for: lane blocks loaded from caller-owned SoA streams (a padded tail last),
+ * invalid samples replaced by benign ones and counted, results stored back. A model's
+ * kernels.c includes this, its model headers, and defines its table under HB_ISA_SYMBOL. */
+#ifndef HB_ISA_BATCH_H
+#define HB_ISA_BATCH_H
+
+#include <string.h>
+
+#include "../simd/simd.h"
+#include "../math/vmath.h"
+#include "../kernels.h"
+
+/* hb_<isa>_<name>: the per-ISA name of a model's table (internal to the library). */
+#if defined(HB_TARGET_SCALAR)
+#define HB_ISA_SYMBOL(name) hb_scalar_##name
+#define HB_THIS_ISA HB_ISA_SCALAR
+#elif defined(HB_TARGET_SSE41)
+#define HB_ISA_SYMBOL(name) hb_sse41_##name
+#define HB_THIS_ISA HB_ISA_SSE41
+#elif defined(HB_TARGET_AVX2)
+#define HB_ISA_SYMBOL(name) hb_avx2_##name
+#define HB_THIS_ISA HB_ISA_AVX2
+#elif defined(HB_TARGET_AVX512)
+#define HB_ISA_SYMBOL(name) hb_avx512_##name
+#define HB_THIS_ISA HB_ISA_AVX512
+#elif defined(HB_TARGET_NEON)
+#define HB_ISA_SYMBOL(name) hb_neon_##name
+#define HB_THIS_ISA HB_ISA_NEON
+#endif
+
+/* Loads lane block [i, i + lanes) of each stream; a short tail is padded with pad. One load per
+ * stream either way (from the stream, or from the padded copy), so the vectors stay in registers. */
+HB_INLINE void load_block(const float *const *src, int streams, size_t i, size_t lanes, float pad, vf *dst)
+{
+    float padded[2 + HB_SAMPLE_DIMENSIONS][HB_W]; /* the most streams a kernel loads */
+    if (lanes != HB_W)
+        for (int s = 0; s < streams; s++)
+            for (size_t k = 0; k < HB_W; k++)
+                padded[s][k] = k < lanes ? src[s][i + k] : pad;
+    HB_UNROLL
+    for (int s = 0; s < streams; s++)
+        dst[s] = vf_loadu(lanes == HB_W ? src[s] + i : padded[s]);
+}
+
+HB_INLINE void store_block(float *dst, size_t i, size_t lanes, vf value)
+{
+    if (lanes == HB_W) {
+        vf_storeu(dst + i, value);
+    } else {
+        float buf[HB_W];
+        vf_storeu(buf, value);
+        memcpy(dst + i, buf, lanes * sizeof(float));
+    }
+}
+
+HB_INLINE size_t count_invalid(vm valid, size_t lanes)
+{
+    unsigned live = lanes >= 32 ? ~0u : (1u << lanes) - 1u;
+    return (size_t)__builtin_popcount(~vm_bits(valid) & live);
+}
+
+/* theta in [-pi/2, pi/2] (as floats), |phi| <= HB_PHI_LIMIT; false for NaN and Inf. */
+HB_INLINE vm angle_pair_valid(vf theta, vf phi)
+{
+    return vm_and(vf_le(vf_abs(theta), vf_set1(HB_PIO2_F)), vf_le(vf_abs(phi), vf_set1(HB_PHI_LIMIT)));
+}
+
+HB_INLINE vm unit_vector_valid(const vf w[3])
+{
+    vf norm2 = vf_fma(w[0], w[0], vf_fma(w[1], w[1], vf_mul(w[2], w[2])));
+    return vf_le(vf_abs(vf_sub(norm2, vf_set1(1.0f))), vf_set1(HB_UNIT_TOLERANCE));
+}
+
+/* Loads lane block i of an angle batch; returns which lanes are valid samples. Invalid lanes
+ * are replaced by a benign direction, so no NaN or huge value reaches the math (a float-to-int
+ * conversion of one is undefined behaviour); their output is 0 anyway. */
+HB_INLINE vm load_angles(hb_angles_soa in, size_t i, size_t lanes, vf a[4])
+{
+    const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
+    load_block(src, 4, i, lanes, 0.0f, a);
+    vm valid = vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
+    HB_UNROLL
+    for (int k = 0; k < 4; k++)
+        a[k] = vf_keep(valid, a[k]);
+    return valid;
+}
+
+HB_INLINE vm load_vectors(hb_vectors_soa in, size_t i, size_t lanes, vf a[6])
+{
+    const float *src[6] = { in.wi_x, in.wi_y, in.wi_z, in.wo_x, in.wo_y, in.wo_z };
+    load_block(src, 6, i, lanes, 0.0f, a);
+    vm valid = vm_and(unit_vector_valid(a), unit_vector_valid(a + 3));
+    for (int k = 0; k < 6; k++)
+        a[k] = vf_select(valid, a[k], vf_set1(k % 3 == 2 ? 1.0f : 0.0f)); /* w = (0, 0, 1) */
+    return valid;
+}
+
+/* Loads lane block i of a sampling batch: theta_o, phi_o, then `dims` uniform numbers. Valid
+ * lanes have a valid direction and every u in [0, 1]; the others get (0, 0) and u = 1/2. */
+HB_INLINE vm load_sample(hb_sample_in in, int dims, size_t i, size_t lanes, vf *a)
+{
+    const float *src[2 + HB_SAMPLE_DIMENSIONS] = { in.theta_o, in.phi_o };
+    for (int k = 0; k < dims; k++)
+        src[2 + k] = in.u[k];
+    load_block(src, 2 + dims, i, lanes, 0.0f, a);
+    vm valid = angle_pair_valid(a[0], a[1]);
+    for (int k = 2; k < 2 + dims; k++)
+        valid = vm_and(valid, vm_and(vf_ge(a[k], vf_set1(0.0f)), vf_le(a[k], vf_set1(1.0f))));
+    for (int k = 0; k < 2 + dims; k++)
+        a[k] = vf_select(valid, a[k], vf_set1(k < 2 ? 0.0f : 0.5f));
+    return valid;
+}
+
+/* Invalid lanes get 0 in every plane. */
+HB_INLINE void store_rgb(hb_rgb_soa out, size_t i, size_t lanes, vm valid, const vf f[3])
+{
+    float *planes[3] = { out.r, out.g, out.b };
+    for (int c = 0; c < 3; c++)
+        store_block(planes[c], i, lanes, vf_keep(valid, f[c]));
+}
+
+/* A sampled direction, its pdf and weight; invalid lanes get 0 everywhere. */
+HB_INLINE void store_sample(hb_sample_out out, size_t i, size_t lanes, vm valid, vf theta_i, vf phi_i, vf pdf,
+                            const vf weight[3])
+{
+    store_block(out.theta_i, i, lanes, vf_keep(valid, theta_i));
+    store_block(out.phi_i, i, lanes, vf_keep(valid, phi_i));
+    store_block(out.pdf, i, lanes, vf_keep(valid, pdf));
+    store_rgb(out.weight, i, lanes, valid, weight);
+}
+
+/* The loop every entry point shares: blocks of W lanes (a padded tail last), `compute`
+ * turning the loaded lanes `a` (valid where `valid`) into stored results, and the count of
+ * invalid samples; subnormals flushed meanwhile (simd.h). */
+#define HB_BATCH(load, streams, in, n, invalid, compute)              \
+    do {                                                              \
+        hb_fp_mode mode_ = hb_flush_subnormals();                     \
+        size_t bad_ = 0;                                              \
+        for (size_t i = 0; i < (n); i += HB_W) {                      \
+            size_t lanes = (n) - i < HB_W ? (n) - i : HB_W;           \
+            vf a[streams];                                            \
+            vm valid = load((in), i, lanes, a);                       \
+            compute;                                                  \
+            bad_ += count_invalid(valid, lanes);                      \
+        }                                                             \
+        *(invalid) = bad_;                                            \
+        hb_fp_restore(mode_);                                         \
+    } while (0)
+
+#endif

@@ -1,0 +1,88 @@
+/* dFH11's batch kernels for one ISA: the Makefile compiles this file once per instruction
+ * set (-DHB_TARGET_<NAME> and that ISA's flags) into hb_<isa>_deon_kernels. */
+#include "../../isa/batch.h"
+#include "sample.h"
+
+#define HB_DEON_SAMPLE_DIMENSIONS 5
+HB_INLINE vm load_deon_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
+{
+    return load_sample(in, HB_DEON_SAMPLE_DIMENSIONS, i, lanes, a);
+}
+
+/* One specialised kernel per I0 variant: the variant is a constant inside each. */
+#define HB_DEON_KERNELS(suffix, i0)                                                                       \
+    static void longitudinal_angles_##suffix(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,     \
+                                             float *out, size_t *invalid)                                \
+    {                                                                                                     \
+        HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
+                 store_block(out, i, lanes,                                                               \
+                             vf_keep(valid, longitudinal_deon_angles(lobe, a[0], a[2], i0))));             \
+    }                                                                                                     \
+    static void longitudinal_vectors_##suffix(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,   \
+                                              float *out, size_t *invalid)                               \
+    {                                                                                                     \
+        HB_BATCH(load_vectors, 6, in, n, invalid,                                                         \
+                 store_block(out, i, lanes,                                                               \
+                             vf_keep(valid, longitudinal_deon_vectors(lobe, a, a + 3, i0))));              \
+    }                                                                                                     \
+    static void deon_angles_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,     \
+                                     size_t *invalid)                                                    \
+    {                                                                                                     \
+        vf f[3];                                                                                          \
+        HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
+                 (deon_angles(deon, a[0], a[1], a[2], a[3], i0, f), store_rgb(out, i, lanes, valid, f))); \
+    }                                                                                                     \
+    static void deon_sample_##suffix(const hb_deon *deon, size_t n, hb_sample_in in, hb_sample_out out,   \
+                                     size_t *invalid)                                                    \
+    {                                                                                                     \
+        vf theta_i, phi_i, pdf, weight[3];                                                                \
+        HB_BATCH(load_deon_sample, 2 + HB_DEON_SAMPLE_DIMENSIONS, in, n, invalid,                         \
+                 (deon_sample(deon, a[0], a[1], a + 2, i0, &theta_i, &phi_i, &pdf, weight),                \
+                  store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));                      \
+    }                                                                                                     \
+    static void deon_pdf_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, float *pdf,            \
+                                  size_t *invalid)                                                       \
+    {                                                                                                     \
+        HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
+                 store_block(pdf, i, lanes,                                                               \
+                             vf_keep(valid, deon_pdf_angles(deon, a[0], a[1], a[2], a[3], i0))));          \
+    }                                                                                                     \
+    static void deon_vectors_##suffix(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,   \
+                                      size_t *invalid)                                                   \
+    {                                                                                                     \
+        vf f[3];                                                                                          \
+        HB_BATCH(load_vectors, 6, in, n, invalid,                                                         \
+                 (deon_vectors(deon, a, a + 3, i0, f), store_rgb(out, i, lanes, valid, f)));              \
+    }
+HB_DEON_KERNELS(abramowitz, HB_I0_ABRAMOWITZ)
+HB_DEON_KERNELS(paper, HB_I0_PAPER)
+#undef HB_DEON_KERNELS
+
+static void np_row(const hb_deon *deon, float cos_theta_d, size_t n, const float *phi, float *out)
+{
+    deon_np_row(deon, cos_theta_d, n, phi, out);
+}
+
+/* D_p(x) = (D_p(x - 0) + D_p(-x - 0)) / 2, D_p being even: the kernel's detector, for the tests. */
+static void detector_map(const hb_detector *d, size_t n, const float *x, float *out)
+{
+    for (size_t i = 0; i < n; i += HB_W) {
+        size_t lanes = n - i < HB_W ? n - i : HB_W;
+        vf phi, cos_n_phi[HB_MAX_DETECTOR_TERMS + 1];
+        load_block(&x, 1, i, lanes, 0.0f, &phi);
+        cos_multiples(vf_cos(phi), d->fourier ? d->terms : 0, cos_n_phi);
+        vf pair = detector_pair(d, phi, vf_set1(0.0f), cos_n_phi, (deon_shape){ 0, 1, 0 });
+        store_block(out, i, lanes, vf_mul(pair, vf_set1(0.5f)));
+    }
+}
+
+HB_INTERNAL const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
+    .longitudinal_angles = { longitudinal_angles_abramowitz, longitudinal_angles_paper },
+    .longitudinal_vectors = { longitudinal_vectors_abramowitz, longitudinal_vectors_paper },
+    .angles = { deon_angles_abramowitz, deon_angles_paper },
+    .vectors = { deon_vectors_abramowitz, deon_vectors_paper },
+    .sample = { deon_sample_abramowitz, deon_sample_paper },
+    .pdf = { deon_pdf_abramowitz, deon_pdf_paper },
+    .np_row = np_row,
+    .detector_map = detector_map,
+};
