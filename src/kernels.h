@@ -43,8 +43,8 @@ typedef struct hb_marschner {
     float fold_index[3];
     int trt_branches;     /* 1, or 3 when TRT's cubic spans more than 2 pi (eta* near 1): phi + 2 pi k, |k| <= 1 */
     int eccentric;        /* TRT sees eta*(phi_h) (MJC03), not eta */
-    float eta2_minus_one, inv_eta2;
-    float eta_star_mean, eta_star_swing; /* eta* = mean + swing cos(2 phi_h) = mean + swing cos(phi_i + phi_o) */
+    float eta, eta2_minus_one; /* eta and eta^2 - 1 (formed in double) */
+    float eta_star_excess, eta_star_swing; /* eta* - 1 = excess + swing cos(2 phi_h) = excess + swing cos(phi_i + phi_o), excess = mean - 1 in double */
     float sigma_a_log2e[3]; /* sigma_a log2(e), for the transmittances 2^-(mu' log2 e l) */
     hb_gaussian_lobe lobe[3];
     float caustic_log2e_over_two_w2, caustic_norm, caustic_width; /* the fade and glint Gaussian g(w_c; x) */

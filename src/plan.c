@@ -15,6 +15,7 @@
 #define BETA_N_MIN 0.02
 #define BETA_N_MAX 3.0
 #define ALPHA_MAX 0.2
+#define LOBE_ALPHA_MAX 0.6 /* three times ALPHA_MAX, written out: 3 * 0.2 rounds above 0.6 */
 #define ETA_MAX 10.0
 #define ROUGHNESS_MIN 1e-3
 #define ROUGHNESS_MAX 1.0
@@ -108,9 +109,9 @@ static hb_status validate_material(const hb_material *m, hb_error *error)
     if (!in_range(m->alpha, -ALPHA_MAX, ALPHA_MAX))
         return hb_plan_fail(error, HB_ERR_PARAM, "alpha = %g must be in [%g, %g] radians", m->alpha, -ALPHA_MAX, ALPHA_MAX);
     for (int p = 0; p < HB_MAX_LOBES; p++)
-        if ((m->lobe_alpha_override >> p & 1u) && !in_range(m->lobe_alpha[p], -3 * ALPHA_MAX, 3 * ALPHA_MAX))
+        if ((m->lobe_alpha_override >> p & 1u) && !in_range(m->lobe_alpha[p], -LOBE_ALPHA_MAX, LOBE_ALPHA_MAX))
             return hb_plan_fail(error, HB_ERR_PARAM, "lobe_alpha[%d] = %g must be in [%g, %g] radians", p, m->lobe_alpha[p],
-                        -3 * ALPHA_MAX, 3 * ALPHA_MAX);
+                        -LOBE_ALPHA_MAX, LOBE_ALPHA_MAX);
     if (m->ndf != HB_NDF_GGX && m->ndf != HB_NDF_BECKMANN)
         return hb_plan_fail(error, HB_ERR_PARAM, "ndf = %d is neither HB_NDF_GGX nor HB_NDF_BECKMANN", (int)m->ndf);
     if (!in_range(m->roughness, ROUGHNESS_MIN, ROUGHNESS_MAX))
@@ -141,6 +142,14 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
     if (o->model == HB_MODEL_MARSCHNER && o->term == HB_TERM_FULL && o->lobes != HB_LOBES_DEFAULT &&
         (o->lobes & ~7u))
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the marschner model has R, TT and TRT only", o->lobes);
+    if (o->model == HB_MODEL_HUANG && o->lobes != HB_LOBES_DEFAULT && (o->lobes & ~7u))
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the huang model has R, TT and TRT only (HHH22 eq. 3)",
+                            o->lobes);
+    if ((unsigned)o->tt_trt > HB_TT_TRT_TABLE)
+        return hb_plan_fail(error, HB_ERR_PARAM, "tt_trt = %d is not a TT/TRT evaluation method", (int)o->tt_trt);
+    if (o->tt_panels < 0 || o->tt_panels > HB_MAX_TT_PANELS || o->tt_panels % 2)
+        return hb_plan_fail(error, HB_ERR_PARAM, "tt_panels = %d must be 0 (from quality) or even, in [2, %d]", o->tt_panels,
+                            HB_MAX_TT_PANELS);
     if (o->term != HB_TERM_FULL && o->term != HB_TERM_LONGITUDINAL)
         return hb_plan_fail(error, HB_ERR_PARAM, "term = %d is not a term", (int)o->term);
     if (o->pmax < 0 || o->pmax >= HB_MAX_LOBES)
@@ -211,20 +220,12 @@ static hb_status validate_huang(const hb_material *m, const hb_options *o, hb_er
 {
     if (o->term != HB_TERM_FULL)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the huang model is not separable: it has no longitudinal term");
-    if (o->lobes & ~7u)
-        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the huang model has R, TT and TRT only (HHH22 eq. 3)",
-                    o->lobes);
-    if ((unsigned)o->tt_trt > HB_TT_TRT_TABLE)
-        return hb_plan_fail(error, HB_ERR_PARAM, "tt_trt = %d is not a TT/TRT evaluation method", (int)o->tt_trt);
     if (o->tt_trt == HB_TT_TRT_TABLE && o->quality == HB_QUALITY_REFERENCE)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the TT/TRT table is a float fast path: the reference quality "
                                                "evaluates TT and TRT by nested quadrature instead");
     if (o->absorption != HB_ABSORPTION_CORRECTED)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED,
                     "huang traces the chord itself (HHH22 eq. 17 note): there is no paper absorption variant");
-    if (o->tt_panels < 0 || o->tt_panels > HB_MAX_TT_PANELS || o->tt_panels % 2)
-        return hb_plan_fail(error, HB_ERR_PARAM, "tt_panels = %d must be 0 (from quality) or even, in [2, %d]", o->tt_panels,
-                    HB_MAX_TT_PANELS);
     if (o->r_integration == HB_R_INTEGRATION_ANALYTIC) {
         if (m->ndf != HB_NDF_GGX)
             return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the analytic R integral (HHH22 App. A) exists for GGX only");
@@ -486,7 +487,7 @@ static void derive_marschner(hb_plan *plan)
     k->lobes = plan->options.lobes == HB_LOBES_DEFAULT ? 7u : plan->options.lobes;
     k->absorption_paper = plan->options.absorption == HB_ABSORPTION_PAPER;
     k->eta2_minus_one = (float)((m->eta - 1.0) * (m->eta + 1.0));
-    k->inv_eta2 = (float)(1.0 / (m->eta * m->eta));
+    k->eta = (float)m->eta;
     for (int c = 0; c < 3; c++)
         k->sigma_a_log2e[c] = absorption_float(plan->sigma_a[c] * M_LOG2E);
     /* eta* (MJC03 sec. 4.4) with the axis ratio a = sqrt(1 - e^2): eta1 = 2(eta - 1) a^2 - eta + 2
@@ -497,7 +498,7 @@ static void derive_marschner(hb_plan *plan)
     k->eccentric = m->eccentricity > 0.0;
     plan->eta_star_mean = 0.5 * (eta1 + eta2);
     plan->eta_star_swing = 0.5 * (eta1 - eta2);
-    k->eta_star_mean = (float)plan->eta_star_mean;
+    k->eta_star_excess = (float)(plan->eta_star_mean - 1.0); /* its digits near eta = 1 */
     k->eta_star_swing = (float)plan->eta_star_swing;
     plan->eta_star_min = k->eccentric ? fmax(1.0001, fmin(eta1, eta2)) : m->eta;
     /* eta' >= eta, so the smallest index a lobe sees decides which roots and caustics can exist */

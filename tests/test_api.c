@@ -83,6 +83,45 @@ static void test_validation(hb_test_ctx *t)
     CHECK(t, create(&m, &o, NULL) == HB_OK, "hard but valid material refused");
     m.struct_size = 8;
     CHECK(t, create(&m, &o, NULL) == HB_ERR_VERSION, "wrong struct_size accepted");
+
+    /* per-lobe tilt: the printed range [-0.6, 0.6] exactly, not the double 3 * 0.2 */
+    static const double lobe_alphas[] = { 0.6000000000000001, -0.6000000000000001, 0.6, -0.6 };
+    for (size_t k = 0; k < sizeof lobe_alphas / sizeof lobe_alphas[0]; k++) {
+        hb_material_default(&m);
+        hb_options_default(&o);
+        o.isa = HB_ISA_SCALAR;
+        m.lobe_alpha_override = 1u << HB_LOBE_TT;
+        m.lobe_alpha[HB_LOBE_TT] = lobe_alphas[k];
+        hb_error err;
+        hb_status st = create(&m, &o, &err);
+        int inside = fabs(lobe_alphas[k]) <= 0.6;
+        CHECK(t, inside ? st == HB_OK : (st == HB_ERR_PARAM && strstr(err.message, "lobe_alpha[1]")),
+              "lobe_alpha = %.17g: status %d '%s'", lobe_alphas[k], (int)st, st ? err.message : "");
+    }
+    /* HHH22's TT/TRT options are checked for every model, and each model names its own lobes */
+    for (int model = HB_MODEL_DEON; model <= HB_MODEL_HUANG; model++) {
+        const struct { int tt_trt, tt_panels; const char *name; } bad[] = { { 7, 0, "tt_trt" }, { -1, 0, "tt_trt" },
+                                                                             { 0, 3, "tt_panels" }, { 0, -2, "tt_panels" } };
+        for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+            hb_material_default(&m);
+            hb_options_default(&o);
+            o.model = (hb_model)model;
+            o.isa = HB_ISA_SCALAR;
+            o.tt_trt = (hb_tt_trt)bad[k].tt_trt;
+            o.tt_panels = bad[k].tt_panels;
+            hb_error err;
+            hb_status st = create(&m, &o, &err);
+            CHECK(t, st == HB_ERR_PARAM && strstr(err.message, bad[k].name), "model %d %s = %d/%d: status %d '%s'", model,
+                  bad[k].name, bad[k].tt_trt, bad[k].tt_panels, (int)st, st ? err.message : "");
+        }
+    }
+    hb_material_default(&m);
+    hb_options_default(&o);
+    o.model = HB_MODEL_HUANG;
+    o.lobes = 1u << HB_LOBE_TRRT;
+    hb_error err;
+    CHECK(t, create(&m, &o, &err) == HB_ERR_UNSUPPORTED && strstr(err.message, "huang"),
+          "huang with TRRT: '%s' does not name the huang model's lobes", err.message);
 }
 
 static void test_unsupported_and_null(hb_test_ctx *t)

@@ -20,7 +20,8 @@ HB_INLINE vf fresnel_dielectric(vf cos_i, const hb_dielectric *ior)
     vf rs = vf_div(vf_set1(ior->eta2_minus_1), vf_mul(sum_s, sum_s));
     vf brewster = vf_fma(vf_set1(ior->eta2_minus_1 + 2.0f), c2, vf_set1(-1.0f)); /* (eta^2 + 1) c^2 - 1 */
     vf rp = vf_div(vf_mul(vf_set1(ior->eta2_minus_1 * ior->inv_eta2), brewster), vf_mul(sum_p, sum_p));
-    return vf_mul(vf_set1(0.5f), vf_fma(rs, rs, vf_mul(rp, rp)));
+    /* at grazing incidence both ratios are 1 up to rounding: clamped, 1 - F is never negative */
+    return vf_min(vf_mul(vf_set1(0.5f), vf_fma(rs, rs, vf_mul(rp, rp))), vf_set1(1.0f));
 }
 
 #endif

@@ -90,11 +90,13 @@ typedef struct deon_medium {
 HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_medium *m, const int channels)
 {
     m->cos_theta_d = g->cos_theta_d;
-    m->inv_eta_prime = vf_div(g->cos_theta_d, vf_sqrt(vf_sub(vf_set1(d->ior.eta * d->ior.eta), g->sin2_theta_d))); /* sec. 5 */
-    vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(d->ior.inv_eta2), vf_set1(1.0f)));
-    vf inv_cos_theta_t = vf_div(vf_set1(1.0f), cos_theta_t);
-    for (int c = 0; c < channels; c++)
-        m->mu_log2e[c] = vf_mul(vf_set1(d->sigma_a_log2e[c]), inv_cos_theta_t);
+    /* eta^2 - sin^2(theta_d) as (eta^2 - 1) + cos^2(theta_d): positive for every eta > 1, where the
+     * float eta^2 is 1 for eta below 1 + 6e-8 and the difference would be 0 (0 / 0 at the pole) */
+    vf eta_cos_t = vf_sqrt(vf_fma(g->cos_theta_d, g->cos_theta_d, vf_set1(d->ior.eta2_minus_1)));
+    m->inv_eta_prime = vf_div(g->cos_theta_d, eta_cos_t); /* sec. 5 */
+    vf inv_cos_theta_t = vf_div(vf_set1(d->ior.eta), eta_cos_t);
+    for (int c = 0; c < channels; c++) /* at most FLT_MAX / 4, so that twice it times a cosine stays finite */
+        m->mu_log2e[c] = vf_min(vf_mul(vf_set1(d->sigma_a_log2e[c]), inv_cos_theta_t), vf_set1(8e37f));
 }
 
 /* What the paths through one offset h = sin(gamma_i) share across channels: the Fresnel factor f
@@ -132,8 +134,16 @@ HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf 
     }
 }
 
-/* 1 / (1 - f T), the geometric series of the orders above pmax (floored: f T < 1 but rounds to it). */
-HB_INLINE vf residual_series(vf f, vf T) { return vf_div(vf_set1(1.0f), vf_max(vf_fnma(f, T, vf_set1(1.0f)), vf_set1(1e-30f))); }
+/* 1 / (1 - f T), the geometric series of the orders above pmax. 1 - f T is formed as
+ * (1 - f) + f (1 - T), two non-negative terms (T clamped to 1: 2^-0 rounds an ulp above it), so the
+ * residual (1 - f)^2 f^pmax T^(pmax+1) / (1 - f T) stays below 1 - f as f -> 1 at grazing angles; a
+ * direct 1 - f T rounds to 0 or below there for a lossless fibre. */
+HB_INLINE vf residual_series(vf f, vf T)
+{
+    vf one = vf_set1(1.0f);
+    vf denominator = vf_fma(f, vf_sub(one, vf_min(T, one)), vf_sub(one, f));
+    return vf_div(one, vf_max(denominator, vf_set1(1e-30f)));
+}
 
 /* Attenuation A(p, h) (eqs. 12-14, RGB) and exit azimuth Phi(p, h) (eq. 8) of every lobe of the
  * plan at one offset h = sin(gamma_i). A[HB_LOBE_RESIDUAL] = sum_{p > pmax} A(p, h). Without

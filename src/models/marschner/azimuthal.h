@@ -41,6 +41,7 @@ HB_INLINE vf fresnel_bravais(vf n1s, vf n2s, vf n1p, vf n2p, vf s, vf c)
 typedef struct mjc_index {
     vf eta_perp;  /* eta'  = sqrt(eta^2 - sin^2 theta_d) / cos(theta_d)  (the survey's eta') */
     vf inv_eta_perp;
+    vf inv_eta_cos_t; /* 1 / (eta cos(theta_t)) = 1 / sqrt(eta^2 - sin^2 theta_d) */
     vf eta_par;   /* eta'' = eta^2 cos(theta_d) / sqrt(eta^2 - sin^2 theta_d) = eta^2 / eta' */
     vf cubic_a;   /* -8 p c / pi^3, c = asin(1 / eta') */
     vf cubic_b;   /* 6 p c / pi - 2 */
@@ -57,6 +58,7 @@ HB_INLINE mjc_index bravais_index(vf eta2_minus_one, vf cos_theta_d, int p)
     vf inv_q_cos_d = vf_div(vf_set1(1.0f), vf_mul(q, cos_d)); /* one division for eta' and 1/eta' */
     ix.eta_perp = vf_mul(q2, inv_q_cos_d);
     ix.inv_eta_perp = vf_mul(vf_mul(cos_d, cos_d), inv_q_cos_d);
+    ix.inv_eta_cos_t = vf_mul(cos_d, inv_q_cos_d);
     ix.eta_par = vf_mul(vf_add(eta2_minus_one, vf_set1(1.0f)), ix.inv_eta_perp);
     vf c = vf_atan2(cos_d, vf_sqrt(eta2_minus_one));
     ix.cubic_a = vf_mul(c, vf_set1(-8.0f * (float)p / 31.0062767f));
@@ -163,9 +165,13 @@ HB_INLINE void caustic_marschner(const hb_marschner *m, int p, const mjc_index *
     vf t = vf_fnma(vf_mul(x, x), vf_fnma(vf_set1(2.0f), x, vf_set1(3.0f)), vf_set1(1.0f)); /* 1 - smoothstep */
     vf centred = centre_on_lobe(phi, p);
     vf d_plus = wrap_angle(vf_sub(centred, phi_c)), d_minus = wrap_angle(vf_add(centred, phi_c));
-    vf g_plus = vf_exp2_neg(vf_mul(vf_mul(d_plus, d_plus), vf_set1(m->caustic_log2e_over_two_w2)));
-    vf g_minus = vf_exp2_neg(vf_mul(vf_mul(d_minus, d_minus), vf_set1(m->caustic_log2e_over_two_w2)));
-    vf fade = vf_mul(vf_fnma(t, g_plus, vf_set1(1.0f)), vf_fnma(t, g_minus, vf_set1(1.0f)));
+    vf u_plus = vf_mul(vf_mul(d_plus, d_plus), vf_set1(m->caustic_log2e_over_two_w2));
+    vf u_minus = vf_mul(vf_mul(d_minus, d_minus), vf_set1(m->caustic_log2e_over_two_w2));
+    vf g_plus = vf_exp2_neg(u_plus), g_minus = vf_exp2_neg(u_minus);
+    /* 1 - t G = (1 - t) + t (1 - G): two non-negative terms, 1 - G without cancellation at the caustic */
+    vf one_minus_t = vf_sub(vf_set1(1.0f), t);
+    vf fade = vf_mul(vf_fma(t, vf_one_minus_exp2_neg(u_plus, g_plus), one_minus_t),
+                     vf_fma(t, vf_one_minus_exp2_neg(u_minus, g_minus), one_minus_t));
     vf A[3];
     attenuation_marschner(m, p, ix, ab, s, c, A);
     vf glint = vf_mul(vf_mul(t, vf_set1(m->glint_scale * m->caustic_norm)), vf_mul(dh, vf_add(g_plus, g_minus)));
@@ -175,7 +181,7 @@ HB_INLINE void caustic_marschner(const hb_marschner *m, int p, const mjc_index *
 
 /* Per-sample geometry. */
 typedef struct mjc_geometry {
-    vf theta_h, cos_theta_i, sin2_theta_d, cos_theta_d;
+    vf theta_h, cos_theta_i, cos_theta_d;
     vf phi;         /* phi_o - phi_i in [-pi, pi] */
     vf cos_phi_sum; /* cos(phi_i + phi_o) = cos(2 phi_h), for eta* */
 } mjc_geometry;
@@ -186,10 +192,9 @@ HB_INLINE void marschner_f(const hb_marschner *m, const mjc_geometry *g, vf out[
     vf eta2_minus_one = vf_set1(m->eta2_minus_one);
     mjc_index ix = bravais_index(eta2_minus_one, g->cos_theta_d, 1);
     mjc_absorption ab;
-    vf cos_theta_t = vf_sqrt(vf_fnma(g->sin2_theta_d, vf_set1(m->inv_eta2), vf_set1(1.0f)));
-    vf inv_cos_theta_t = vf_div(vf_set1(1.0f), cos_theta_t);
+    vf inv_cos_theta_t = vf_mul(vf_set1(m->eta), ix.inv_eta_cos_t); /* no cancellation as eta -> 1 */
     for (int c = 0; c < 3; c++)
-        ab.mu_log2e[c] = vf_mul(vf_set1(m->sigma_a_log2e[c]), inv_cos_theta_t);
+        ab.mu_log2e[c] = vf_min(vf_mul(vf_set1(m->sigma_a_log2e[c]), inv_cos_theta_t), vf_set1(8e37f));
     for (int c = 0; c < 3; c++)
         out[c] = vf_set1(0.0f);
     if (m->lobes & 1u) {
@@ -208,7 +213,7 @@ HB_INLINE void marschner_f(const hb_marschner *m, const mjc_geometry *g, vf out[
     }
     if (m->lobes & 4u) {
         if (m->eccentric) { /* eta*(phi_h) = (eta1 + eta2)/2 + cos(2 phi_h) (eta1 - eta2)/2 (MJC03 sec. 4.4) */
-            vf excess = vf_fma(g->cos_phi_sum, vf_set1(m->eta_star_swing), vf_set1(m->eta_star_mean - 1.0f));
+            vf excess = vf_fma(g->cos_phi_sum, vf_set1(m->eta_star_swing), vf_set1(m->eta_star_excess));
             excess = vf_max(excess, vf_set1(1e-4f)); /* eta* >= 1.0001 */
             ix = bravais_index(vf_mul(excess, vf_add(excess, vf_set1(2.0f))), g->cos_theta_d, 2);
         } else {
@@ -230,11 +235,9 @@ HB_INLINE void marschner_f(const hb_marschner *m, const mjc_geometry *g, vf out[
 HB_INLINE void marschner_angles(const hb_marschner *m, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vf out[3])
 {
     mjc_geometry g;
-    vf sin_td;
     g.theta_h = vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o));
     g.cos_theta_i = vf_cos(theta_i);
-    vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &g.cos_theta_d);
-    g.sin2_theta_d = vf_mul(sin_td, sin_td);
+    g.cos_theta_d = vf_cos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)));
     g.phi = wrap_angle(vf_sub(phi_o, phi_i));
     g.cos_phi_sum = m->eccentric ? vf_cos(wrap_angle(vf_add(phi_i, phi_o))) : vf_set1(1.0f);
     marschner_f(m, &g, out);
@@ -244,11 +247,9 @@ HB_INLINE void marschner_vectors(const hb_marschner *m, const vf wi[3], const vf
 {
     mjc_geometry g;
     mjc_inclinations n = inclinations_of_vectors(wi, wo);
-    vf sin_td;
     g.theta_h = vf_mul(vf_set1(0.5f), vf_add(n.theta_i, n.theta_o));
     g.cos_theta_i = n.cos_theta_i;
-    vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(n.theta_o, n.theta_i)), &sin_td, &g.cos_theta_d);
-    g.sin2_theta_d = vf_mul(sin_td, sin_td);
+    g.cos_theta_d = vf_cos(vf_mul(vf_set1(0.5f), vf_sub(n.theta_o, n.theta_i)));
     /* phi = phi_o - phi_i and cos(phi_i + phi_o) from the planar components */
     g.phi = vf_atan2(vf_fnma(wo[2], wi[0], vf_mul(wo[0], wi[2])), vf_fma(wo[0], wi[0], vf_mul(wo[2], wi[2])));
     vf planar2 = vf_mul(n.planar_i, n.planar_o);
