@@ -22,8 +22,8 @@ static void slurp(const char *path, char *buf, size_t cap)
         fclose(f);
 }
 
-/* Runs "$HB_TOOL args" with input on stdin. Returns 0 when HB_TOOL is not set. */
-static int run_tool(hb_test_ctx *t, const char *args, const char *input, run_result *r)
+/* Runs "$HB_TOOL args" with `size` bytes of input on stdin. Returns 0 when HB_TOOL is not set. */
+static int run_tool_bytes(hb_test_ctx *t, const char *args, const char *input, size_t size, run_result *r)
 {
     const char *tool = getenv("HB_TOOL");
     if (!tool || !*tool) {
@@ -39,8 +39,8 @@ static int run_tool(hb_test_ctx *t, const char *args, const char *input, run_res
     snprintf(in_path, sizeof in_path, "%s/in", dir);
     snprintf(out_path, sizeof out_path, "%s/out", dir);
     snprintf(err_path, sizeof err_path, "%s/err", dir);
-    FILE *f = fopen(in_path, "w");
-    fputs(input, f);
+    FILE *f = fopen(in_path, "wb");
+    fwrite(input, 1, size, f);
     fclose(f);
     snprintf(cmd, sizeof cmd, "%s %s < %s > %s 2> %s", tool, args, in_path, out_path, err_path);
     int st = system(cmd);
@@ -52,6 +52,11 @@ static int run_tool(hb_test_ctx *t, const char *args, const char *input, run_res
     unlink(err_path);
     rmdir(dir);
     return 1;
+}
+
+static int run_tool(hb_test_ctx *t, const char *args, const char *input, run_result *r)
+{
+    return run_tool_bytes(t, args, input, strlen(input), r);
 }
 
 static void test_eval_matches_library(hb_test_ctx *t)
@@ -455,11 +460,50 @@ static void test_plan_commands(hb_test_ctx *t)
     CHECK(t, r.status == 2 && strstr(r.err, "exclude"), "tolerance and budget together: %s", r.err);
 }
 
+/* What a careless input file or a typo must get: a byte-order mark and a spaced header are read,
+ * anything else on the first line that is not the header, and a row with a NUL byte, are errors that
+ * say so; options out of their range are refused with the option and its range named. */
+static void test_input_edges(hb_test_ctx *t)
+{
+    run_result r;
+    if (!run_tool(t, "eval --term longitudinal", "\xef\xbb\xbftheta_i,phi_i,theta_o,phi_o\n0.1,0,0.2,0\n", &r))
+        return;
+    CHECK(t, r.status == 0 && strchr(r.out, '\n') == strrchr(r.out, '\n'), "header after a byte-order mark: %d '%s' %s",
+          r.status, r.out, r.err);
+    run_tool(t, "eval --term longitudinal", " theta_i , phi_i,theta_o,phi_o\n0.1,0,0.2,0\n", &r);
+    CHECK(t, r.status == 0, "spaced header refused: %s", r.err);
+    run_tool(t, "eval --term longitudinal", "theta_x,phi_i,theta_o,phi_o\n0.1,0,0.2,0\n", &r);
+    CHECK(t, r.status != 0 && strstr(r.err, "line 1"), "a first line that is not the header: %d %s", r.status, r.err);
+    static const char nul_row[] = "0.1,0,0.2,0\n0.1,0,0.2,0\0junk\n";
+    run_tool_bytes(t, "eval --term longitudinal", nul_row, sizeof nul_row - 1, &r);
+    CHECK(t, r.status != 0 && strstr(r.err, "line 2") && strstr(r.err, "NUL"), "a row with a NUL byte: %d %s", r.status,
+          r.err);
+    run_tool(t, "sample --theta-o 0.3 --count 2 --seed 18446744073709551616", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--seed"), "a seed past 2^64: %d %s", r.status, r.err);
+    run_tool(t, "eval --model huang --seed 99999999999999999999", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--seed"), "a model seed past 2^64: %d %s", r.status, r.err);
+    run_tool(t, "eval --eta 1e-320", "", &r);
+    CHECK(t, r.status != 0 && strstr(r.err, "eta") && !strstr(r.err, "finite"), "a subnormal eta: %d %s", r.status, r.err);
+    run_tool(t, "furnace --theta-o 2", "", &r);
+    CHECK(t, r.status != 0 && strstr(r.err, "--theta-o 2"), "furnace at theta_o 2: %d %s", r.status, r.err);
+    run_tool(t, "furnace --theta-o ''", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--theta-o"), "furnace with an empty angle list: %d %s", r.status, r.err);
+    static const char *const dumps[] = { "--theta-i nan", "--theta-i 2", "--exposure 1e39", "--exposure 0" };
+    for (size_t k = 0; k < sizeof dumps / sizeof dumps[0]; k++) {
+        char args[128];
+        snprintf(args, sizeof args, "dump %s -o /dev/null.pfm", dumps[k]);
+        run_tool(t, args, "", &r);
+        CHECK(t, r.status == 2 && strstr(r.err, dumps[k][2] == 't' ? "--theta-i" : "--exposure"), "dump %s: %d %s",
+              dumps[k], r.status, r.err);
+    }
+}
+
 const hb_test hb_tests_cli[] = {
     { "cli_deon_commands", test_deon_commands, 0 },
     { "cli_marschner_commands", test_marschner_commands, 0 },
     { "cli_eval_matches_library", test_eval_matches_library, 0 },
     { "cli_eval_errors", test_eval_errors, 0 },
+    { "cli_input_edges", test_input_edges, 0 },
     { "cli_help", test_help, 0 },
     { "cli_sample_commands", test_sample_commands, 0 },
     { "cli_plot_commands", test_plot_commands, 0 },

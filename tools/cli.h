@@ -18,6 +18,9 @@ void cli_model_args_default(cli_model_args *args);
  * -1 on a bad value (err holds the message). */
 int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, char *err, size_t err_size);
 
+/* A whole field as an integer in [0, 2^64 - 1]; 0 for anything else (a sign, an overflow). */
+int cli_parse_u64(const char *s, unsigned long long *out);
+
 /* The help text of the model options. */
 extern const char cli_model_options_help[];
 

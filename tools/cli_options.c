@@ -48,15 +48,27 @@ void cli_model_args_default(cli_model_args *args)
     hb_options_default(&args->options);
 }
 
-/* A whole field as a finite number. */
+/* A whole field as a finite number. strtod's ERANGE also flags a subnormal result, which is a
+ * number (a range check then names the option's range); only an overflow is refused here. */
 static int parse_number(const char *s, double *out)
 {
     char *end;
     errno = 0;
     double x = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(x))
+    if (end == s || *end != '\0' || !isfinite(x))
         return 0;
     *out = x;
+    return 1;
+}
+
+int cli_parse_u64(const char *s, unsigned long long *out)
+{
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(s, &end, 10);
+    if (end == s || *end || s[0] == '-' || s[0] == '+' || errno == ERANGE)
+        return 0;
+    *out = v;
     return 1;
 }
 
@@ -245,9 +257,8 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     } else if (strcmp(name, "--tt-panels") == 0) {
         if (!parse_int(value, 2, HB_MAX_TT_PANELS, &o->tt_panels) || o->tt_panels % 2) expected = "an even panel count";
     } else if (strcmp(name, "--seed") == 0) {
-        char *end;
-        o->seed = strtoull(value, &end, 10);
-        if (end == value || *end || value[0] == '-') expected = "a non-negative integer";
+        unsigned long long seed;
+        if (cli_parse_u64(value, &seed)) o->seed = seed; else expected = "an integer from 0 to 2^64 - 1";
     } else if (strcmp(name, "--pmax") == 0) {
         if (!parse_int(value, 0, HB_MAX_LOBES - 1, &o->pmax)) expected = "an order from 0 to 7";
     } else if (strcmp(name, "--quadrature") == 0) {

@@ -119,8 +119,13 @@ int cmd_dump(int argc, char **argv)
                                 strcmp(a, "--exposure") == 0)) {
             char *end;
             double x = strtod(argv[++i], &end);
-            if (*end || end == argv[i]) {
-                fprintf(stderr, "hairbsdf dump: %s: '%s' is not a number\n", a, argv[i]);
+            /* theta_i a valid inclination, phi_i a valid azimuth, the exposure positive and finite as a float */
+            double limit = strcmp(a, "--theta-i") == 0 ? 1.5707963267948966 : strcmp(a, "--phi-i") == 0 ? HB_PHI_LIMIT : 3.4e38;
+            int ok = !*end && end != argv[i] && fabs(x) <= limit && (strcmp(a, "--exposure") != 0 || x > 0.0);
+            if (!ok) {
+                fprintf(stderr, "hairbsdf dump: %s: '%s' is not %s\n", a, argv[i],
+                        strcmp(a, "--theta-i") == 0 ? "an angle in [-pi/2, pi/2]"
+                        : strcmp(a, "--phi-i") == 0 ? "an angle in [-1e4, 1e4]" : "a positive number below 3.4e38");
                 return 2;
             }
             *(strcmp(a, "--theta-i") == 0 ? &theta_i : strcmp(a, "--phi-i") == 0 ? &phi_i : &exposure) = x;

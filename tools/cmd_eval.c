@@ -89,22 +89,24 @@ int cmd_eval(int argc, char **argv, int pdf)
     size_t cap = 0, invalid = 0;
     long lineno = 0;
     int seen_content = 0, status = 0;
-    while (getline(&line, &cap, stdin) >= 0) {
+    ssize_t length;
+    while ((length = getline(&line, &cap, stdin)) >= 0) {
         lineno++;
-        char *s = csv_trim(line);
-        if (!*s)
+        int nul = memchr(line, '\0', (size_t)length) != NULL; /* a byte C strings would stop at */
+        char *s = csv_trim(lineno == 1 ? csv_skip_bom(line) : line);
+        if (!*s && !nul)
             continue;
         float row[4];
         char copy[512];
         snprintf(copy, sizeof copy, "%s", s);
-        if (!csv_parse_row(s, row)) {
-            if (!seen_content && isalpha((unsigned char)*s)) { /* a header line */
-                seen_content = 1;
-                continue;
-            }
+        if (!nul && !seen_content && csv_is_header(s)) {
+            seen_content = 1;
+            continue;
+        }
+        if (nul || !csv_parse_row(s, row)) {
             invalid += flush(plan, pdf, &batch);
-            fprintf(stderr, "%s: line %ld: malformed row '%s' (want theta_i,phi_i,theta_o,phi_o)\n", name,
-                    lineno, copy);
+            fprintf(stderr, "%s: line %ld: malformed row '%s'%s (want theta_i,phi_i,theta_o,phi_o%s)\n", name, lineno,
+                    copy, nul ? " with a NUL byte" : "", lineno == 1 ? ", or that header" : "");
             status = 1;
             break;
         }

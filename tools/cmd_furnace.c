@@ -36,7 +36,9 @@ static int energy(const cli_model_args *args, unsigned lobes, double theta_o, do
     }
     hb_status st = hb_furnace(plan, theta_o, e);
     hb_plan_destroy(plan);
-    if (st != HB_OK)
+    if (st == HB_ERR_PARAM)
+        fprintf(stderr, "hairbsdf furnace: --theta-o %g is outside [-pi/2, pi/2]\n", theta_o);
+    else if (st != HB_OK)
         fprintf(stderr, "hairbsdf furnace: %s\n", hb_status_string(st));
     return st == HB_OK;
 }
@@ -176,9 +178,13 @@ int cmd_furnace(int argc, char **argv)
         }
         if (strcmp(argv[i], "--theta-o") == 0 && i + 1 < argc) {
             char *s = argv[++i], *end;
+            if (!*s) {
+                fprintf(stderr, "hairbsdf furnace: --theta-o: an empty list (give angles, or leave the option out)\n");
+                return 2;
+            }
             for (q.ntheta = 0; q.ntheta < 64 && *s; q.ntheta++) {
                 q.thetas[q.ntheta] = strtod(s, &end);
-                if (end == s || (*end && *end != ',')) {
+                if (end == s || (*end && *end != ',') || !isfinite(q.thetas[q.ntheta])) {
                     fprintf(stderr, "hairbsdf furnace: --theta-o: '%s' is not a comma list of angles\n", argv[i]);
                     return 2;
                 }

@@ -53,12 +53,11 @@ int cmd_sample(int argc, char **argv)
             if (!parse_angle("--phi-o", argv[++i], 3.141592653589793, &phi_o))
                 return 2;
         } else if ((strcmp(argv[i], "--count") == 0 || strcmp(argv[i], "--seed") == 0) && i + 1 < argc) {
-            char *end;
             const char *option = argv[i++];
-            unsigned long long v = strtoull(argv[i], &end, 10);
-            if (end == argv[i] || *end || argv[i][0] == '-' || (option[2] == 'c' && (v == 0 || v > 100000000ull))) {
+            unsigned long long v = 0;
+            if (!cli_parse_u64(argv[i], &v) || (option[2] == 'c' && (v == 0 || v > 100000000ull))) {
                 fprintf(stderr, "hairbsdf sample: %s: '%s' is not %s\n", option, argv[i],
-                        option[2] == 'c' ? "a count in 1..1e8" : "a non-negative integer");
+                        option[2] == 'c' ? "a count in 1..1e8" : "an integer from 0 to 2^64 - 1");
                 return 2;
             }
             *(option[2] == 'c' ? &count : &seed) = v;

@@ -1,4 +1,4 @@
-/* The CSV rows of hairbsdf eval (SPEC.md section 5). */
+/* The CSV rows of hairbsdf eval and pdf. */
 #include <ctype.h>
 #include <errno.h>
 #include <stdlib.h>
@@ -36,4 +36,31 @@ int csv_parse_row(char *line, float row[4])
             field = comma + 1;
     }
     return 1;
+}
+
+/* theta_i,phi_i,theta_o,phi_o, each name trimmed of white space. */
+int csv_is_header(const char *line)
+{
+    static const char *const names[4] = { "theta_i", "phi_i", "theta_o", "phi_o" };
+    const char *field = line;
+    for (int c = 0; c < 4; c++) {
+        while (isspace((unsigned char)*field))
+            field++;
+        size_t length = strlen(names[c]);
+        if (strncmp(field, names[c], length) != 0)
+            return 0;
+        field += length;
+        while (isspace((unsigned char)*field))
+            field++;
+        if (*field != (c < 3 ? ',' : '\0'))
+            return 0;
+        field++;
+    }
+    return 1;
+}
+
+char *csv_skip_bom(char *line)
+{
+    return (unsigned char)line[0] == 0xef && (unsigned char)line[1] == 0xbb && (unsigned char)line[2] == 0xbf ? line + 3
+                                                                                                             : line;
 }

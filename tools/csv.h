@@ -1,4 +1,4 @@
-/* The CSV rows of hairbsdf eval. */
+/* The CSV rows of hairbsdf eval and pdf. */
 #ifndef HB_CSV_H
 #define HB_CSV_H
 
@@ -8,5 +8,11 @@ char *csv_trim(char *s);
 /* theta_i,phi_i,theta_o,phi_o: four comma-separated numbers (nan and inf parse, and become
  * invalid samples). Modifies line. Returns 0 for a malformed row. */
 int csv_parse_row(char *line, float row[4]);
+
+/* Whether a (trimmed) line is the header theta_i,phi_i,theta_o,phi_o. */
+int csv_is_header(const char *line);
+
+/* Past a UTF-8 byte-order mark at the start of a line (what some editors write first). */
+char *csv_skip_bom(char *line);
 
 #endif
