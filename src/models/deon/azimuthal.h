@@ -497,16 +497,11 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
 }
 
-/* f for the plan's shape from M per group leader (longitudinal_deon_groups_*): a table plan looks N
- * up per M_p group, the standard shape folds M_p into the node sum (above), any other sums N_p per
- * lobe first and adds the lobes of equal M_p before multiplying, so each distinct M_p is evaluated
- * once. The angle and vector entry points share everything but M and the geometry. */
-HB_STAGE void deon_eval(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
+/* f by quadrature from M per group leader (longitudinal_deon_groups_*): the standard shape folds M_p
+ * into the node sum (above), any other sums N_p per lobe first and adds the lobes of equal M_p before
+ * multiplying, so each distinct M_p is evaluated once. */
+HB_STAGE void deon_quadrature(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
 {
-    if (d->np_table) {
-        deon_table(d, g, M, out);
-        return;
-    }
     if (d->standard) {
         deon_fused(d, g, M, out, NULL);
         return;
@@ -527,6 +522,16 @@ HB_STAGE void deon_eval(const hb_deon *d, const deon_geometry *g, const vf M[HB_
         for (int c = 0; c < 3; c++)
             out[c] = vf_fma(M[p], N[p][c], out[c]);
     }
+}
+
+/* f for the plan's shape: a table plan looks N up per M_p group (inline: a few dozen operations), the
+ * quadrature is one stage that the angle and vector kernels and both I0 variants share. */
+HB_INLINE void deon_eval(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
+{
+    if (d->np_table)
+        deon_table(d, g, M, out);
+    else
+        deon_quadrature(d, g, M, out);
 }
 
 /* deon_geometry from angles. */

@@ -6,7 +6,7 @@
 
 /* index: each lane's sample index, which keys the Monte-Carlo numbers of TT and TRT (unused when
  * the plan has their table); angles: theta_i, phi_i, theta_o, phi_o where the caller has them, else NULL. */
-HB_STAGE void huang_eval(const hb_huang *h, const huang_directions *d, const vf *angles, vi index, vf out[3])
+HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, const vf *angles, vi index, vf out[3])
 {
     vf r = vf_set1(0.0f);
     if (h->lobes >> HB_LOBE_R & 1u)

@@ -263,7 +263,7 @@ HB_INLINE fibre_point entry_node(const hb_huang *h, const entry_rule *e, int j, 
  * over the entry window of rho(phi_m1) times one internal path per node, a = sqrt(1 - e^2 sin^2 phi_o)
  * the fibre's projected half width. Node j of sample `index` draws numbers 4j..4j+3 of the
  * sample's stream. */
-HB_INLINE void huang_internal(const hb_huang *h, const huang_directions *d, vi index, vf out[3])
+HB_STAGE void huang_internal(const hb_huang *h, const huang_directions *d, vi index, vf out[3])
 {
     vf zero = vf_set1(0.0f);
     int panels = h->tt_panels;

@@ -286,7 +286,7 @@ HB_INLINE vf mapped_simpson(const hb_huang *h, const huang_directions *d, const 
     return vf_mul(sum, vf_mul(half_step, vf_set1(2.0f / 3.0f)));
 }
 
-HB_INLINE vf r_integral_mapped(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g)
+HB_STAGE vf r_integral_mapped(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g)
 {
     return mapped_simpson(h, d, g, t_piece_of(g, g->delta_centre, g->half_width), h->panels, 0);
 }
@@ -294,7 +294,7 @@ HB_INLINE vf r_integral_mapped(const hb_huang *h, const huang_directions *d, con
 /* The paper's rule (HHH22 sec. 3.4.2): Simpson in phi_m with an even number of panels n per
  * sample, the fewest with steps <= step. Every sample runs the plan's panel count (the most
  * any window needs) with the nodes past its own n weighted 0, so the cost is fixed. */
-HB_INLINE vf r_integral_steps(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g)
+HB_STAGE vf r_integral_steps(const hb_huang *h, const huang_directions *d, const huang_r_geometry *g)
 {
     vf width = vf_add(g->half_width, g->half_width), delta_lo = vf_sub(g->delta_centre, g->half_width);
     vf n = vf_mul(vf_set1(-2.0f), vf_floor(vf_div(width, vf_set1(-2.0f * h->step)))); /* 2 ceil(width / 2 step) */
@@ -316,7 +316,7 @@ HB_INLINE vf r_integral_steps(const hb_huang *h, const huang_directions *d, cons
 
 /* f_R = F(w_o . w_h) / (8 cos(theta_o) a) * integral, a = sqrt(1 - e^2 sin^2 phi_o) the fibre's
  * projected half width (eqs. 12, 27, 28; f = S cos(theta_i)). */
-HB_STAGE vf huang_r(const hb_huang *h, const huang_directions *d)
+HB_INLINE vf huang_r(const hb_huang *h, const huang_directions *d)
 {
     huang_r_geometry g = huang_r_geometry_of(h, d);
     vf integral = h->analytic ? r_integral_ggx_analytic(h, &g)
