@@ -74,7 +74,8 @@ HB_INLINE vm unit_vector_valid(const vf w[3])
 
 /* Loads lane block i of an angle batch; returns which lanes are valid samples. Invalid lanes
  * are replaced by a benign direction, so no NaN or huge value reaches the math (a float-to-int
- * conversion of one is undefined behaviour); their output is 0 anyway. */
+ * conversion of one is undefined behaviour); their output is 0 anyway. Azimuths are reduced to
+ * [-pi, pi] alike on every ISA (vmath.h, reduce_angle). */
 HB_INLINE vm load_angles(hb_angles_soa in, size_t i, size_t lanes, vf a[4])
 {
     const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
@@ -82,7 +83,7 @@ HB_INLINE vm load_angles(hb_angles_soa in, size_t i, size_t lanes, vf a[4])
     vm valid = vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
     HB_UNROLL
     for (int k = 0; k < 4; k++)
-        a[k] = vf_keep(valid, a[k]);
+        a[k] = vf_keep(valid, k % 2 ? reduce_angle(a[k]) : a[k]);
     return valid;
 }
 
@@ -109,6 +110,7 @@ HB_INLINE vm load_sample(hb_sample_in in, int dims, size_t i, size_t lanes, vf *
         valid = vm_and(valid, vm_and(vf_ge(a[k], vf_set1(0.0f)), vf_le(a[k], vf_set1(1.0f))));
     for (int k = 0; k < 2 + dims; k++)
         a[k] = vf_select(valid, a[k], vf_set1(k < 2 ? 0.0f : 0.5f));
+    a[1] = reduce_angle(a[1]);
     return valid;
 }
 

@@ -401,6 +401,19 @@ HB_INLINE vf vf_normal_quantile(vf u)
 
 /* x - 2 pi k in [-pi, pi] for |x| < 2^24, with 2 pi split in two floats; k = x / 2 pi rounded by
  * adding 1.5 2^23 (as in vf_exp2_neg: two additions instead of a multiply and a rounding). */
+/* An azimuth |x| <= HB_PHI_LIMIT past 2 pi reduced to x - 2 pi k in [-pi, pi], the same on every
+ * ISA: 2 pi as 6.28125 (8 bits, so k times it and the first difference are exact) plus a float
+ * remainder, and no fused operation, so each step rounds alike with and without FMA. At |x| = 1e4
+ * the result is within 3e-7 of x mod 2 pi, where the float x itself is spaced 1e-3 apart. Within
+ * [-2 pi, 2 pi] x is kept as given: the difference of two azimuths is then exact where it matters
+ * (near the forward focus, pi - |phi_o - phi_i| -> 0), and wrap_angle's k is at most 2. */
+HB_INLINE vf reduce_angle(vf x)
+{
+    vf k = vf_round(vf_mul(x, vf_set1(0.159154943f)));
+    vf r = vf_sub(vf_sub(x, vf_mul(k, vf_set1(6.28125f))), vf_mul(k, vf_set1(1.9353071693331003e-3f)));
+    return vf_select(vf_gt(vf_abs(x), vf_set1(HB_TWO_PI_F)), r, x);
+}
+
 HB_INLINE vf wrap_angle(vf x)
 {
     vf k = vf_sub(vf_fma(x, vf_set1(0.159154943f), vf_set1(12582912.0f)), vf_set1(12582912.0f));
