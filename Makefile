@@ -161,7 +161,7 @@ $(B)/replay_fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(B)/tools/csv.o $(B
 
 bench: $(BENCH_BIN)
 	@mkdir -p bench/results
-	$(RUN) $(BENCH_BIN) --results bench/results --budgets bench/budgets.txt --readme README.md
+	$(RUN) $(BENCH_BIN) --results bench/results --budgets bench/budgets.txt --report docs/benchmarks.md --summary README.md
 
 # The calibration tolerance and budget plans use by default: the last full `make bench` run's
 # bench/results/calibration.csv, built into the library.

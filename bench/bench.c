@@ -124,7 +124,7 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, row
     r->min_ns = t[0];
     r->median_ns = t[repeats / 2];
     r->isa = hb_plan_isa(plan);
-    double peak = 0.0, worst = 0.0; /* SPEC.md section 6, over the samples with a reference */
+    double peak = 0.0, worst = 0.0; /* docs/conventions.md, over the samples with a reference */
     for (int c = 0; c < 3; c++)
         for (int k = 0; k < NREF; k++)
             peak = fmax(peak, ref[c][k]);
@@ -192,12 +192,12 @@ typedef struct config {
     hb_azimuthal azimuthal; /* dFH11: N_p by quadrature or from the plan's table */
     int untilted;           /* the effect rows: alpha = 0 (dFH11: one M_p for lobes of equal roughness) */
     double eccentricity;    /* an elliptical fibre (MJC03, HHH22) */
-    const char *label;      /* what the row measures, in the README's table */
+    const char *label;      /* what the row measures, in the tables of docs/benchmarks.md and the README */
 } config;
 
 /* What each row measures: dFH11's M_p alone and its full model (R..TRRT + residual, RGB) per
  * quality, at the paper's quadrature order 35 (float M_p, and double M_p as at high), and with N_p
- * from the plan's table (README "Tables for engines"); MJC03's longitudinal term and its full model (R + TT + TRT, RGB: one closed-form
+ * from the plan's table (docs/engines.md); MJC03's longitudinal term and its full model (R + TT + TRT, RGB: one closed-form
  * kernel for every quality); HHH22's R lobe (GGX 0.1): App. A's closed form without G, Simpson
  * with Smith G in the peak-following variable per quality, and the paper's rule (steps of 0.7
  * roughness in phi_m); sampling of dFH11 and of HHH22's R lobe with G (direction, pdf and weight;
@@ -406,7 +406,7 @@ static void reference_of(const hb_material *m, const config *c)
     hb_plan_destroy(plan);
 }
 
-/* ns per sample with three significant digits, as the README prints them. */
+/* ns per sample with three significant digits, as the tables print them. */
 static void put_ns(FILE *f, double ns)
 {
     fprintf(f, ns < 10.0 ? " %.2f |" : ns < 100.0 ? " %.1f |" : " %.0f |", ns);
@@ -430,10 +430,10 @@ static void cpu_name(char *name, size_t size)
         fclose(f);
 }
 
-/* The README's bench region (readme.h): what ran where, one line per configuration with its ns/sample
+/* docs/benchmarks.md's bench region (readme.h): what ran where, one line per configuration with its ns/sample
  * on each ISA (the budgets' AVX2 first), the error and speed-up over scalar of the first ISA there,
  * then the multi-core line and the budgets' verdicts. */
-static void write_readme(const char *path, const row *rows, int nrows, const char *scaling_text,
+static void write_report(const char *path, const row *rows, int nrows, const char *scaling_text,
                          const char *budget_text)
 {
     static const hb_isa columns[] = { HB_ISA_AVX2, HB_ISA_AVX512, HB_ISA_NEON, HB_ISA_SSE41, HB_ISA_SCALAR };
@@ -455,7 +455,7 @@ static void write_readme(const char *path, const row *rows, int nrows, const cha
                "the specular cone), blond hair (sigma_a = 0.1/0.25/0.6, beta_m 0.1, beta_n 0.3, alpha 0.035). ns per\n"
                "sample: the minimum over repeated batches. Error: max over %d samples and 3 channels of\n"
                "|f - f_ref| / max(|f_ref|, 1e-3 peak) against the double reference of the same configuration\n"
-               "(SPEC.md section 6), on the first ISA shown; speed-up: that ISA against scalar. Written by\n"
+               "([conventions.md](conventions.md)), on the first ISA shown; speed-up: that ISA against scalar. Written by\n"
                "`make bench` itself.\n\n| what |",
             date, cpu, sysconf(_SC_NPROCESSORS_ONLN), HB_COMPILER, BATCH, NREF);
     for (int c = 0; c < NCOLUMNS; c++)
@@ -496,8 +496,41 @@ static void write_readme(const char *path, const row *rows, int nrows, const cha
     }
     fprintf(f, "\n```\n%s%s```\n", scaling_text, budget_text);
     fclose(f);
-    if (!bench_update_readme(path, text))
+    if (!bench_update_region(path, HB_REPORT_BEGIN, HB_REPORT_END, text))
         printf("wrote the bench region of %s\n", path);
+    free(text);
+}
+
+static int is_demo_row(const char *label);
+
+/* The README's summary region: the demo rows on the best ISA of the run, ns per sample and error. */
+static void write_summary(const char *path, const row *rows, int nrows)
+{
+    hb_isa best = hb_isa_best();
+    char cpu[256], date[32];
+    cpu_name(cpu, sizeof cpu);
+    time_t now = time(NULL);
+    strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
+    char *text = NULL;
+    size_t size = 0;
+    FILE *f = open_memstream(&text, &size);
+    if (!f)
+        return;
+    fprintf(f, "| model and quality | ns/sample (%s) | max error |\n|---|---|---|\n", hb_isa_name(best));
+    for (int k = 0; k < nrows; k++) {
+        char label[64];
+        snprintf(label, sizeof label, "%s/%s/%s", rows[k].model, rows[k].term, rows[k].variant);
+        if (rows[k].isa != best || !is_demo_row(label))
+            continue;
+        fprintf(f, "| %s |", configs[rows[k].config].label);
+        put_ns(f, rows[k].min_ns);
+        fprintf(f, " %.1e |\n", rows[k].max_rel_err);
+    }
+    fprintf(f, "\n`make bench`, %s, %s, one core, batches of %d; every row on every ISA in "
+               "[docs/benchmarks.md](docs/benchmarks.md).\n", date, cpu, BATCH);
+    fclose(f);
+    if (!bench_update_region(path, HB_SUMMARY_BEGIN, HB_SUMMARY_END, text))
+        printf("wrote the bench summary of %s\n", path);
     free(text);
 }
 
@@ -601,7 +634,8 @@ static int is_demo_row(const char *label)
 
 int main(int argc, char **argv)
 {
-    const char *budgets = NULL, *results_dir = NULL, *only = "", *only_isa = NULL, *once = NULL, *readme = NULL;
+    const char *budgets = NULL, *results_dir = NULL, *only = "", *only_isa = NULL, *once = NULL, *report = NULL,
+               *summary = NULL;
     long repeats = 1;
     int demo = 0;
     for (int i = 1; i < argc; i++) {
@@ -609,8 +643,10 @@ int main(int argc, char **argv)
             budgets = argv[++i];
         else if (strcmp(argv[i], "--results") == 0 && i + 1 < argc)
             results_dir = argv[++i];
-        else if (strcmp(argv[i], "--readme") == 0 && i + 1 < argc)
-            readme = argv[++i];
+        else if (strcmp(argv[i], "--report") == 0 && i + 1 < argc)
+            report = argv[++i];
+        else if (strcmp(argv[i], "--summary") == 0 && i + 1 < argc)
+            summary = argv[++i];
         else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc)
             only = argv[++i];
         else if (strcmp(argv[i], "--isa") == 0 && i + 1 < argc)
@@ -627,7 +663,8 @@ int main(int argc, char **argv)
             return 0;
         } else {
             fprintf(stderr,
-                    "usage: %s [--budgets FILE] [--results DIR] [--readme README.md] [--only PREFIX] [--isa NAME] [--demo] | "
+                    "usage: %s [--budgets FILE] [--results DIR] [--report docs/benchmarks.md] [--summary README.md] [--only PREFIX] "
+                    "[--isa NAME] [--demo] | "
                     "--list | --once MODEL/TERM/VARIANT [--repeat N]\n",
                     argv[0]);
             return 2;
@@ -745,8 +782,10 @@ int main(int argc, char **argv)
     if (budget_out)
         fclose(budget_out);
     printf("%s", budget_text ? budget_text : "");
-    if (readme && !partial)
-        write_readme(readme, rows, nrows, scaling_text ? scaling_text : "", budget_text ? budget_text : "");
+    if (report && !partial)
+        write_report(report, rows, nrows, scaling_text ? scaling_text : "", budget_text ? budget_text : "");
+    if (summary && !partial)
+        write_summary(summary, rows, nrows);
     free(scaling_text);
     free(budget_text);
     return over ? 1 : 0;

@@ -1,4 +1,4 @@
-/* bench_update_readme: the README's bench region, rewritten in place (readme.h). */
+/* bench_update_region: a marked region of a Markdown file, rewritten in place (readme.h). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,15 +38,15 @@ static char *marker_line(char *text, const char *marker)
     return NULL;
 }
 
-int bench_update_readme(const char *path, const char *text)
+int bench_update_region(const char *path, const char *begin_marker, const char *end_marker, const char *text)
 {
     char *old = read_all(path);
-    char *begin = old ? marker_line(old, HB_README_BEGIN) : NULL;
+    char *begin = old ? marker_line(old, begin_marker) : NULL;
     char *after_begin = begin ? strchr(begin, '\n') : NULL;
-    char *end = after_begin ? marker_line(after_begin + 1, HB_README_END) : NULL;
+    char *end = after_begin ? marker_line(after_begin + 1, end_marker) : NULL;
     if (!end) {
-        fprintf(stderr, "bench: %s has no %s ... %s region; its table is not written\n", path, HB_README_BEGIN,
-                HB_README_END);
+        fprintf(stderr, "bench: %s has no %s ... %s region; its table is not written\n", path, begin_marker,
+                end_marker);
         free(old);
         return 1;
     }

@@ -1,4 +1,4 @@
-/* The README's example: one plan per material, then batches of samples. */
+/* The README's minimal example: one plan per material, then batches of samples. */
 #include <stdio.h>
 #include "hairbsdf.h"
 

@@ -1,6 +1,7 @@
 /* hairbsdf: batched, fixed-budget evaluation of hair fibre scattering functions.
+ * MIT licence (LICENSE); documentation in README.md and docs/.
  *
- * Frame (see SPEC.md): y is the fibre tangent (root to tip), a direction is
+ * Frame (docs/conventions.md): y is the fibre tangent (root to tip), a direction is
  * w(theta, phi) = (sin(phi) cos(theta), sin(theta), cos(phi) cos(theta)),
  * w_i points to the light, w_o to the viewer. Every model returns
  * f(w_i, w_o) = S(w_i, w_o) cos(theta_i), so L_o = integral f L_i dw_i.
@@ -42,14 +43,14 @@ typedef struct hb_error {
 typedef enum hb_model { HB_MODEL_MARSCHNER, HB_MODEL_DEON, HB_MODEL_HUANG } hb_model;
 
 /* Orders p of scattering; a lobe set is a bit mask of (1u << p). HB_LOBE_RESIDUAL stands
- * for every order above the plan's pmax, folded into one lobe (dFH11; see README). */
+ * for every order above the plan's pmax, folded into one lobe (dFH11; docs/deon.md). */
 enum { HB_LOBE_R = 0, HB_LOBE_TT = 1, HB_LOBE_TRT = 2, HB_LOBE_TRRT = 3, HB_MAX_LOBES = 8,
        HB_LOBE_RESIDUAL = HB_MAX_LOBES };
 #define HB_LOBES_DEFAULT 0u /* the model's full set: for dFH11 every order up to pmax plus the residual */
 
 typedef enum hb_ndf { HB_NDF_GGX, HB_NDF_BECKMANN } hb_ndf;
 
-/* Material parameters (SPEC.md section 3). hb_material_default() fills the defaults. */
+/* Material parameters (docs/conventions.md). hb_material_default() fills the defaults. */
 typedef struct hb_material {
     size_t struct_size;  /* sizeof(hb_material), set by hb_material_default */
     double eta;          /* index of refraction, default 1.55 */
@@ -58,7 +59,7 @@ typedef struct hb_material {
     double pheomelanin;
     double beta_m;       /* longitudinal roughness in radians (dFH11: v = beta_m^2), default 0.1 */
     double beta_n;       /* azimuthal roughness in radians (dFH11), default 0.3 */
-    double alpha;        /* cuticle scale tilt in radians, default 0.035; see README for the per-model shifts */
+    double alpha;        /* cuticle scale tilt in radians, default 0.035; docs/conventions.md has the per-model shifts */
     hb_ndf ndf;          /* HHH22 microfacet distribution, default GGX */
     double roughness;    /* HHH22 microfacet roughness, default 0.1 */
     double eccentricity; /* elliptical fibre (HHH22, MJC03), default 0 */
@@ -71,7 +72,7 @@ typedef struct hb_material {
     double lobe_beta_n[HB_MAX_LOBES];
     double lobe_alpha[HB_MAX_LOBES];
     unsigned lobe_alpha_override;
-    /* MJC03 TRT caustic treatment (its sec. 4.3 and Table 1; README "Marschner"): near a
+    /* MJC03 TRT caustic treatment (its sec. 4.3 and Table 1; docs/marschner.md): near a
      * caustic the cubic's N_TRT is faded out over a Gaussian of width caustic_width and a
      * glint of glint_scale * A(h_c) * dh * that Gaussian is added, dh at most caustic_limit;
      * the caustic fades out over eta' in [2, 2 + caustic_fade] as it merges at phi = 0. */
@@ -89,7 +90,7 @@ void hb_material_absorption(const hb_material *material, double sigma_a_rgb[3]);
 /* Speed/accuracy levels: error targets of about 1e-2, 1e-3 and 1e-4 relative to the
  * double reference for N_p (dFH11: the node count follows from beta_n). dFH11's M_p is
  * formed in float at FAST and BALANCED (relative error about 1e-6 on the lobe, 2e-5 far in
- * its tail) and with double where it matters from HIGH up (1e-6 everywhere; README, "d'Eon M_p"). */
+ * its tail) and with double where it matters from HIGH up (1e-6 everywhere; docs/deon.md). */
 typedef enum hb_quality {
     HB_QUALITY_FAST,
     HB_QUALITY_BALANCED,
@@ -121,7 +122,7 @@ typedef enum hb_i0 {
     HB_I0_PAPER       /* the 10-term series of dFH11 eq. 15: too small for large arguments (small v) */
 } hb_i0;
 
-/* Absorption path length inside a unit-radius fibre (SPEC.md section 4). */
+/* Absorption path length inside a unit-radius fibre (docs/conventions.md). */
 typedef enum hb_absorption {
     HB_ABSORPTION_CORRECTED, /* 2 cos(gamma_t) per traversal (HHH22 sec. 3.1.2) */
     HB_ABSORPTION_PAPER      /* T = exp(-2 mu_a (1 + cos 2 gamma_t)) as printed in MJC03 / dFH11 */
@@ -155,8 +156,7 @@ typedef enum hb_tt_trt {
     HB_TT_TRT_REFERENCE, /* nested quadrature in double (slow: for tests and accuracy tables) */
     HB_TT_TRT_TABLE      /* deterministic and real-time: interpolated from a table of f_TT + f_TRT that plan
                             creation builds for the material (3D, 4D for elliptical fibres; HHH22 sec. 3.4.2),
-                            its resolution and build cost from quality and roughness (README "Huang TT and
-                            TRT tables" gives both and the error); not with HB_QUALITY_REFERENCE */
+                            its resolution and build cost from quality and roughness (docs/huang.md gives both and the error); not with HB_QUALITY_REFERENCE */
 } hb_tt_trt;
 
 /* How dFH11's azimuthal terms N_p (eq. 10) are evaluated. */
@@ -187,21 +187,20 @@ typedef struct hb_options {
     hb_shadowing shadowing;    /* HHH22, default HB_SHADOWING_SMITH */
     hb_r_integration r_integration; /* HHH22 R lobe, default HB_R_INTEGRATION_AUTO */
     /* HHH22 numeric R lobe. r_step = 0: Simpson with r_panels panels (0 = from quality) in a
-     * variable that follows the NDF's peak, so the count is the same for every roughness (README,
-     * "Huang"). r_step > 0: the paper's rule, uniform steps of at most r_step * roughness in phi_m
+     * variable that follows the NDF's peak, so the count is the same for every roughness (docs/huang.md). r_step > 0: the paper's rule, uniform steps of at most r_step * roughness in phi_m
      * (HHH22 sec. 3.4.2 uses 0.7); every sample then pays for the widest window, 2 ceil(pi / (2 r_step
      * roughness)) panels, so the cost is fixed by the plan and grows as 1 / roughness. */
     int r_panels;
     double r_step;
     /* HHH22 TT and TRT. tt_panels: Simpson panels over the entry window (even; 0 = from quality and
-     * roughness, README "Huang TT and TRT"); seed: keys the Monte-Carlo numbers, so the same seed and
+     * roughness, docs/huang.md); seed: keys the Monte-Carlo numbers, so the same seed and
      * sample index give the same value on every ISA (change it per frame to accumulate). */
     hb_tt_trt tt_trt;
     int tt_panels;
     unsigned long long seed;
     hb_azimuthal azimuthal;  /* dFH11, default HB_AZIMUTHAL_QUADRATURE */
     double table_tolerance;  /* dFH11 N_p table: 0 = from quality (1e-2, 1e-3, 1e-4), else in [1e-6, 0.5] */
-    /* Plans that choose their own configuration (README "Plans from a tolerance or a time budget";
+    /* Plans that choose their own configuration (docs/engines.md;
      * hb_plan_describe says what was chosen and why). tolerance > 0: the cheapest configuration whose
      * expected error, relative to the material's peak f, is at most this; lobes whose largest value
      * (measured at plan creation on a grid of directions) cannot matter are dropped (dFH11, MJC03).
@@ -272,7 +271,7 @@ hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb
 hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                           hb_eval_report *report);
 
-/* Importance sampling, for path tracers (README, "Sampling"). Given w_o (toward the viewer) and
+/* Importance sampling, for path tracers (docs/sampling.md). Given w_o (toward the viewer) and
  * uniform random numbers, hb_sample_angles draws w_i (toward the light) with a density close
  * to f(w_i, w_o), and returns w_i, its solid-angle pdf and the weight f / pdf per channel (so an
  * estimate of L_o is the mean of weight * L_i). hb_pdf_angles returns the same pdf for given
@@ -282,11 +281,10 @@ hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_r
  * u outside [0, 1] or NaN) get theta_i = phi_i = 0, pdf 0 and weight 0 and are counted.
  * The reverse use (w_o given w_i, for light tracing) is the same call with the two directions'
  * roles swapped; it samples f(w_o, w_i), which equals f(w_i, w_o) where the model is reciprocal
- * (dFH11 with alpha = 0; README).
+ * (dFH11 with alpha = 0; docs/engines.md).
  * HHH22 plans with TT or TRT (not HB_QUALITY_REFERENCE) read 8 numbers and trace one path through
  * the fibre from w_o (sec. 3.4.1): the weight is that path's throughput over the lobe choice, whose
- * mean is the mean of f / pdf (unbiased, with the cuticle tilt too: README "Huang sampling with TT
- * and TRT"); the pdf is eq. 33 estimated with one path per Simpson node from
+ * mean is the mean of f / pdf (unbiased, with the cuticle tilt too: docs/sampling.md); the pdf is eq. 33 estimated with one path per Simpson node from
  * the seed and the sample's index, so hb_pdf_angles at the same index returns the sampled pdf. */
 #define HB_SAMPLE_DIMENSIONS 8 /* the most numbers any sampler reads */
 
@@ -310,8 +308,7 @@ hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *
  * dimension d < dimensions, a pure function of (seed, index, d), the same on every machine. */
 void hb_uniforms(unsigned long long seed, unsigned long long first, size_t n, int dimensions, float *const *u);
 
-/* A plan's precomputed table, for engines that bake it into a texture (`hairbsdf bake`, README
- * "Tables for engines"): dFH11 N_p (HB_AZIMUTHAL_TABLE) or HHH22 f_TT + f_TRT (HB_TT_TRT_TABLE).
+/* A plan's precomputed table, for engines that bake it into a texture (`hairbsdf bake`, docs/engines.md): dFH11 N_p (HB_AZIMUTHAL_TABLE) or HHH22 f_TT + f_TRT (HB_TT_TRT_TABLE).
  * Nodes are uniform from lo to hi on each axis; values are row-major over the axes, then the slot,
  * then the channel (RGB innermost). The view points into the plan and lives as long as it. */
 #define HB_TABLE_MAX_AXES 4
@@ -326,14 +323,14 @@ typedef struct hb_table_view {
     const float *values;
     size_t count;                         /* floats: product of sizes x slots x 3 */
     double error;  /* dFH11: the largest midpoint interpolation error relative to its slot's peak, measured
-                      at build; HHH22: NaN (README "Huang TT and TRT tables" gives its measured error) */
+                      at build; HHH22: NaN (docs/huang.md gives its measured error) */
 } hb_table_view;
 
 /* HB_ERR_UNSUPPORTED when the plan has no table. */
 hb_status hb_plan_table(const hb_plan *plan, hb_table_view *view);
 
 /* White furnace: E(w_o) = integral over the sphere of f(w_i, w_o) dw_i per channel, by
- * quadrature fine enough for the plan's roughness (SPEC.md section 2). A lossless fibre with
+ * quadrature fine enough for the plan's roughness (docs/conventions.md). A lossless fibre with
  * every order gives E = 1 up to the model's approximations. For HB_TERM_LONGITUDINAL the
  * term T = f / N_p is integrated as T cos(theta_i) over theta_i (dFH11 eq. 5, Fig. 3). */
 hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3]);
@@ -341,7 +338,7 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3]);
 /* HHH22's energy by scattering order (its Fig. 16: what dropping the lobes beyond TRT loses): the
  * energy leaving a fibre lit along w = (theta, 0), split into R, TT, TRT and every order beyond, by a
  * random walk of `paths` paths through the rough fibre (visible normals at each interface, in double;
- * README "Huang energy beyond TRT"); standard_error (may be NULL) gets each group's standard error
+ * docs/huang.md, energy beyond TRT); standard_error (may be NULL) gets each group's standard error
  * of the channel mean. The first three groups equal hb_furnace of the R, TT and TRT lobes for
  * alpha = 0 (where the model is reciprocal). HHH22 plans of circular fibres only (else
  * HB_ERR_UNSUPPORTED); the walk's cost grows with paths, not with the plan's quality. */

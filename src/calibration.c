@@ -1,5 +1,5 @@
 /* The calibration table: built in (src/calibration_builtin.h, made by `make calibration` from the
- * bench/results/calibration.csv of the `make bench` run the README quotes), or read from such a CSV. */
+ * bench/results/calibration.csv of the last full `make bench` run, docs/benchmarks.md), or read from such a CSV. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

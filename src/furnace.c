@@ -1,4 +1,4 @@
-/* White furnace E(w_o) = integral over the sphere of f(w_i, w_o) dw_i (SPEC.md section 2):
+/* White furnace E(w_o) = integral over the sphere of f(w_i, w_o) dw_i (docs/conventions.md):
  * Gauss-Legendre panels in theta_i and the midpoint rule in the periodic phi_i, both fine
  * enough for the plan's narrowest lobe. Evaluated in stack chunks: no allocation. */
 #include <math.h>

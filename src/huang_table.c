@@ -1,6 +1,5 @@
 /* HHH22 TT/TRT table (HB_TT_TRT_TABLE): its grid, chosen from quality and roughness, and its
- * rows, each built by the plan's kernel (src/models/huang/table.h). README "Huang TT and TRT
- * tables" has the measured error and build time per quality. */
+ * rows, each built by the plan's kernel (src/models/huang/table.h). docs/huang.md has the measured error and build time per quality. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

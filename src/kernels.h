@@ -16,7 +16,7 @@ typedef struct hb_longitudinal {
     double log_norm;  /* log(1 / (v (1 - e^(-2/v)))), the csch factor of dFH11 eq. 7 without e^(-1/v) */
     double shift;     /* alpha_p: M_p is evaluated at theta_o - shift (dFH11 sec. 6) */
     double cos_shift, sin_shift;
-    /* Below HB_QUALITY_HIGH M_p is formed in float (README, "Quality levels"): the same
+    /* Below HB_QUALITY_HIGH M_p is formed in float (docs/deon.md): the same
      * constants rounded, and the shift c of theta_o'' = sign * theta_o - c as a float pair
      * c_hi + c_lo for the three cases of the pole reflection (none, above pi/2, below -pi/2). */
     int single;
@@ -32,7 +32,7 @@ typedef struct hb_gaussian_lobe {
     float norm;          /* 1 / (beta sqrt(2 pi)) */
 } hb_gaussian_lobe;
 
-/* Everything the MJC03 kernel reads, fixed at plan creation (README, "Marschner"). */
+/* Everything the MJC03 kernel reads, fixed at plan creation (docs/marschner.md). */
 typedef struct hb_marschner {
     unsigned lobes;       /* bits R, TT, TRT */
     int absorption_paper;
@@ -57,7 +57,7 @@ typedef struct hb_dielectric {
     float eta, inv_eta2, eta2_minus_1;
 } hb_dielectric;
 
-/* HHH22's f_TT + f_TRT tabulated at plan creation (README "Huang TT and TRT tables"): values
+/* HHH22's f_TT + f_TRT tabulated at plan creation (docs/huang.md): values
  * times 2 a cos(theta_o) (bounded where f has its 1 / cos(theta_o)) on a grid over theta_i,
  * phi_i (elliptical fibres only; reduced to [0, pi/2] by the cross-section's two mirror
  * symmetries), s = theta_i + theta_o warped as u = asinh((s - sum_centre) / sum_width) so that the
@@ -82,7 +82,7 @@ typedef struct hb_huang_table_build {
 /* Numbers HHH22 sampling with TT or TRT reads per sample (sec. 3.4.1; src/models/huang/sample_paths.h). */
 #define HB_HUANG_PATH_DIMENSIONS 8
 
-/* Everything the HHH22 kernel reads, fixed at plan creation (README, "Huang"). The flags are
+/* Everything the HHH22 kernel reads, fixed at plan creation (docs/huang.md). The flags are
  * the same for every sample of a batch, so branching on them never depends on the data. */
 typedef struct hb_huang {
     unsigned lobes;      /* bits R, TT, TRT */
@@ -159,7 +159,7 @@ typedef struct hb_deon {
     /* lobes whose M_p is the same function (same v and shift) share one evaluation: m_group[p]
      * is the first included lobe with p's constants, and M_p is evaluated for it alone */
     int m_group[HB_MAX_LOBES + 1];
-    /* sampling (README, "Sampling"): a node is picked with probability weight_j / sum(weight), by
+    /* sampling (docs/sampling.md): a node is picked with probability weight_j / sum(weight), by
      * its cumulative node_cdf; node_half_probability[j] is half that probability */
     float node_cdf[HB_MAX_NODES], node_half_probability[HB_MAX_NODES];
     float beta_n[HB_MAX_LOBES]; /* the detector's standard deviation per lobe */

@@ -261,13 +261,13 @@ static hb_status resolve_isa(hb_isa requested, hb_isa *isa, hb_error *error)
     return HB_OK;
 }
 
-/* Each quality level is an error target for f (SPEC.md section 6): 1e-2, 1e-3, 1e-4. The quality
+/* Each quality level is an error target for f (docs/conventions.md): 1e-2, 1e-3, 1e-4. The quality
  * rules integrate N_p by Gauss-Legendre in a mapped variable (deon_nodes), whose node count the
  * narrowest lobe sets: R's exit azimuth -2 gamma_i moves twice as fast as gamma_i, so its detector
  * is beta_n / 2 wide in gamma_i. Measured against the reference (white, blond, brown and black hair,
  * beta_m 0.05 and 0.3, beta_n 0.02..1, 512 directions), nodes = ceil(c / beta_n + d), at least
  * min_nodes, meets each target with one to four nodes to spare (none for fast at 0.7, balanced at 0.4)
- * (README, "Quality levels"), nodes being the rule's points with gamma_i >= 0 (order 2 nodes). */
+ * (docs/deon.md), nodes being the rule's points with gamma_i >= 0 (order 2 nodes). */
 static const struct {
     double c, d; /* nodes = ceil(c / smallest beta_n of the plan's lobes + d) */
     int min_nodes;
@@ -467,7 +467,7 @@ static double marschner_cubic_span(int p, double eta_prime)
     return span;
 }
 
-/* MJC03 lobes (Table 1 ratios, SPEC.md section 3): beta_R = beta_m, beta_TT = beta_R / 2,
+/* MJC03 lobes (Table 1 ratios, docs/conventions.md): beta_R = beta_m, beta_TT = beta_R / 2,
  * beta_TRT = 2 beta_R; means alpha_R = -alpha (the R highlight toward the root, as dFH11's),
  * alpha_TT = -alpha_R / 2, alpha_TRT = -3 alpha_R / 2; per-lobe overrides win. */
 static void derive_marschner(hb_plan *plan)
@@ -518,7 +518,7 @@ static void derive_marschner(hb_plan *plan)
     k->glint_scale = (float)m->glint_scale;
 }
 
-/* HHH22 R lobe: Simpson panels in the peak-following variable per quality (README, "Huang":
+/* HHH22 R lobe: Simpson panels in the peak-following variable per quality (docs/huang.md:
  * measured against the reference over roughness 0.02..0.6, tilts and directions). */
 static const int huang_r_panels[] = {
     [HB_QUALITY_FAST] = 16, [HB_QUALITY_BALANCED] = 32, [HB_QUALITY_HIGH] = 64, [HB_QUALITY_REFERENCE] = 64,

@@ -1,8 +1,7 @@
 /* Plans that choose their own configuration (options.tolerance, options.budget_ns): which lobes a
  * material needs, measured at plan creation, and which named configuration (quality, quadrature
  * order, N_p table) meets the tolerance most cheaply or the budget most accurately, from the
- * calibration that `make bench` measures (src/calibration.c). README "Plans from a tolerance or a
- * time budget". */
+ * calibration that `make bench` measures (src/calibration.c). docs/engines.md. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-/* Public sampling entry points (README, "Sampling"): argument checks, then the plan's kernel
+/* Public sampling entry points (docs/sampling.md): argument checks, then the plan's kernel
  * or, for HB_QUALITY_REFERENCE, the double-precision procedure. No allocation. */
 #include <math.h>
 

@@ -1,4 +1,4 @@
-/* The constants a plan's sampler reads (README, "Sampling"), fixed at plan creation. Internal. */
+/* The constants a plan's sampler reads (docs/sampling.md), fixed at plan creation. Internal. */
 #include <math.h>
 
 #include "plan.h"

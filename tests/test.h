@@ -42,11 +42,11 @@ void hb_test_note(hb_test_ctx *t, const char *fmt, ...) __attribute__((format(pr
 double hb_test_uniform(hb_test_ctx *t);
 static inline double hb_test_range(hb_test_ctx *t, double lo, double hi) { return lo + (hi - lo) * hb_test_uniform(t); }
 
-/* SPEC.md section 6: max over the n samples of 3 channels of |f - ref| / max(|ref|, 1e-3 peak),
+/* docs/conventions.md: max over the n samples of 3 channels of |f - ref| / max(|ref|, 1e-3 peak),
  * peak being the largest reference value. */
 double hb_test_spec_error(float *const f[3], float *const ref[3], size_t n, size_t *worst_sample);
 
-/* Unit vectors of sample k's angle pair (SPEC.md section 1): w[0..2] = w_i, w[3..5] = w_o. */
+/* Unit vectors of sample k's angle pair (docs/conventions.md): w[0..2] = w_i, w[3..5] = w_o. */
 void hb_test_vectors_of(float theta_i, float phi_i, float theta_o, float phi_o, float *const w[6], size_t k);
 
 /* Error of a float result in units of the float spacing at the double reference. */
@@ -73,5 +73,6 @@ extern const hb_test hb_tests_sample[];
 extern const hb_test hb_tests_sample_huang[];
 extern const hb_test hb_tests_huang_internal[];
 extern const hb_test hb_tests_huang_table[];
+extern const hb_test hb_tests_docs[];
 
 #endif

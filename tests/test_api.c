@@ -23,7 +23,7 @@ static void test_defaults(hb_test_ctx *t)
     hb_material_default(&m);
     hb_options_default(&o);
     CHECK(t, m.eta == 1.55 && m.beta_m == 0.1 && m.beta_n == 0.3 && m.alpha == 0.035 && m.roughness == 0.1,
-          "SPEC.md section 3 defaults");
+          "docs/conventions.md defaults");
     CHECK(t, m.sigma_a[0] == 0 && m.eccentricity == 0 && m.ndf == HB_NDF_GGX, "zero absorption, circular, GGX");
     CHECK(t, o.model == HB_MODEL_DEON && o.quality == HB_QUALITY_BALANCED && o.isa == HB_ISA_AUTO, "options");
     m.sigma_a[1] = 0.5;

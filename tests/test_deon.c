@@ -112,7 +112,7 @@ static void set_material(hb_material *m, const material_case *c)
     m->alpha = c->alpha;
 }
 
-/* SIMD float kernels against the double reference, error as in SPEC.md section 6, per
+/* SIMD float kernels against the double reference, error as in docs/conventions.md, per
  * quality; random directions (uniform on the sphere) plus grazing and specular ones. */
 static void test_matches_reference(hb_test_ctx *t)
 {
@@ -162,7 +162,7 @@ static double furnace(const hb_plan *plan, double theta_o)
 }
 
 /* White furnace. With the R lobe's Fresnel per offset (eq. 14, the default), sum_p A(p, h) = 1
- * and the untilted model conserves energy up to quadrature: the issue's 0.97..1.03 bound is
+ * and the untilted model conserves energy up to quadrature: the 0.97..1.03 bound is
  * checked there. The tilt (sec. 6: "only approximate") and eq. 12 (the paper's half-angle
  * Fresnel for R) move energy by design; their ranges are reported beside it. */
 static void test_white_furnace(hb_test_ctx *t)

@@ -48,7 +48,7 @@ static hb_plan *huang_plan(hb_test_ctx *t, const huang_setup *s)
 /* Directions: a third near the R highlight (theta_o = -theta_i - 2 alpha), some grazing (|theta|
  * within 1e-2..1e-6 of pi/2), some with phi_o - phi_i within 1e-2..1e-6 of +-pi, the rest uniform.
  * With grazing = 0 no |theta| exceeds 1.55: without G the lobe grows as 1 / cos(theta_o), so a set
- * with grazing w_o has a peak (SPEC.md's metric) orders of magnitude above the rest. */
+ * with grazing w_o has a peak (the metric of docs/conventions.md) orders of magnitude above the rest. */
 enum { N = 240 };
 static void directions(hb_test_ctx *t, double alpha, int grazing, float *ti, float *pi, float *to, float *po)
 {
@@ -82,7 +82,7 @@ static void directions(hb_test_ctx *t, double alpha, int grazing, float *ti, flo
 
 static double relative(double got, double want) { return fabs(got - want) / fmax(fabs(want), 1e-300); }
 
-/* Issue 5, item 1: App. A's closed form equals the numeric integral without G to 1e-5 relative (double),
+/* App. A's closed form equals the numeric integral without G to 1e-5 relative (double),
  * roughness 0.02..0.6, alpha 0, +-2, +-5 degrees, grazing theta and phi near +-pi included. */
 static void analytic_matches_numeric_double(hb_test_ctx *t)
 {
@@ -117,7 +117,7 @@ static void analytic_matches_numeric_double(hb_test_ctx *t)
                  compared);
 }
 
-/* The SIMD kernel of a setup against the double reference of the same physics, SPEC.md metric. */
+/* The SIMD kernel of a setup against the double reference of the same physics, the metric of docs/conventions.md. */
 static double kernel_error(hb_test_ctx *t, const huang_setup *s, const float *ti, const float *pi, const float *to,
                            const float *po, int vectors)
 {
@@ -168,7 +168,7 @@ static double kernel_error(hb_test_ctx *t, const huang_setup *s, const float *ti
 static const double kernel_roughness[] = { 0.02, 0.1, 0.3, 0.6 };
 static const double kernel_alpha[] = { 0.0, 2 * DEG, -5 * DEG };
 
-/* The worst SPEC.md error of a setup over roughness and tilt. */
+/* The worst error (docs/conventions.md) of a setup over roughness and tilt. */
 static double worst_error(hb_test_ctx *t, huang_setup s, int vectors, int grazing)
 {
     float ti[N], pi[N], to[N], po[N];
@@ -187,7 +187,7 @@ static double worst_error(hb_test_ctx *t, huang_setup s, int vectors, int grazin
     return worst;
 }
 
-/* The float closed form on this ISA against the double reference (SPEC.md metric), angles and vectors. */
+/* The float closed form on this ISA against the double reference (the metric of docs/conventions.md), angles and vectors. */
 static void analytic_kernel(hb_test_ctx *t)
 {
     huang_setup s = { 0, 0, 0.0, HB_NDF_GGX, HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0, 0.0,
@@ -202,8 +202,8 @@ static void analytic_kernel(hb_test_ctx *t)
 }
 
 /* Simpson in the peak-following variable per quality, for both NDFs, with and without G, circular
- * and elliptical, against the reference (SPEC.md metric). The bounds are the errors measured when
- * the panel counts were chosen (README, "Huang"), with a factor 2 for other seeds and ISAs: they
+ * and elliptical, against the reference (the metric of docs/conventions.md). The bounds are the errors measured when
+ * the panel counts were chosen (docs/huang.md), with a factor 2 for other seeds and ISAs: they
  * guard against regressions. Smith G is what limits accuracy: it falls to 0 over about one
  * roughness at the window's ends, where the peak-following variable spaces its nodes widest. */
 static void numeric_kernel(hb_test_ctx *t)
@@ -269,7 +269,7 @@ static void microsurface_identities(hb_test_ctx *t)
     hb_test_note(t, "D normalisation and Smith visible-area identity: worst error %.1e", worst);
 }
 
-/* Issue 5, item 3: the forward-scattering focus of sec. 4.1.1 (without tilt the R lobe at theta_o =
+/* The forward-scattering focus of sec. 4.1.1 (without tilt the R lobe at theta_o =
  * -theta_i brightens toward |phi| -> pi: without G to within about two roughnesses of pi, as the
  * visible window (width pi - |phi|) narrows onto the microfacets facing w_h, and falls to 0 as the
  * window closes; with G until both directions graze the few normals left, the last 0.3 rad; with tilt phi = +-pi is unreachable at oblique theta_i, eq. 40), and the fibre's

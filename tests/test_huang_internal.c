@@ -1,4 +1,4 @@
-/* HHH22 TT and TRT (issue 6, README "Huang TT and TRT"): the kernels' Monte-Carlo/Simpson estimator
+/* HHH22 TT and TRT (docs/huang.md): the kernels' Monte-Carlo/Simpson estimator
  * (eqs. 31, 32) equals the same estimator in double path by path on every ISA, its mean over
  * sample indices converges to the nested-quadrature integral, the integral is reciprocal, the
  * numbers are a pure function of (seed, index), and hard cases stay finite and non-negative. */
@@ -106,7 +106,7 @@ static void test_internal_matches_double(hb_test_ctx *t)
     CHECK(t, flips * 100 <= total, "%d of %d flips", flips, total);
 }
 
-/* Issue 6 item 1: the estimator's mean over many sample indices (independent numbers) converges to
+/* The estimator's mean over many sample indices (independent numbers) converges to
  * the nested quadrature of the same Simpson sum in phi_m1, within 4 standard errors plus the
  * quadrature's own error (estimated by the difference from half the points per dimension). The
  * quadrature over phi_m1 itself (Simpson vs converged Gauss-Legendre) is reported: it is the
@@ -301,7 +301,7 @@ static void test_internal_hard_cases(hb_test_ctx *t)
 
 /* HHH22 Fig. 16's random walk (hb_furnace_orders): its R, TT and TRT agree with hb_furnace of each
  * lobe (quadrature of the table's f over w_i, alpha = 0 so the model is reciprocal) within 4 of the
- * walk's standard errors plus 3% (the table's error integrated: README "Huang TT and TRT tables"); a lossless fibre
+ * walk's standard errors plus 3% (the table's error integrated: docs/huang.md); a lossless fibre
  * sends at most all the light back out and some of it beyond TRT; a black fibre nothing beyond;
  * elliptical fibres and other models are refused. */
 static void test_internal_orders(hb_test_ctx *t)

@@ -1,6 +1,6 @@
-/* HHH22 TT/TRT table (HB_TT_TRT_TABLE, README "Huang TT and TRT tables"): on every ISA the table
+/* HHH22 TT/TRT table (HB_TT_TRT_TABLE, docs/huang.md): on every ISA the table
  * agrees with the Monte-Carlo/Simpson estimator's mean (high quality, 256 sample indices, 64 under
- * emulation) within the error the README states for the balanced table, and with the
+ * emulation) within the error docs/huang.md states for the balanced table, and with the
  * nested-quadrature reference at each material's brightest pair; lookups are finite and non-negative at the hard directions. */
 #include <stdlib.h>
 #include <string.h>

@@ -65,7 +65,7 @@ static double cone_exponent(double v, double ti, double to_shifted)
     return 2.0 * s * s / v;
 }
 
-/* The relative error M_p may have (README, "Quality levels"): 1e-6 from HB_QUALITY_HIGH up (double
+/* The relative error M_p may have (docs/deon.md): 1e-6 from HB_QUALITY_HIGH up (double
  * arithmetic); below, float arithmetic: the cone exponent carries up to 4 ulps (sin a, its square,
  * the scaling by 1/v), the normalisation log(1/v) about 2 (its rounding and the sum's), the
  * exponential and I0 a few more: 5e-7 (2 + exponent) + 2e-7 |log v|. From
@@ -78,7 +78,7 @@ static double mp_error_bound(hb_quality quality, double exponent, double v, int 
     return 5e-7 * (2.0 + exponent) + 2e-7 * fabs(log(v)) + (from_vectors ? 7e-7 * sqrt(exponent / v) : 0.0);
 }
 
-/* The issue's bound: M_p within 1e-6 relative of the double reference wherever M_p > 1e-30, for v
+/* The bound: M_p within 1e-6 relative of the double reference wherever M_p > 1e-30, for v
  * from 1e-4 to 10 and every theta, with and without a tilt shift, at HB_QUALITY_HIGH; below it,
  * the float path within mp_error_bound. */
 static void test_matches_reference(hb_test_ctx *t)

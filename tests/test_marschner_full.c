@@ -73,7 +73,7 @@ static float ref_cache[CASES][2][3][N]; /* angles, vectors */
 static float ref_inputs[4][N];
 static int ref_ready;
 
-/* Every ISA and quality against the double reference, angles and vectors (SPEC.md section 6). */
+/* Every ISA and quality against the double reference, angles and vectors (docs/conventions.md). */
 static void test_matches_reference(hb_test_ctx *t)
 {
     static float ti[N], pi[N], to[N], po[N], f[3][N], w[6][N];
@@ -82,7 +82,7 @@ static void test_matches_reference(hb_test_ctx *t)
     int same = ref_ready;
     for (int s = 0; s < 4 && same; s++)
         same = memcmp(ref_inputs[s], in4[s], sizeof ref_inputs[s]) == 0;
-    /* every quality runs the same closed-form kernel; float rounding alone: see the README */
+    /* every quality runs the same closed-form kernel; float rounding alone (docs/marschner.md) */
     const double bound[3] = { 3e-5, 3e-5, 3e-5 };
     for (int c = 0; c < CASES; c++) {
         if (!same) {

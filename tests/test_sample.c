@@ -1,4 +1,4 @@
-/* Sampling and pdf (issue 11, README "Sampling"): the tests renderers run on hair, and stricter
+/* Sampling and pdf (docs/sampling.md): the tests renderers run on hair, and stricter
  * ones. Random numbers come from hb_uniforms with a seed drawn from the test's seed (printed by
  * the runner), so every failure reproduces with --seed. */
 #include <stdlib.h>

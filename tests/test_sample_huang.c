@@ -1,4 +1,4 @@
-/* HHH22 R lobe sampling and pdf (issue 5 item 2, README "Huang sampling"): sampled directions
+/* HHH22 R lobe sampling and pdf (docs/sampling.md): sampled directions
  * follow the pdf, the pdf integrates to 1, the mean weight is the lobe's albedo, the kernels agree
  * with the double procedure, and hard cases give finite, non-negative results. */
 #include <string.h>
@@ -233,8 +233,7 @@ static void test_huang_sample_hard_cases(hb_test_ctx *t)
     }
 }
 
-/* With TT and TRT: paths traced from w_o (sec. 3.4.1) and the pdf of eq. 33 (README "Huang
- * sampling with TT and TRT"), across roughness 0.1..0.4, both NDFs, circular and elliptical, with
+/* With TT and TRT: paths traced from w_o (sec. 3.4.1) and the pdf of eq. 33 (docs/sampling.md), across roughness 0.1..0.4, both NDFs, circular and elliptical, with
  * and without G, absorption and tilt (where eqs. 23-32 are not reciprocal and the paths carry the
  * reversal factor). */
 #define HB_ALL_HUANG_LOBES (1u << HB_LOBE_R | 1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)

@@ -5,7 +5,7 @@
 #include <stddef.h>
 #include "hairbsdf.h"
 
-/* Options every model subcommand takes (SPEC.md section 5). */
+/* Options every model subcommand takes (docs/cli.md). */
 typedef struct cli_model_args {
     hb_material material;
     hb_options options;

@@ -1,4 +1,4 @@
-/* Model and material options shared by the subcommands, named as in SPEC.md section 3. */
+/* Model and material options shared by the subcommands, named as in docs/conventions.md. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* hairbsdf bake: the table a shader or engine bakes for a material (README "Tables for engines"):
+/* hairbsdf bake: the table a shader or engine bakes for a material (docs/engines.md):
  * dFH11 N_p per M_p group over (sqrt(cos(theta_d)), |phi|), or HHH22 f_TT + f_TRT; as the binary
  * layout below, or as float RGB EXR (one image row per line of the table, slots stacked). */
 #include <math.h>

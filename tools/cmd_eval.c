@@ -1,5 +1,5 @@
-/* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o on stdin, f_r,f_g,f_b on stdout (SPEC.md section 5).
- * hairbsdf pdf: the same rows, the sampling pdf of w_i given w_o on stdout (README, "Sampling"). */
+/* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o on stdin, f_r,f_g,f_b on stdout (docs/cli.md).
+ * hairbsdf pdf: the same rows, the sampling pdf of w_i given w_o on stdout (docs/sampling.md). */
 #include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
@@ -79,7 +79,7 @@ int cmd_eval(int argc, char **argv, int pdf)
         return 2;
     }
     if (pdf && hb_plan_sample_dimensions(plan) == 0) {
-        fprintf(stderr, "%s: this model and term have no sampler yet (README, \"Sampling\")\n", name);
+        fprintf(stderr, "%s: this model and term have no sampler yet (docs/sampling.md)\n", name);
         hb_plan_destroy(plan);
         return 2;
     }

@@ -1,4 +1,4 @@
-/* hairbsdf furnace: white-furnace energy E(w_o) (SPEC.md section 2) against theta_o, in total
+/* hairbsdf furnace: white-furnace energy E(w_o) (docs/conventions.md) against theta_o, in total
  * or split by lobe (dFH11 Fig. 5: the share of TRRT and above). */
 #include <math.h>
 #include <stdio.h>

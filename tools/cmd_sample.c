@@ -1,4 +1,4 @@
-/* hairbsdf sample: importance-sampled w_i for one w_o (README, "Sampling"), as CSV rows
+/* hairbsdf sample: importance-sampled w_i for one w_o (docs/sampling.md), as CSV rows
  * theta_i,phi_i,pdf,w_r,w_g,w_b, or with --summary the mean weight per channel and its
  * standard error (for a lossless fibre: the white-furnace energy E(w_o)). */
 #include <stdio.h>
@@ -83,7 +83,7 @@ int cmd_sample(int argc, char **argv)
     }
     int dims = hb_plan_sample_dimensions(plan);
     if (dims == 0) {
-        fprintf(stderr, "hairbsdf sample: this model and term have no sampler yet (README, \"Sampling\")\n");
+        fprintf(stderr, "hairbsdf sample: this model and term have no sampler yet (docs/sampling.md)\n");
         hb_plan_destroy(plan);
         return 2;
     }

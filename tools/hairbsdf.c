@@ -1,4 +1,4 @@
-/* hairbsdf: the command-line tool (SPEC.md section 5). */
+/* hairbsdf: the command-line tool (docs/cli.md). */
 #include <stdio.h>
 #include <string.h>
 

@@ -1,7 +1,7 @@
 /* Vector math written once over the SIMD vocabulary (src/simd/simd.h).
  * Polynomial coefficients are the Cephes single-precision ones (exp, log, sin,
  * cos, asin, atan) and Abramowitz & Stegun 9.8.1 / 9.8.2 (I0). Accuracy is
- * measured by tests/test_vmath.c on every ISA; README.md states the figures.
+ * measured by tests/test_vmath.c on every ISA; docs/accuracy.md states the figures.
  * Inputs outside a function's stated domain give unspecified (but not trapping)
  * results: kernels validate their inputs before calling these. */
 #ifndef HB_VMATH_H
@@ -79,7 +79,7 @@ HB_INLINE vf vf_exp_flush(vf x)
  * 127 - k, the exponent field of 2^-k, one shift away. 2^r for |r| <= 1/2 by a degree-5 minimax
  * polynomial, 7.5e-8 relative before rounding: 2.9 ulp in all (1.3 of them where 2^r < 1 and the
  * ulp is finer). Degree 6 gives 1.2 ulp for 4.5% of the balanced dFH11 kernel's time, digits far
- * below every quality's error target (README, "Vector math accuracy"). */
+ * below every quality's error target (docs/accuracy.md). */
 HB_INLINE vf vf_exp2_neg(vf t)
 {
     t = vf_min(t, vf_set1(127.0f));

@@ -1,5 +1,5 @@
 /* dFH11 sampling and pdf in double precision (the procedure of src/models/deon/sample.h with
- * libm, the converged detector and the reference M_p; README, "Sampling"). The plan's tables
+ * libm, the converged detector and the reference M_p; docs/sampling.md). The plan's tables
  * (node and lobe-choice weights) define the procedure and are shared. Internal. */
 #include <math.h>
 

@@ -1,4 +1,4 @@
-/* HHH22 TT and TRT lobes in double (README, "Huang TT and TRT"): one internal path as a function
+/* HHH22 TT and TRT lobes in double (docs/huang.md): one internal path as a function
  * of the entry azimuth phi_m1 and the four numbers that pick the visible normals at interfaces 1
  * and 2, written with vectors and libm; the kernels' estimator (eqs. 31, 32) with the kernels'
  * counter-based numbers; and the integrals by nested quadrature over the same variables. */

@@ -17,7 +17,7 @@ typedef struct ref_r_setup {
     double tilt, b;  /* mesonormal inclination tau; minor semi-axis */
     int shadowing;
     int in_gamma;    /* integrate over the ellipse parameter gamma (eq. 28) */
-    int pdf;         /* the sampling pdf's integrand (README, "Huang sampling") instead of eval's */
+    int pdf;         /* the sampling pdf's integrand (docs/sampling.md) instead of eval's */
     double phi_o;
     double gl_x[RULE], gl_w[RULE]; /* Gauss-Legendre on [-1, 1] */
 } ref_r_setup;

@@ -1,4 +1,4 @@
-/* HHH22 R lobe sampling in double (README, "Huang sampling"): the kernels' procedure with libm
+/* HHH22 R lobe sampling in double (docs/sampling.md): the kernels' procedure with libm
  * and vectors, the offset drawn on the ellipse itself, and the Beckmann visible slope found by
  * bisection on its CDF (the kernels use Newton steps on its square root). */
 #include <math.h>

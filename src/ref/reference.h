@@ -49,7 +49,7 @@ void hb_ref_deon_node(const hb_plan *plan, double sin2_theta_d, double gamma_i, 
 /* dFH11 f = sum_p M_p N_p (eqs. 7, 10-14) for the plan's lobes, N_p converged to 1e-10. */
 void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
 
-/* dFH11 sampling (README, "Sampling"): the kernels' procedure in double, from five uniform
+/* dFH11 sampling (docs/sampling.md): the kernels' procedure in double, from five uniform
  * numbers, and its solid-angle pdf. */
 void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const double u[5], double *theta_i,
                         double *phi_i);
@@ -71,7 +71,7 @@ double hb_ref_huang_r_integral_analytic(const hb_plan *plan, double theta_i, dou
 #define HB_REF_HUANG_COS_FLOOR 1e-8
 void hb_ref_huang(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
 
-/* HHH22 R lobe sampling (README, "Huang sampling"): the mesonormal azimuths w_o sees, phi_o +- *half,
+/* HHH22 R lobe sampling (docs/sampling.md): the mesonormal azimuths w_o sees, phi_o +- *half,
  * and the projected offsets of their ends across w_o's view (0 when w_o sees none); the kernels'
  * procedure in double from three uniform numbers; its pdf by adaptive quadrature. */
 int hb_ref_huang_o_window(const hb_plan *plan, double theta_o, double phi_o, double *half, double *lo, double *hi);
@@ -88,7 +88,7 @@ double hb_ref_huang_half_width(double theta, double tilt);
  * slope's CDF inverted by bisection). */
 void hb_ref_huang_visible_normal(const hb_plan *plan, const double o[3], double u1, double u2, double m[3]);
 
-/* HHH22 TT and TRT (README, "Huang TT and TRT"). The kernels' counter-based numbers: number
+/* HHH22 TT and TRT (docs/huang.md). The kernels' counter-based numbers: number
  * `counter` of sample `index` under the plan's keys. */
 float hb_ref_huang_uniform(const hb_plan *plan, unsigned index, unsigned counter);
 /* The kernels' estimator (eqs. 31, 32) in double with the same numbers: f_TT and f_TRT per channel. */
@@ -104,7 +104,7 @@ void hb_ref_huang_internal_mc(const hb_plan *plan, double theta_i, double phi_i,
  * Gauss-Legendre with tt_points (TT) or trt_points (TRT) points per dimension. */
 void hb_ref_huang_internal(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
                            int simpson, int phi_points, int tt_points, int trt_points, double tt[3], double trt[3]);
-/* The points the reference quality uses (README, "Huang TT and TRT": their convergence). */
+/* The points the reference quality uses (docs/huang.md: their convergence). */
 #define HB_REF_HUANG_PHI_POINTS 192
 #define HB_REF_HUANG_TT_POINTS 32
 #define HB_REF_HUANG_TRT_POINTS 12

@@ -117,7 +117,7 @@ HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf 
     vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
     vf gamma_t = vf_asin(sin_gamma_t);
     vf f = out->f = fresnel_dielectric(vf_mul(m->cos_theta_d, cos_gamma_i), &d->ior); /* eq. 14 */
-    /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (SPEC.md 4) */
+    /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (docs/conventions.md) */
     vf path = !shape.standard && d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
                                                      : vf_add(cos_gamma_t, cos_gamma_t);
     HB_UNROLL
@@ -187,7 +187,7 @@ HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf 
 /* The residual lobe's pair of detectors: uniform in phi, 2 / (2 pi). */
 #define HB_RESIDUAL_DETECTOR_PAIR 0.318309886f
 
-/* For the sampling density (README, "Sampling"): M_p at the sample per lobe (NULL when only f is
+/* For the sampling density (docs/sampling.md): M_p at the sample per lobe (NULL when only f is
  * wanted) and the accumulated sum over nodes of P(node) sum_p m_p D_p / (2 sum_p m_p), where
  * m_p = M_p times A(p, h) averaged over the channels. */
 typedef struct deon_pdf_terms {
@@ -400,7 +400,7 @@ HB_INLINE vf detector_pair_scaled(const hb_scaled_detector *s, int p, int j, vf 
  * s_p = a_p M'_p pair_p (0 for a lobe the plan leaves out) and the residual's q = a_4 M_res / pi,
  * the channel's sum over p of A(p, h) M_p D_p (eqs. 10, 13) is
  * s_0 + T (s_1 + T (s_2 + T (s_3 + T q / (1 - f T)))). The node's f (eq. 14), T (sec. 6, with
- * 2 cos(gamma_t) per traversal, SPEC.md 4) and gamma_t are formed once for every lobe. M is per M_p
+ * 2 cos(gamma_t) per traversal, docs/conventions.md) and gamma_t are formed once for every lobe. M is per M_p
  * group (the group leader's index); with pdf, the sampling density's node sum as
  * azimuthal_deon_shaped forms it. */
 HB_INLINE void deon_fused_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],

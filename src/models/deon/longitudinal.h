@@ -78,7 +78,7 @@ HB_INLINE vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_su
  * 1/v and the norm by log2(e) in advance, so this costs no multiply; |exponent| <= 3.75 keeps the
  * rounding of log2(e) itself below 1e-7 in t). The exponent carries about two ulps of relative
  * error, so M_p's relative error grows as 1e-7 (1 + that exponent): within 1e-6 on the lobe and
- * 2e-5 at M_p = 1e-30 of the peak (README, "Quality levels"). */
+ * 2e-5 at M_p = 1e-30 of the peak (docs/deon.md). */
 HB_INLINE vf longitudinal_deon_single(const hb_longitudinal *lobe, vf cone_bits, vf x, hb_i0 i0)
 {
     vf exponent, factor;
@@ -204,7 +204,7 @@ HB_INLINE void inclination(vf x, vf y, vf z, vf *sin_theta, vf *cos_theta)
 /* The float path's first stage from unit vectors: 1 - cos(theta_i + theta_o') = ((cos theta_i - cos theta_o')^2 +
  * (sin theta_i + sin theta_o')^2) / 2, a sum of squares that cannot cancel; its terms carry the
  * float rounding of the sines and cosines (about 1e-7 in angle), so the exponent's error near
- * the cone grows as sqrt(exponent / v) 1e-7 (README, "Quality levels"). The exponent is in bits, as
+ * the cone grows as sqrt(exponent / v) 1e-7 (docs/deon.md). The exponent is in bits, as
  * longitudinal_deon_single takes it. */
 HB_INLINE void longitudinal_cone_vectors(const hb_longitudinal *lobe, const vf wi[3], const vf wo[3], vf *cone_bits,
                                          vf *x)

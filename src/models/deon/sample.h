@@ -1,4 +1,4 @@
-/* dFH11 importance sampling and its pdf over the SIMD vocabulary (README, "Sampling").
+/* dFH11 importance sampling and its pdf over the SIMD vocabulary (docs/sampling.md).
  *
  * Given w_o and five uniform numbers:
  *  1. u0 picks an M_p group g with probability c_g(theta_o) (the plan's table), u1 and u2 draw

@@ -3,7 +3,7 @@
  * taken over the part of the fibre both directions see, either in closed form (App. A) or by
  * composite Simpson with a node count the plan fixes. Everything is computed in the frame
  * turned about the fibre so that phi_i = 0; delta = phi_h - phi_m is the azimuth of the
- * mesonormal seen from the half vector's. README, "Huang", has the derivations. */
+ * mesonormal seen from the half vector's. docs/huang.md, has the derivations. */
 #ifndef HB_HUANG_R_LOBE_H
 #define HB_HUANG_R_LOBE_H
 
@@ -105,7 +105,7 @@ HB_INLINE huang_r_geometry huang_r_geometry_of(const hb_huang *h, const huang_di
     g.sin_phi_h = vf_select(has_azimuth, vf_mul(hx, inv_planar), zero);
     g.phi_h = vf_atan2(hx, hz);
     /* theta_h -+ tau, and the App. A factors in cancellation-free form (1 - A - B =
-     * r^2 / (1 + C) + C (1 - cos(theta_h - tau)), the issue's trap at small roughness) */
+     * r^2 / (1 + C) + C (1 - cos(theta_h - tau)), which cancels at small roughness) */
     vf ct = vf_set1(h->cos_tilt), st = vf_set1(h->sin_tilt);
     g.cos_h_tilt = vf_mul(cos_h, ct);
     g.sin_h_tilt = vf_mul(sin_h, st);
@@ -217,7 +217,7 @@ HB_INLINE vf r_integrand(const hb_huang *h, const huang_directions *d, const hua
     return value;
 }
 
-/* The sampling density's integrand at phi_m = phi_h - delta (README, "Huang sampling"): the density
+/* The sampling density's integrand at phi_m = phi_h - delta (docs/sampling.md): the density
  * of phi_m, cos(phi_m - phi_o) rho over the window's projected width (applied by the caller),
  * times the visible normals' density mapped to w_i, G1(w_o) D / (4 w_o . w_m) (Heitz 2014; the 4 is
  * applied by the caller). G1 / (w_o . w_m) stays finite at the window's ends. The window keeps

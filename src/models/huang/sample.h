@@ -1,5 +1,5 @@
 /* HHH22 R lobe importance sampling and its pdf over the SIMD vocabulary (HHH22 sec. 3.4.1 and
- * eq. 33 for the R lobe alone; README, "Huang sampling").
+ * eq. 33 for the R lobe alone; docs/sampling.md).
  *
  * Given w_o and three uniform numbers:
  *  1. u0 picks the offset h uniformly across the part of the fibre's projected width (seen from w_o)

@@ -1,5 +1,5 @@
 /* HHH22 importance sampling with TT and TRT (sec. 3.4.1, 8 random numbers) and its pdf (eq. 33),
- * over the SIMD vocabulary; README "Huang sampling with TT and TRT".
+ * over the SIMD vocabulary; docs/sampling.md.
  *
  * Sampling traces one path from the known direction w_o (by reciprocity; the model's f(w_i, w_o)
  * is what the weight estimates): u0 the entry offset (as the R sampler), u1 u2 the entry
@@ -133,7 +133,7 @@ HB_INLINE void trace_path(const hb_huang *h, const fibre_point *p, v3 wa, const 
      * interface's cosines against the tilted mesonormal w_m while a chord's entry and exit points
      * correspond through the macronormal n (ds_q |w.n_q| = ds_p |w.n_p|), so reversing a segment
      * p -> q scales its weight by (|w.w_m,q| / |w.n_q|) / (|w.w_m,p| / |w.n_p|): exactly 1 without
-     * tilt, and with it what makes the mean weight f(w_i, w_o)'s albedo (README). */
+     * tilt, and with it what makes the mean weight f(w_i, w_o)'s albedo (docs/sampling.md). */
     vf tiny = vf_set1(1e-30f);
     const fibre_point *q2 = &exits[0].q, *q3 = &exits[1].q;
     v3 wt = exits[0].w, wtr = exits[1].w;

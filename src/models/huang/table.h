@@ -1,6 +1,5 @@
 /* HHH22 TT and TRT from a table built at plan creation (HHH22 sec. 3.4.2 suggests "precomputing
- * them and storing the result in a 3D table (4D for elliptical cross-sections)"; README "Huang TT
- * and TRT tables"). The builder integrates eqs. 31, 32 deterministically: Simpson over the entry
+ * them and storing the result in a 3D table (4D for elliptical cross-sections)"; docs/huang.md). The builder integrates eqs. 31, 32 deterministically: Simpson over the entry
  * azimuth phi_m1 as at evaluation, and at each node `lattice` internal paths whose visible normals
  * come from a shifted R4 low-discrepancy sequence instead of one random path; every path is traced
  * once per row and connected to every w_o of the row. Lookup is multilinear interpolation. */

@@ -1,6 +1,6 @@
 /* MJC03 azimuthal scattering N_p and the full model f = sum_p M_p N_p cos(theta_i) / cos^2(theta_d)
- * (SPEC.md section 2) over the SIMD vocabulary. Equations are numbered by the survey of
- * ../shared/seeds/004 ("the survey") and the original paper's sections. Every loop count
+ * (docs/conventions.md) over the SIMD vocabulary. Equations are numbered by the survey of
+ * the paper's published walk-through ("the survey") and the original paper's sections. Every loop count
  * (roots, branches, Newton steps) is fixed by the plan. */
 #ifndef HB_MARSCHNER_AZIMUTHAL_H
 #define HB_MARSCHNER_AZIMUTHAL_H
@@ -73,7 +73,7 @@ typedef struct mjc_absorption {
 
 /* A(p, h) at gamma_i (the survey's "Finding A"): (1 - F(eta', eta'', gamma_i))^2
  * F(1/eta', 1/eta'', gamma_t)^(p - 1) T^p, with T the transmittance of one traversal,
- * exp(-mu_a' 2 cos gamma_t) (SPEC.md section 4) or the printed exp(-mu_a' (2 + 2 cos 2 gamma_t)). */
+ * exp(-mu_a' 2 cos gamma_t) (docs/conventions.md) or the printed exp(-mu_a' (2 + 2 cos 2 gamma_t)). */
 HB_INLINE void attenuation_marschner(const hb_marschner *m, int p, const mjc_index *ix, const mjc_absorption *ab,
                                      vf sin_gi, vf cos_gi, vf out[3])
 {

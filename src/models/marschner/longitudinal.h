@@ -1,5 +1,5 @@
 /* MJC03 longitudinal part over the SIMD vocabulary: f = sum_p M_p N_p cos(theta_i) / cos^2(theta_d)
- * (SPEC.md section 2), M_p = g(alpha_p, beta_p; theta_h) the unit-area Gaussian (MJC03, the
+ * (docs/conventions.md), M_p = g(alpha_p, beta_p; theta_h) the unit-area Gaussian (MJC03, the
  * survey's M_p and g). The longitudinal term is T = M_R cos(theta_i) / cos^2(theta_d). */
 #ifndef HB_MARSCHNER_LONGITUDINAL_H
 #define HB_MARSCHNER_LONGITUDINAL_H
@@ -18,7 +18,7 @@ HB_INLINE vf gaussian_marschner(const hb_gaussian_lobe *lobe, vf theta_h)
     return vf_mul(vf_exp2_neg(vf_mul(vf_mul(x, x), vf_set1(lobe->log2e_over_two_beta2))), vf_set1(lobe->norm));
 }
 
-/* cos(theta_i) / cos^2(theta_d), the factor every lobe shares (SPEC.md section 2). */
+/* cos(theta_i) / cos^2(theta_d), the factor every lobe shares (docs/conventions.md). */
 HB_INLINE vf projection_marschner(vf cos_theta_i, vf cos_theta_d)
 {
     vf cos2_d = vf_max(vf_mul(cos_theta_d, cos_theta_d), vf_set1(HB_MJC_COS2_THETA_D_FLOOR));
