@@ -56,7 +56,7 @@ WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes
 CFLAGS ?= -O2 -g
 BASE_CFLAGS := -std=c11 -D_GNU_SOURCE $(WARN) -fPIC -ffp-contract=off -fno-tree-slp-vectorize -fno-math-errno -Iinclude -Isrc
 ifneq ($(SANITIZE),)
-  BASE_CFLAGS += -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+  BASE_CFLAGS += -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -DHB_SANITIZED
   LDFLAGS += -fsanitize=address,undefined
 endif
 ifneq ($(FUZZ),)

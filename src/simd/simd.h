@@ -13,8 +13,14 @@
  * cross the call through memory: a few loads and stores per block against hundreds of operations. */
 #define HB_STAGE static __attribute__((noinline))
 /* Unrolls the loop that follows (over lobes, channels, streams) so its arrays of vectors can live
- * in registers; GCC at -O2 keeps a loop with a large body rolled. Clang reads the same pragma. */
+ * in registers; GCC at -O2 keeps a loop with a large body rolled. Clang reads the same pragma.
+ * Sanitizer builds (HB_SANITIZED) drop the hint: GCC cannot unroll some instrumented loops and
+ * warns that it ignores the annotation. */
+#ifdef HB_SANITIZED
+#define HB_UNROLL
+#else
 #define HB_UNROLL _Pragma("GCC unroll 8")
+#endif
 
 /* Besides element-wise arithmetic, each vocabulary loads table texels two ways: vf_gather(base, idx),
  * one float per lane, and vf_gather4(base, idx, out), four consecutive floats per lane as four
