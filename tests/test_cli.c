@@ -488,6 +488,19 @@ static void test_input_edges(hb_test_ctx *t)
     CHECK(t, r.status != 0 && strstr(r.err, "--theta-o 2"), "furnace at theta_o 2: %d %s", r.status, r.err);
     run_tool(t, "furnace --theta-o ''", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "--theta-o"), "furnace with an empty angle list: %d %s", r.status, r.err);
+    run_tool(t, "--version", "", &r);
+    CHECK(t, r.status == 0 && strncmp(r.out, "hairbsdf ", 9) == 0, "--version: %d '%s'", r.status, r.out);
+    run_tool(t, "eval --term longitudinal -o /dev/full", "0.1,0,0.2,0\n", &r);
+    CHECK(t, r.status == 1 && strstr(r.err, "cannot write") && strstr(r.err, "space"), "a failed write: %d %s", r.status,
+          r.err);
+    run_tool(t, "eval --term longitudinal", "0.1,0,0.2,0\nnan,0,0,0\n0.1,0,0.2,0\n", &r);
+    CHECK(t, r.status == 0 && strstr(r.err, "line 2"), "the first invalid sample's line: %d %s", r.status, r.err);
+    run_tool(t, "eval --term longitudinal --strict", "0.1,0,0.2,0\n0.1,0,3,0\n0.1,0,0.2,0\n", &r);
+    CHECK(t, r.status == 1 && strstr(r.err, "line 2") && strchr(r.out, '\n') == strrchr(r.out, '\n'),
+          "--strict stops at an invalid sample: %d '%s' %s", r.status, r.out, r.err);
+    run_tool(t, "eval --term longitudinal /nonexistent/rows.csv", "", &r);
+    CHECK(t, r.status == 1 && strstr(r.err, "/nonexistent/rows.csv") && strstr(r.err, "No such file"),
+          "a missing input file: %d %s", r.status, r.err);
     static const char *const dumps[] = { "--theta-i nan", "--theta-i 2", "--exposure 1e39", "--exposure 0" };
     for (size_t k = 0; k < sizeof dumps / sizeof dumps[0]; k++) {
         char args[128];

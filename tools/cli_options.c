@@ -36,11 +36,17 @@ const char cli_model_options_help[] =
     "                                 dropping lobes that cannot matter (see hairbsdf plan)\n"
     "  --budget-ns X                  choose the most accurate configuration that takes at most X ns per sample\n"
     "  --calibration FILE             costs and errors for those choices (bench/results/calibration.csv; default built in)\n"
-    "Material options:\n"
-    "  --eta X  --sigma-a R,G,B  --eumelanin X  --pheomelanin X\n"
-    "  --beta-m X  --beta-n X  --alpha X  --ndf ggx|beckmann  --roughness X  --eccentricity X\n"
+    "Material options (default; valid range), angles in radians (docs/conventions.md):\n"
+    "  --eta X                        index of refraction (1.55; (1, 10])\n"
+    "  --sigma-a R,G,B                absorption per unit fibre radius (0,0,0; finite, >= 0)\n"
+    "  --eumelanin X  --pheomelanin X pigment concentrations, added to sigma-a (0; finite, >= 0)\n"
+    "  --beta-m X                     longitudinal roughness (0.1; [0.01, 3.162])\n"
+    "  --beta-n X                     azimuthal roughness, dFH11 (0.3; [0.02, 3])\n"
+    "  --alpha X                      cuticle tilt (0.035; [-0.2, 0.2])\n"
+    "  --ndf ggx|beckmann  --roughness X   HHH22 microfacets (ggx, 0.1; [0.001, 1])\n"
+    "  --eccentricity X               elliptical fibre, MJC03 and HHH22 (0; [0, 0.99])\n"
     "  --glint-scale X  --caustic-width X  --caustic-fade X  --caustic-limit X   MJC03 TRT caustics\n"
-    "                                 (k_G 0.5, w_c 0.2618 rad, Delta eta' 0.3, Delta h_M 0.5)\n";
+    "                                 (k_G 0.5, w_c 0.2618, Delta eta' 0.3, Delta h_M 0.5)\n";
 
 void cli_model_args_default(cli_model_args *args)
 {

@@ -140,9 +140,20 @@ int cmd_bake(int argc, char **argv)
     }
     for (int k = 0; !st && k < v.axes; k++)
         printf("axis %d: %d nodes, %g to %g, %s\n", k, v.size[k], v.lo[k], v.hi[k], v.axis[k]);
-    for (int s = 0; !st && s < v.slots; s++)
-        printf("slot %d: lobes 0x%x\n", s, v.slot_lobes[s]);
-    if (!st)
+    for (int s = 0; !st && s < v.slots; s++) {
+        static const char *const names[HB_MAX_LOBES + 1] = { "R", "TT", "TRT", "TRRT", "p4", "p5", "p6", "p7", "residual" };
+        printf("slot %d: lobes ", s);
+        for (int p = 0, first = 1; p <= HB_LOBE_RESIDUAL; p++)
+            if (v.slot_lobes[s] >> p & 1u) {
+                printf("%s%s", first ? "" : "+", names[p]);
+                first = 0;
+            }
+        printf(" (mask 0x%x)\n", v.slot_lobes[s]);
+    }
+    if (!st && isnan(v.error))
+        printf("%zu floats (%.1f KiB); its error against the reference is measured by the tests (docs/huang.md)\n",
+               v.count, (double)v.count * 4.0 / 1024.0);
+    else if (!st)
         printf("%zu floats (%.1f KiB), measured midpoint error %.3g of each slot's peak\n", v.count,
                (double)v.count * 4.0 / 1024.0, v.error);
     hb_plan_destroy(plan);

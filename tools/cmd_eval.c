@@ -1,7 +1,7 @@
-/* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o on stdin, f_r,f_g,f_b on stdout (docs/cli.md).
- * hairbsdf pdf: the same rows, the sampling pdf of w_i given w_o on stdout (docs/sampling.md). */
-#include <ctype.h>
+/* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o from a file or stdin, f_r,f_g,f_b to a file or stdout
+ * hairbsdf pdf: the same rows, the sampling pdf of w_i given w_o (docs/sampling.md). */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,43 +17,53 @@ typedef struct eval_batch {
     size_t count;
 } eval_batch;
 
-/* Evaluates and prints the rows held so far (f, or the pdf); returns the invalid-sample count. */
-static size_t flush(const hb_plan *plan, int pdf, eval_batch *b)
+/* Whether a row is a valid sample as hb_eval_angles defines it (hairbsdf.h): finite angles,
+ * |theta| at most the float pi/2, |phi| at most HB_PHI_LIMIT. */
+static int row_valid(const float row[4])
+{
+    for (int c = 0; c < 4; c++)
+        if (!(fabsf(row[c]) <= (c % 2 ? HB_PHI_LIMIT : 1.57079637f)))
+            return 0;
+    return 1;
+}
+
+/* Evaluates and prints the rows held so far (f, or the pdf) to out; returns the invalid-sample count. */
+static size_t flush(const hb_plan *plan, int pdf, eval_batch *b, FILE *out)
 {
     if (!b->count)
         return 0;
     hb_angles_soa in = { b->in[0], b->in[1], b->in[2], b->in[3] };
-    hb_rgb_soa out = { b->out[0], b->out[1], b->out[2] };
+    hb_rgb_soa rgb = { b->out[0], b->out[1], b->out[2] };
     hb_eval_report report = { 0 };
     if (pdf)
         hb_pdf_angles(plan, b->count, in, b->out[0], &report);
     else
-        hb_eval_angles(plan, b->count, in, out, &report);
+        hb_eval_angles(plan, b->count, in, rgb, &report);
     for (size_t k = 0; k < b->count; k++)
         if (pdf)
-            printf("%.9g\n", b->out[0][k]);
+            fprintf(out, "%.9g\n", b->out[0][k]);
         else
-            printf("%.9g,%.9g,%.9g\n", b->out[0][k], b->out[1][k], b->out[2][k]);
+            fprintf(out, "%.9g,%.9g,%.9g\n", b->out[0][k], b->out[1][k], b->out[2][k]);
     b->count = 0;
     return report.invalid;
 }
 
 static void eval_usage(FILE *to, int pdf)
 {
-    if (pdf)
-        fprintf(to, "usage: hairbsdf pdf [options] < rows.csv\n"
-                    "Reads theta_i,phi_i,theta_o,phi_o (radians) per line; writes the solid-angle pdf with\n"
-                    "which 'hairbsdf sample' draws w_i given w_o, one per line.\n%s",
-                cli_model_options_help);
-    else
-        fprintf(to, "usage: hairbsdf eval [options] < rows.csv\n"
-                    "Reads theta_i,phi_i,theta_o,phi_o (radians) per line; writes f_r,f_g,f_b per line.\n%s",
-                cli_model_options_help);
+    fprintf(to, "usage: hairbsdf %s [options] [--strict] [-o OUTPUT] [INPUT.csv]\n"
+                "Reads theta_i,phi_i,theta_o,phi_o (radians) per line from INPUT.csv or stdin; writes %s\n"
+                "per line to OUTPUT or stdout. An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4)\n"
+                "gives %s and is reported with its line; with --strict it is an error.\n%s",
+            pdf ? "pdf" : "eval",
+            pdf ? "the solid-angle pdf with which 'hairbsdf sample' draws w_i given w_o" : "f_r,f_g,f_b",
+            pdf ? "0" : "0,0,0", cli_model_options_help);
 }
 
 int cmd_eval(int argc, char **argv, int pdf)
 {
     const char *name = pdf ? "hairbsdf pdf" : "hairbsdf eval";
+    const char *input_path = NULL, *output_path = NULL;
+    int strict = 0;
     cli_model_args args;
     cli_model_args_default(&args);
     char err[256];
@@ -61,6 +71,18 @@ int cmd_eval(int argc, char **argv, int pdf)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             eval_usage(stdout, pdf);
             return 0;
+        }
+        if (strcmp(argv[i], "--strict") == 0) {
+            strict = 1;
+            continue;
+        }
+        if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
+            output_path = argv[++i];
+            continue;
+        }
+        if (argv[i][0] != '-' && !input_path) {
+            input_path = argv[i];
+            continue;
         }
         int r = cli_parse_model_option(argc, argv, &i, &args, err, sizeof err);
         if (r == 0) {
@@ -83,14 +105,23 @@ int cmd_eval(int argc, char **argv, int pdf)
         hb_plan_destroy(plan);
         return 2;
     }
+    FILE *in = input_path ? fopen(input_path, "r") : stdin;
+    FILE *out = output_path ? fopen(output_path, "w") : stdout;
+    if (!in || !out) {
+        fprintf(stderr, "%s: cannot open %s: %s\n", name, !in ? input_path : output_path, strerror(errno));
+        if (in && in != stdin)
+            fclose(in);
+        hb_plan_destroy(plan);
+        return 1;
+    }
 
     static eval_batch batch;
     char *line = NULL;
     size_t cap = 0, invalid = 0;
-    long lineno = 0;
+    long lineno = 0, first_invalid = 0;
     int seen_content = 0, status = 0;
     ssize_t length;
-    while ((length = getline(&line, &cap, stdin)) >= 0) {
+    while ((length = getline(&line, &cap, in)) >= 0) {
         lineno++;
         int nul = memchr(line, '\0', (size_t)length) != NULL; /* a byte C strings would stop at */
         char *s = csv_trim(lineno == 1 ? csv_skip_bom(line) : line);
@@ -103,8 +134,19 @@ int cmd_eval(int argc, char **argv, int pdf)
             seen_content = 1;
             continue;
         }
-        if (nul || !csv_parse_row(s, row)) {
-            invalid += flush(plan, pdf, &batch);
+        int parsed = !nul && csv_parse_row(s, row);
+        if (parsed && !row_valid(row)) {
+            first_invalid = first_invalid ? first_invalid : lineno;
+            if (strict) {
+                flush(plan, pdf, &batch, out);
+                fprintf(stderr, "%s: line %ld: invalid sample '%s' (NaN or Inf angle, |theta| > pi/2 or |phi| > 1e4)\n",
+                        name, lineno, copy);
+                status = 1;
+                break;
+            }
+        }
+        if (!parsed) {
+            invalid += flush(plan, pdf, &batch, out);
             fprintf(stderr, "%s: line %ld: malformed row '%s'%s (want theta_i,phi_i,theta_o,phi_o%s)\n", name, lineno,
                     copy, nul ? " with a NUL byte" : "", lineno == 1 ? ", or that header" : "");
             status = 1;
@@ -114,16 +156,27 @@ int cmd_eval(int argc, char **argv, int pdf)
         for (int c = 0; c < 4; c++)
             batch.in[c][batch.count] = row[c];
         if (++batch.count == BATCH)
-            invalid += flush(plan, pdf, &batch);
+            invalid += flush(plan, pdf, &batch, out);
     }
     if (!status)
-        invalid += flush(plan, pdf, &batch);
+        invalid += flush(plan, pdf, &batch, out);
     free(line);
     hb_plan_destroy(plan);
     if (invalid)
-        fprintf(stderr, "%s: %zu invalid sample%s (NaN/Inf angle, |theta| > pi/2 or |phi| > 1e4) written as %s\n",
-                name, invalid, invalid == 1 ? "" : "s", pdf ? "0" : "0,0,0");
-    if (fflush(stdout) != 0)
+        fprintf(stderr, "%s: %zu invalid sample%s (NaN/Inf angle, |theta| > pi/2 or |phi| > 1e4), the first on line %ld, "
+                        "written as %s\n",
+                name, invalid, invalid == 1 ? "" : "s", first_invalid, pdf ? "0" : "0,0,0");
+    int read_failed = ferror(in);
+    if (in != stdin)
+        fclose(in);
+    if (read_failed) {
+        fprintf(stderr, "%s: cannot read %s\n", name, input_path ? input_path : "standard input");
+        status = 1;
+    }
+    if (fflush(out) != 0 || ferror(out) || (out != stdout && fclose(out) != 0)) {
+        fprintf(stderr, "%s: cannot write %s: %s\n", name, output_path ? output_path : "standard output",
+                strerror(errno));
         return 1;
+    }
     return status;
 }

@@ -61,7 +61,7 @@ int main(int argc, char **argv)
         return cmd_plot(argc - 1, argv + 1);
     if (strcmp(cmd, "isa") == 0)
         return cmd_isa();
-    if (strcmp(cmd, "version") == 0) {
+    if (strcmp(cmd, "version") == 0 || strcmp(cmd, "--version") == 0) {
         printf("hairbsdf %d.%d\n", HB_VERSION_MAJOR, HB_VERSION_MINOR);
         return 0;
     }
