@@ -204,6 +204,37 @@ static void test_dump_matches_library(hb_test_ctx *t)
     free(img);
 }
 
+/* A PNG dump is a figure: the panels framed by axes, titles, a caption and a colour scale, so the
+ * picture is larger than its panels; the float formats hold the panels alone (above). */
+static void test_dump_png_figure(hb_test_ctx *t)
+{
+    const char *tool = getenv("HB_TOOL");
+    if (!tool || !*tool) {
+        CHECK(t, 0, "HB_TOOL is not set");
+        return;
+    }
+    static const char *const args[2] = { "--width 64 --height 32", "--width 64 --height 32 --compare model=marschner" };
+    for (int k = 0; k < 2; k++) {
+        char path[64], cmd[512];
+        snprintf(path, sizeof path, "/tmp/hb_dump_XXXXXX.png");
+        close(mkstemps(path, 4));
+        snprintf(cmd, sizeof cmd, "%s dump --theta-i 0.3 %s -o %s 2>/dev/null", tool, args[k], path);
+        CHECK(t, system(cmd) == 0, "dump failed: %s", cmd);
+        size_t n = 0;
+        uint8_t *d = slurp(path, &n);
+        unlink(path);
+        CHECK(t, d && n > 24 && memcmp(d + 12, "IHDR", 4) == 0, "%s: no PNG header", args[k]);
+        if (!d || n <= 24)
+            continue;
+        unsigned w = (unsigned)d[16] << 24 | (unsigned)d[17] << 16 | (unsigned)d[18] << 8 | d[19];
+        unsigned h = (unsigned)d[20] << 24 | (unsigned)d[21] << 16 | (unsigned)d[22] << 8 | d[23];
+        unsigned panels = k ? 3u : 1u;
+        CHECK(t, w > 64u * panels + 60u && h > 32u + 40u, "%s: a %u x %u figure for %u panels of 64 x 32", args[k], w, h,
+              panels);
+        free(d);
+    }
+}
+
 /* Side by side: the first panel is the options, the second the options with --compare applied,
  * the third their absolute difference. */
 static void test_dump_side_by_side(hb_test_ctx *t)
@@ -236,6 +267,7 @@ const hb_test hb_tests_images[] = {
     { "image_checksums", test_checksums, 0 },
     { "image_pfm_round_trip", test_pfm_round_trip, 0 },
     { "image_png_round_trip", test_png_round_trip, 0 },
+    { "image_dump_png_figure", test_dump_png_figure, 0 },
     { "image_exr_round_trip", test_exr_round_trip, 0 },
     { "image_dump_matches_library", test_dump_matches_library, 0 },
     { "image_dump_side_by_side", test_dump_side_by_side, 0 },

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "figure.h"
 #include "image.h"
 
 static void dump_usage(FILE *to)
@@ -14,11 +15,50 @@ static void dump_usage(FILE *to)
     fprintf(to, "usage: hairbsdf dump [options] --theta-i X --phi-i Y [--width W --height H]\n"
                 "                     [--exposure E] [--compare OPTION=VALUE ...] -o FILE.pfm|FILE.exr|FILE.png\n"
                 "Writes f(w_i, w_o) over all w_o as a lat-long image: float RGB (PFM; EXR when built with\n"
-                "OpenEXR), or tone-mapped 8-bit sRGB (PNG, x/(1+x) of exposure * f).\n"
+                "OpenEXR), or tone-mapped 8-bit sRGB (PNG, x/(1+x) of exposure * f) framed as a figure: axes\n"
+                "in degrees, a title per panel, a caption and the colour scale with the values of f.\n"
                 "--compare OPTION=VALUE (repeatable, any model option without its dashes, e.g. model=marschner\n"
                 "or quality=fast): side by side, three panels: f of the options, f with these changed, and\n"
                 "|difference|; the largest difference relative to the first panel's peak goes to stderr.\n%s",
             cli_model_options_help);
+}
+
+/* A panel's title: the model's short name, its quality and its pigment or absorption. */
+static void describe(const cli_model_args *args, char *out, size_t size)
+{
+    static const char *const models[] = { [HB_MODEL_DEON] = "dFH11", [HB_MODEL_MARSCHNER] = "MJC03", [HB_MODEL_HUANG] = "HHH22" };
+    static const char *const qualities[] = { "fast", "balanced", "high", "reference" };
+    const hb_material *m = &args->material;
+    const hb_options *o = &args->options;
+    int n = snprintf(out, size, "%s %s", (unsigned)o->model <= HB_MODEL_HUANG ? models[o->model] : "?",
+                     (unsigned)o->quality <= HB_QUALITY_REFERENCE ? qualities[o->quality] : "?");
+    if (n > 0 && (size_t)n < size && (m->eumelanin > 0.0 || m->pheomelanin > 0.0))
+        snprintf(out + n, size - (size_t)n, ", eumelanin %g, pheomelanin %g", m->eumelanin, m->pheomelanin);
+    else if (n > 0 && (size_t)n < size)
+        snprintf(out + n, size - (size_t)n, ", sigma_a %g/%g/%g", m->sigma_a[0], m->sigma_a[1], m->sigma_a[2]);
+}
+
+/* The PNG: the tone-mapped panels framed as a figure (tools/figure.c). */
+static int write_figure(const char *path, const cli_model_args *first, const cli_model_args *second, int panels,
+                        const float *rgb, int width, int height, double theta_i, double phi_i, double exposure)
+{
+    size_t pixels = (size_t)width * (size_t)panels * (size_t)height;
+    uint8_t *rgb8 = malloc(pixels * 3);
+    if (!rgb8)
+        return -1;
+    image_tonemap(pixels, rgb, (float)exposure, rgb8);
+    char caption[192], title[2][96];
+    describe(first, title[0], sizeof title[0]);
+    describe(second, title[1], sizeof title[1]); /* a single panel shows the first title alone */
+    const char *titles[3] = { title[0], title[1], "|difference|" };
+    snprintf(caption, sizeof caption, "f(w_i, w_o) at theta_i %.3g (%.0f deg), phi_i %.3g, exposure %g", theta_i,
+             theta_i * 180.0 / M_PI, phi_i, exposure);
+    int fw = 0, fh = 0;
+    uint8_t *framed = figure_frame(rgb8, width, height, panels, caption, titles, exposure, &fw, &fh);
+    int st = framed ? image_write_png(path, fw, fh, framed) : -1;
+    free(rgb8);
+    free(framed);
+    return st;
 }
 
 static int ends_with(const char *s, const char *suffix)
@@ -161,8 +201,7 @@ int cmd_dump(int argc, char **argv)
     int panels = compares > 0 ? 3 : 1, image_width = width * panels;
     size_t pixels = (size_t)image_width * height;
     float *rgb = malloc(pixels * 3 * sizeof(float)), *row = malloc((size_t)width * 7 * sizeof(float));
-    uint8_t *rgb8 = malloc(pixels * 3);
-    int st = !rgb || !row || !rgb8 ? 1 : 0;
+    int st = !rgb || !row ? 1 : 0;
     if (st)
         fprintf(stderr, "hairbsdf dump: out of memory\n");
     if (!st)
@@ -175,13 +214,12 @@ int cmd_dump(int argc, char **argv)
         } else if (exr) {
             st = image_write_exr(path, image_width, height, rgb);
         } else {
-            image_tonemap(pixels, rgb, (float)exposure, rgb8);
-            st = image_write_png(path, image_width, height, rgb8);
+            st = write_figure(path, &args, &second, panels, rgb, width, height, theta_i, phi_i, exposure);
         }
         if (st != 0)
             fprintf(stderr, "hairbsdf dump: cannot write %s\n", path);
         st = st != 0;
     }
-    free(rgb), free(row), free(rgb8);
+    free(rgb), free(row);
     return st;
 }
