@@ -399,8 +399,6 @@ HB_INLINE vf vf_normal_quantile(vf u)
     return vf_mul(vf_mul(erfinv_over_x, vf_fnma(vf_set1(-2.0f), u, vf_set1(-1.0f))), vf_set1(1.41421356f));
 }
 
-/* x - 2 pi k in [-pi, pi] for |x| < 2^24, with 2 pi split in two floats; k = x / 2 pi rounded by
- * adding 1.5 2^23 (as in vf_exp2_neg: two additions instead of a multiply and a rounding). */
 /* An azimuth |x| <= HB_PHI_LIMIT past 2 pi reduced to x - 2 pi k in [-pi, pi], the same on every
  * ISA: 2 pi as 6.28125 (8 bits, so k times it and the first difference are exact) plus a float
  * remainder, and no fused operation, so each step rounds alike with and without FMA. At |x| = 1e4
@@ -414,6 +412,8 @@ HB_INLINE vf reduce_angle(vf x)
     return vf_select(vf_gt(vf_abs(x), vf_set1(HB_TWO_PI_F)), r, x);
 }
 
+/* x - 2 pi k in [-pi, pi] for |x| < 2^24, with 2 pi split in two floats; k = x / 2 pi rounded by
+ * adding 1.5 2^23 (as in vf_exp2_neg: two additions instead of a multiply and a rounding). */
 HB_INLINE vf wrap_angle(vf x)
 {
     vf k = vf_sub(vf_fma(x, vf_set1(0.159154943f), vf_set1(12582912.0f)), vf_set1(12582912.0f));

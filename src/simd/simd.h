@@ -5,8 +5,14 @@
 #define HB_SIMD_H
 
 /* Everything in the vocabulary and the math built on it is forced inline: a kernel
- * is one straight-line body per vector of samples, never a call per operation. */
+ * is one straight-line body per vector of samples, never a call per operation. Sanitizer builds
+ * (HB_SANITIZED) leave inlining to the compiler: the same operations in smaller functions, which
+ * the instrumented compile (ASan's passes grow with a function's size) needs to finish in minutes. */
+#ifdef HB_SANITIZED
+#define HB_INLINE static inline
+#else
 #define HB_INLINE static inline __attribute__((always_inline))
+#endif
 /* A stage that several kernels of one translation unit share (f from the geometry and M_p, the
  * internal paths of a fibre): one out-of-line copy per unit instead of one inlined into every
  * kernel and I0 variant, which is what bounds each unit's compile time and memory. Its vectors
