@@ -430,6 +430,34 @@ static void cpu_name(char *name, size_t size)
         fclose(f);
 }
 
+/* A marked region's text being written: the run's date and CPU, the text in memory (readme.h). */
+typedef struct region {
+    FILE *f;
+    char *text;
+    size_t size;
+    char cpu[256], date[32];
+} region;
+
+static int region_open(region *r)
+{
+    cpu_name(r->cpu, sizeof r->cpu);
+    time_t now = time(NULL);
+    strftime(r->date, sizeof r->date, "%Y-%m-%d", gmtime(&now));
+    r->text = NULL;
+    r->size = 0;
+    r->f = open_memstream(&r->text, &r->size);
+    return r->f != NULL;
+}
+
+/* Closes the text and writes it between the marker lines begin and end of the file at path. */
+static void region_write(region *r, const char *path, const char *begin, const char *end)
+{
+    fclose(r->f);
+    if (!bench_update_region(path, begin, end, r->text))
+        printf("wrote %s ... %s of %s\n", begin, end, path);
+    free(r->text);
+}
+
 /* docs/benchmarks.md's bench region (readme.h): what ran where, one line per configuration with its ns/sample
  * on each ISA (the budgets' AVX2 first), the error and speed-up over scalar of the first ISA there,
  * then the multi-core line and the budgets' verdicts. */
@@ -442,15 +470,11 @@ static void write_report(const char *path, const row *rows, int nrows, const cha
     for (int k = 0; k < nrows; k++)
         for (int c = 0; c < NCOLUMNS; c++)
             present[c] |= rows[k].isa == columns[c];
-    char cpu[256], date[32];
-    cpu_name(cpu, sizeof cpu);
-    time_t now = time(NULL);
-    strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
-    char *text = NULL;
-    size_t size = 0;
-    FILE *f = open_memstream(&text, &size);
-    if (!f)
+    region r;
+    if (!region_open(&r))
         return;
+    FILE *f = r.f;
+    const char *cpu = r.cpu, *date = r.date;
     fprintf(f, "`make bench`, %s, %s (%ld cores), %s -O2; one pinned core, batches of %d directions (half near\n"
                "the specular cone), blond hair (sigma_a = 0.1/0.25/0.6, beta_m 0.1, beta_n 0.3, alpha 0.035). ns per\n"
                "sample: the minimum over repeated batches. Error: max over %d samples and 3 channels of\n"
@@ -495,10 +519,7 @@ static void write_report(const char *path, const row *rows, int nrows, const cha
             fprintf(f, " - |\n");
     }
     fprintf(f, "\n```\n%s%s```\n", scaling_text, budget_text);
-    fclose(f);
-    if (!bench_update_region(path, HB_REPORT_BEGIN, HB_REPORT_END, text))
-        printf("wrote the bench region of %s\n", path);
-    free(text);
+    region_write(&r, path, HB_REPORT_BEGIN, HB_REPORT_END);
 }
 
 static int is_demo_row(const char *label);
@@ -507,15 +528,10 @@ static int is_demo_row(const char *label);
 static void write_summary(const char *path, const row *rows, int nrows)
 {
     hb_isa best = hb_isa_best();
-    char cpu[256], date[32];
-    cpu_name(cpu, sizeof cpu);
-    time_t now = time(NULL);
-    strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
-    char *text = NULL;
-    size_t size = 0;
-    FILE *f = open_memstream(&text, &size);
-    if (!f)
+    region r;
+    if (!region_open(&r))
         return;
+    FILE *f = r.f;
     fprintf(f, "| model and quality | ns/sample (%s) | max error |\n|---|---|---|\n", hb_isa_name(best));
     for (int k = 0; k < nrows; k++) {
         char label[64];
@@ -527,11 +543,8 @@ static void write_summary(const char *path, const row *rows, int nrows)
         fprintf(f, " %.1e |\n", rows[k].max_rel_err);
     }
     fprintf(f, "\n`make bench`, %s, %s, one core, batches of %d; every row on every ISA in "
-               "[docs/benchmarks.md](docs/benchmarks.md).\n", date, cpu, BATCH);
-    fclose(f);
-    if (!bench_update_region(path, HB_SUMMARY_BEGIN, HB_SUMMARY_END, text))
-        printf("wrote the bench summary of %s\n", path);
-    free(text);
+               "[docs/benchmarks.md](docs/benchmarks.md).\n", r.date, r.cpu, BATCH);
+    region_write(&r, path, HB_SUMMARY_BEGIN, HB_SUMMARY_END);
 }
 
 /* --once CONFIG: evaluate one batch of CONFIG on $HB_ISA `repeats` times (default once) and exit,

@@ -40,6 +40,24 @@ void hb_test_note(hb_test_ctx *t, const char *fmt, ...)
     va_end(ap);
 }
 
+char *hb_test_read_file(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long length = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *text = length >= 0 ? malloc((size_t)length + 1) : NULL;
+    size_t got = text ? fread(text, 1, (size_t)length, f) : 0;
+    fclose(f);
+    if (text)
+        text[got] = '\0';
+    if (size)
+        *size = got;
+    return text;
+}
+
 double hb_test_uniform(hb_test_ctx *t)
 {
     uint64_t z = (t->rng += 0x9e3779b97f4a7c15ull);

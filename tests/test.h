@@ -38,6 +38,10 @@ void hb_test_note(hb_test_ctx *t, const char *fmt, ...) __attribute__((format(pr
             hb_test_fail((t), __FILE__, __LINE__, __VA_ARGS__);     \
     } while (0)
 
+/* A whole file, NUL-terminated (its size without the NUL in *size, which may be NULL); malloc'd,
+ * NULL when it cannot be read. */
+char *hb_test_read_file(const char *path, size_t *size);
+
 /* Uniform double in [0, 1) and in [lo, hi) (splitmix64). */
 double hb_test_uniform(hb_test_ctx *t);
 static inline double hb_test_range(hb_test_ctx *t, double lo, double hi) { return lo + (hi - lo) * hb_test_uniform(t); }

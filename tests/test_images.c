@@ -8,19 +8,8 @@
 #include "test.h"
 #include "image.h"
 
-static uint8_t *slurp(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    uint8_t *d = malloc((size_t)size + 1);
-    *n = fread(d, 1, (size_t)size, f);
-    fclose(f);
-    return d;
-}
+/* A file's bytes (tests/runner.c). */
+static uint8_t *slurp(const char *path, size_t *n) { return (uint8_t *)hb_test_read_file(path, n); }
 
 static uint32_t be32(const uint8_t *p) { return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3]; }
 
