@@ -741,7 +741,7 @@ int main(int argc, char **argv)
     }
     /* per model: a CSV of every row and an SVG of the full model's error against time */
     static const char *const models[][2] = { { "deon", "d'Eon 2011 full model" },
-                                             { "marschner", "Marschner 2003 full model" },
+                                             { "marschner", "Marschner 2003 full model, its one configuration (closed form) per ISA" },
                                              { "huang", "Huang 2022 R lobe" } };
     int partial = *only || only_isa || demo; /* a partial run leaves the results of the last full run alone */
     for (int mi = 0; mi < 3 && results_dir && !partial; mi++) {

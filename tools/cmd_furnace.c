@@ -216,7 +216,11 @@ int cmd_furnace(int argc, char **argv)
         char title[160];
         snprintf(title, sizeof title, "hairbsdf furnace: %s",
                  q.by_order ? "share of the energy beyond TRT (HHH22 Fig. 16)" : q.by_lobe ? "energy by lobe" : "white furnace energy");
-        if (!in || plot_csv(in, svg, title, NULL, q.by_order ? "share_beyond" : NULL, err, sizeof err) != 0) {
+        const char *y_label = q.by_order ? "share of the energy beyond TRT"
+                              : q.by_lobe ? "energy per lobe (fraction of the incident light)"
+                                          : "white-furnace energy E (fraction of the incident light)";
+        if (!in || plot_csv(in, svg, title, NULL, q.by_order ? "share_beyond" : NULL, "theta_o (radians)", y_label, err,
+                            sizeof err) != 0) {
             fprintf(stderr, "hairbsdf furnace: --svg: %s\n", in ? err : "cannot read the table back");
             st = 1;
         }

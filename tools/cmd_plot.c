@@ -44,7 +44,7 @@ int cmd_plot(int argc, char **argv)
         return 2;
     }
     char err[256];
-    int st = plot_csv(in, path, title ? title : input, x, y, err, sizeof err);
+    int st = plot_csv(in, path, title ? title : input, x, y, NULL, NULL, err, sizeof err);
     if (in != stdin)
         fclose(in);
     if (st != 0)

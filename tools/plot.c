@@ -97,10 +97,27 @@ int bench_write_svg(const char *path, const char *title, const bench_point *p, i
         fprintf(f, "<circle cx='%.0f' cy='%.0f' r='4' fill='%s'/><text x='%.0f' y='%.0f'>%s</text>\n", W - right + 20,
                 top + 18.0 * j, c, W - right + 30, top + 18.0 * j + 4, isas[j]);
     }
-    for (int k = 0; k < n; k++) /* label each configuration once, at its fastest ISA */
-        if (!strcmp(p[k].isa, isas[nisa - 1]))
-            fprintf(f, "<text x='%.1f' y='%.1f' font-size='9' fill='#444'>%s</text>\n", PX(p[k].ns) + 5,
-                    PY(p[k].error) - 5, p[k].label);
+    /* label each configuration once, at its fastest ISA, moved down a line at a time past the labels
+     * already placed that it would overlap (9 px type: about 5 px a character, 11 px a line) */
+    enum { MAX_LABELS = 64 };
+    double placed[MAX_LABELS][3]; /* x, y (baseline), width */
+    int nplaced = 0;
+    for (int k = 0; k < n; k++) {
+        if (strcmp(p[k].isa, isas[nisa - 1]))
+            continue;
+        double x = PX(p[k].ns) + 5, y = PY(p[k].error) - 5, w = 5.0 * (double)strlen(p[k].label);
+        for (int moved = 1; moved;) {
+            moved = 0;
+            for (int j = 0; j < nplaced; j++)
+                if (x < placed[j][0] + placed[j][2] && placed[j][0] < x + w && fabs(y - placed[j][1]) < 11.0) {
+                    y = placed[j][1] + 11.0;
+                    moved = 1;
+                }
+        }
+        if (nplaced < MAX_LABELS)
+            placed[nplaced][0] = x, placed[nplaced][1] = y, placed[nplaced++][2] = w;
+        fprintf(f, "<text x='%.1f' y='%.1f' font-size='9' fill='#444'>%s</text>\n", x, y, p[k].label);
+    }
     fprintf(f, "</svg>\n");
 #undef PX
 #undef PY
@@ -114,9 +131,10 @@ static double tick_step(double range)
     return decade * (m < 1.5 ? 1.0 : m < 3.5 ? 2.0 : m < 7.5 ? 5.0 : 10.0);
 }
 
-int plot_write_lines_svg(const char *path, const char *title, const char *x_label, const plot_series *s, int count)
+int plot_write_lines_svg(const char *path, const char *title, const char *x_label, const char *y_label,
+                         const plot_series *s, int count)
 {
-    const double W = 760, H = 460, left = 70, right = 190, top = 40, bottom = 50;
+    const double W = 760, H = 460, left = 80, right = 190, top = 40, bottom = 50;
     double x0 = INFINITY, x1 = -INFINITY, y0 = 0.0, y1 = -INFINITY; /* y from 0: energies and shares */
     for (int j = 0; j < count; j++)
         for (int k = 0; k < s[j].n; k++) {
@@ -143,6 +161,8 @@ int plot_write_lines_svg(const char *path, const char *title, const char *x_labe
                    "text-anchor='end'>%g</text>\n", left, LY(v), W - right, LY(v), left - 5, LY(v) + 4,
                 fabs(v) < 1e-9 * dy ? 0.0 : v);
     fprintf(f, "<text x='%.0f' y='%.0f' text-anchor='middle'>%s</text>\n", (left + W - right) / 2, H - 12, x_label);
+    fprintf(f, "<text x='15' y='%.0f' transform='rotate(-90 15 %.0f)' text-anchor='middle'>%s</text>\n",
+            (top + H - bottom) / 2, (top + H - bottom) / 2, y_label);
     for (int j = 0; j < count; j++) {
         const char *c = colours[j % COLOURS];
         fprintf(f, "<polyline fill='none' stroke='%s' stroke-width='1.5'%s points='", c,

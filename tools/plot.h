@@ -24,15 +24,17 @@ typedef struct plot_series {
     int n;
 } plot_series;
 
-/* Linear axes, one coloured polyline with point marks per series, a legend. */
-int plot_write_lines_svg(const char *path, const char *title, const char *x_label, const plot_series *series,
-                         int count);
+/* Linear axes labelled x_label and y_label (units included), one coloured polyline with point marks
+ * per series, a legend. */
+int plot_write_lines_svg(const char *path, const char *title, const char *x_label, const char *y_label,
+                         const plot_series *series, int count);
 
 /* Reads a CSV table with a header row and plots it into path: a bench results file as
  * bench_write_svg; any other table as lines, x the column named x_column (NULL: the first numeric
  * column), one series per other numeric column (or the comma list y_columns), split by the value
- * of the first non-numeric column when there is one. Returns 0, or -1 with err filled. */
+ * of the first non-numeric column when there is one. The axes are labelled x_label and y_label
+ * (NULL: the x column's name, and the y columns' names). Returns 0, or -1 with err filled. */
 int plot_csv(FILE *csv, const char *path, const char *title, const char *x_column, const char *y_columns,
-             char *err, size_t err_size);
+             const char *x_label, const char *y_label, char *err, size_t err_size);
 
 #endif

@@ -125,7 +125,7 @@ static int plot_bench(const csv_table *t, const char *path, const char *title, c
 }
 
 int plot_csv(FILE *csv, const char *path, const char *title, const char *x_column, const char *y_columns,
-             char *err, size_t err_size)
+             const char *x_label, const char *y_label, char *err, size_t err_size)
 {
     csv_table t;
     if (read_table(csv, &t, err, err_size) != 0) {
@@ -197,7 +197,13 @@ int plot_csv(FILE *csv, const char *path, const char *title, const char *x_colum
             series[count] = (plot_series){ labels[count], xs, ys, n };
             count++;
         }
-    int st = plot_write_lines_svg(path, title, t.header[x], series, count);
+    char names_label[256] = "";
+    for (int c = 0; !y_label && c < t.columns; c++) /* the y columns' names */
+        if (wanted[c])
+            snprintf(names_label + strlen(names_label), sizeof names_label - strlen(names_label), "%s%s",
+                     *names_label ? ", " : "", t.header[c]);
+    int st = plot_write_lines_svg(path, title, x_label ? x_label : t.header[x], y_label ? y_label : names_label, series,
+                                  count);
     free(values);
     table_free(&t);
     if (st)
