@@ -60,7 +60,7 @@ ifneq ($(SANITIZE),)
   LDFLAGS += -fsanitize=address,undefined
 endif
 ifneq ($(FUZZ),)
-  BASE_CFLAGS += -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+  BASE_CFLAGS += -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -DHB_SANITIZED
 endif
 ALL_CFLAGS = $(BASE_CFLAGS) $(CFLAGS)
 LDLIBS := -lm
@@ -142,17 +142,18 @@ $(B)/bench/%.o: ALL_CFLAGS += -Itools
 $(BENCH_BIN): $(BENCH_SRCS:%.c=$(B)/%.o) $(B)/tools/plot.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) -lpthread
 
-# The runner loops over every ISA this CPU has (or only $HB_ISA when it is set) and drives the
+# The runner loops over every ISA this CPU has (or those of $HB_TEST_ISAS or $HB_ISA) and drives the
 # CLI through HB_TOOL. `make test` is the quick tier, `make check` the long one (every case of
 # every test); TEST_FLAGS=--verbose prints each test's measurements.
 TEST_FLAGS ?=
 RUN_TESTS = HB_TOOL="$(strip $(RUN) $(TOOL))" HB_TEST_EMULATED=$(if $(RUN),1,0) $(RUN) $(TEST_BIN) $(TEST_FLAGS)
+REPLAY_CORPUS = for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t tests/fuzz/corpus/$$t || exit 1; done
 test: $(TEST_BIN) $(TOOL) $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%)
-	@for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t tests/fuzz/corpus/$$t || exit 1; done
+	@$(REPLAY_CORPUS)
 	@$(RUN_TESTS)
 
 check: $(TEST_BIN) $(TOOL) $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%)
-	@for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t tests/fuzz/corpus/$$t || exit 1; done
+	@$(REPLAY_CORPUS)
 	@$(RUN_TESTS) --long
 
 # The fuzz harnesses without libFuzzer, replaying the kept corpus (make test runs them).
@@ -193,7 +194,8 @@ demo: all $(BENCH_BIN)
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model marschner --eumelanin 0.3
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model marschner --eumelanin 0.3 --quality reference
 	$(RUN) $(TOOL) dump --model marschner --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_marschner.png
-	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model huang --eumelanin 0.3
+	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model huang --lobes R --eumelanin 0.3
+	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model huang --lobes R --eumelanin 0.3 --quality reference
 	$(RUN) $(TOOL) dump --model huang --tt-trt table --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_huang.png
 	$(RUN) $(TOOL) plan --model deon --eumelanin 1.8 --tolerance 1e-2
 	@echo "lobe images: $(B)/lobes_deon.png, $(B)/lobes_marschner.png, $(B)/lobes_huang.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
