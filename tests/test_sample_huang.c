@@ -178,6 +178,161 @@ static void test_huang_sample_reference(hb_test_ctx *t)
     CHECK(t, worst_weight <= 1e-6, "weight differs from f / pdf by %.2e", worst_weight);
 }
 
+/* The top of the Beckmann slope range: u1 within 1e-1 .. 1e-6 of 1 (the visible normals nearest
+ * w_o, which reflect it back toward -w_o) against the double procedure, per ISA. Where the top lies
+ * in the Gaussian tail (w_o near the mesonormal) the float q = (1 + erf x) / 2, spaced 6e-8 near 1,
+ * holds x only to about 6e-8 / (2 x (1 - q)): the bound is 2e-5 rad plus 3e-9 rad / (1 - u1). */
+static void test_huang_sample_beckmann_top(hb_test_ctx *t)
+{
+    static const huang_case tops[] = {
+        { HB_NDF_BECKMANN, 0.3, 0.0, 0.0, 1, 1.3, 0.0, 0.0, 0, 0.0 },
+        { HB_NDF_BECKMANN, 0.25, 2.0, 0.0, 1, 0.6, 1.0, 0.0, 0, 0.0 },
+        { HB_NDF_BECKMANN, 0.6, -3.0, 0.5, 1, -1.45, -2.0, 0.0, 0, 0.0 },
+        { HB_NDF_BECKMANN, 0.05, 0.0, 0.0, 1, 0.1, 0.0, 0.0, 0, 0.0 },
+    };
+    enum { N = 4000 };
+    double worst_excess = 0.0, worst_near = 0.0; /* angle / bound; the largest angle where 1 - u1 >= 1e-3 */
+    for (size_t c = 0; c < sizeof tops / sizeof tops[0]; c++) {
+        hb_plan *plan = huang_plan(t, &tops[c], HB_QUALITY_HIGH, t->isa);
+        if (!plan)
+            return;
+        size_t n = t->quick ? N / 4 : N;
+        hb_test_sample_batch(t, plan, n, tops[c].theta_o, tops[c].phi_o, hb_test_next_seed(t));
+        for (size_t i = 0; i < n; i++) /* 1 - u1 log-uniform over [1e-6, 1e-1] */
+            buf->u[1][i] = (float)(1.0 - pow(10.0, -1.0 - 5.0 * (double)i / (double)n));
+        hb_sample_in in = { buf->to, buf->po, { buf->u[0], buf->u[1], buf->u[2] } };
+        hb_sample_out out = { buf->ti, buf->pi, buf->pdf, { buf->w[0], buf->w[1], buf->w[2] } };
+        CHECK(t, hb_sample_angles(plan, n, in, out, NULL) == HB_OK, "hb_sample_angles failed");
+        char text[160];
+        describe(&tops[c], text, sizeof text);
+        for (size_t i = 0; i < n; i++) {
+            double u[3] = { buf->u[0][i], buf->u[1][i], buf->u[2][i] }, ti, pi;
+            hb_ref_huang_sample(plan, buf->to[i], buf->po[i], u, &ti, &pi);
+            double cos_angle = sin(ti) * sin(buf->ti[i]) + cos(ti) * cos(buf->ti[i]) * cos(pi - buf->pi[i]);
+            double angle = 2.0 * asin(fmin(1.0, sqrt(fmax(0.0, 0.5 * (1.0 - cos_angle))))), rest = 1.0 - u[1];
+            double excess = angle / (2e-5 + 3e-9 / rest);
+            if (excess > worst_excess)
+                hb_test_note(t, "%s: 1 - u1 = %.3g: %.3g rad", text, rest, angle);
+            worst_excess = fmax(worst_excess, excess);
+            if (rest >= 1e-3)
+                worst_near = fmax(worst_near, angle);
+        }
+        hb_plan_destroy(plan);
+    }
+    hb_test_note(t, "within %.2f of the bound; %.2e rad from the double procedure where 1 - u1 >= 1e-3", worst_excess,
+                 worst_near);
+    CHECK(t, worst_excess <= 1.0, "a direction %.2f times the bound from the double procedure", worst_excess);
+}
+
+/* log P(X = k) for X Poisson with mean lambda. */
+static double poisson_log_term(double lambda, double k) { return k * log(lambda) - lambda - lgamma(k + 1.0); }
+
+/* The two-sided tail of a Poisson count k with mean lambda: 2 min(P(X <= k), P(X >= k)), at most 1. */
+static double poisson_two_sided(double lambda, long k)
+{
+    double below = 0.0, above = 0.0;
+    for (long j = 0; j <= k; j++)
+        below += exp(poisson_log_term(lambda, (double)j));
+    above = 1.0 - below + exp(poisson_log_term(lambda, (double)k));
+    return fmin(1.0, 2.0 * fmin(below, fmax(above, 0.0)));
+}
+
+/* The probability of the ring rho in [r0, r1] around the unit vector axis: its integral of
+ * hb_pdf_angles by Gauss-Legendre in rho (8 points per piece, 4 pieces) and 256 azimuths. */
+static double ring_probability(const hb_plan *plan, const double axis[3], double r0, double r1, float theta_o,
+                               float phi_o)
+{
+    static const double x8[8] = { -0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+                                  0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363 };
+    static const double w8[8] = { 0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+                                  0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763 };
+    enum { PIECES = 4, AZIMUTHS = 256, POINTS = PIECES * 8 * AZIMUTHS };
+    static float ti[POINTS], pi[POINTS], to[POINTS], po[POINTS], pdf[POINTS];
+    static double weight[POINTS];
+    /* a frame (e1, e2, axis) */
+    double helper[3] = { fabs(axis[0]) < 0.9 ? 1.0 : 0.0, fabs(axis[0]) < 0.9 ? 0.0 : 1.0, 0.0 }, e1[3], e2[3];
+    e1[0] = helper[1] * axis[2] - helper[2] * axis[1];
+    e1[1] = helper[2] * axis[0] - helper[0] * axis[2];
+    e1[2] = helper[0] * axis[1] - helper[1] * axis[0];
+    double norm = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    for (int k = 0; k < 3; k++)
+        e1[k] /= norm;
+    e2[0] = axis[1] * e1[2] - axis[2] * e1[1];
+    e2[1] = axis[2] * e1[0] - axis[0] * e1[2];
+    e2[2] = axis[0] * e1[1] - axis[1] * e1[0];
+    size_t n = 0;
+    double piece = (r1 - r0) / PIECES;
+    for (int p = 0; p < PIECES; p++)
+        for (int g = 0; g < 8; g++) {
+            double rho = r0 + piece * (p + 0.5 * (1.0 + x8[g]));
+            for (int a = 0; a < AZIMUTHS; a++, n++) {
+                double psi = 2.0 * M_PI * (a + 0.5) / AZIMUTHS, v[3];
+                for (int k = 0; k < 3; k++)
+                    v[k] = cos(rho) * axis[k] + sin(rho) * (cos(psi) * e1[k] + sin(psi) * e2[k]);
+                /* directions as (x, y, z) = (cos theta sin phi, sin theta, cos theta cos phi) */
+                ti[n] = (float)asin(fmax(-1.0, fmin(1.0, v[1])));
+                pi[n] = (float)atan2(v[0], v[2]);
+                to[n] = theta_o;
+                po[n] = phi_o;
+                weight[n] = 0.5 * piece * w8[g] * sin(rho) * 2.0 * M_PI / AZIMUTHS;
+            }
+        }
+    hb_pdf_angles(plan, n, (hb_angles_soa){ ti, pi, to, po }, pdf, NULL);
+    double sum = 0.0;
+    for (size_t i = 0; i < n; i++)
+        sum += weight[i] * pdf[i];
+    return sum;
+}
+
+/* Rings around -w_o (where the Beckmann visible normals nearest w_o send w_i) and around the poles:
+ * the number of sampled directions in each is Poisson with the mean the pdf's integral over it times
+ * the sample count (two-sided p >= 1e-4 each; seeds fixed), so no direction piles up where the pdf
+ * expects few. Equal-area cells are too coarse to see a pile-up of this size. */
+static void test_huang_sample_pole_rings(hb_test_ctx *t)
+{
+    static const huang_case ringed[] = {
+        { HB_NDF_BECKMANN, 0.3, 0.0, 0.0, 1, 1.3, 0.0, 0.0, 0, 0.0 },
+        { HB_NDF_BECKMANN, 0.25, 2.0, 0.0, 1, -1.45, 1.0, 0.0, 0, 0.0 },
+        { HB_NDF_GGX, 0.3, 0.0, 0.0, 1, 1.3, 0.0, 0.0, 0, 0.0 },
+    };
+    static const double radii[] = { 0.0, 5e-4, 2e-3, 1e-2, 4e-2 };
+    enum { RINGS = sizeof radii / sizeof radii[0] - 1 };
+    size_t batches = t->quick ? 1 : 5, n = HB_TEST_MAX_SAMPLES;
+    for (size_t c = 0; c < sizeof ringed / sizeof ringed[0]; c++) {
+        hb_plan *plan = huang_plan(t, &ringed[c], HB_QUALITY_BALANCED, HB_ISA_AUTO);
+        if (!plan)
+            return;
+        double to = ringed[c].theta_o, po = ringed[c].phi_o;
+        const double axes[3][3] = { { -cos(to) * sin(po), -sin(to), -cos(to) * cos(po) }, { 0.0, 1.0, 0.0 }, { 0.0, -1.0, 0.0 } };
+        static const char *const names[3] = { "-w_o", "north pole", "south pole" };
+        long count[3][RINGS] = { { 0 } };
+        for (size_t b = 0; b < batches; b++) {
+            hb_test_sample_batch(t, plan, n, to, po, 1000u + 17u * c + b);
+            for (size_t i = 0; i < n; i++) {
+                double v[3] = { cos(buf->ti[i]) * sin(buf->pi[i]), sin(buf->ti[i]), cos(buf->ti[i]) * cos(buf->pi[i]) };
+                for (int a = 0; a < 3; a++) {
+                    double d = v[0] * axes[a][0] + v[1] * axes[a][1] + v[2] * axes[a][2];
+                    double rho = 2.0 * asin(fmin(1.0, 0.5 * sqrt(fmax(0.0, 2.0 - 2.0 * d))));
+                    for (int r = 0; r < RINGS; r++)
+                        count[a][r] += rho >= radii[r] && rho < radii[r + 1];
+                }
+            }
+        }
+        char text[160];
+        describe(&ringed[c], text, sizeof text);
+        for (int a = 0; a < 3; a++)
+            for (int r = 0; r < RINGS; r++) {
+                double mean = (double)(n * batches) * ring_probability(plan, axes[a], radii[r], radii[r + 1], (float)to, (float)po);
+                double p = poisson_two_sided(fmax(mean, 1e-12), count[a][r]);
+                hb_test_note(t, "%s: %s, ring %.0e..%.0e rad: %ld samples, %.3g expected, p = %.3g", text, names[a],
+                             radii[r], radii[r + 1], count[a][r], mean, p);
+                CHECK(t, p >= 1e-4, "%s: %s ring %.0e..%.0e rad holds %ld samples where the pdf expects %.3g (p = %.2e)",
+                      text, names[a], radii[r], radii[r + 1], count[a][r], mean, p);
+            }
+        hb_plan_destroy(plan);
+    }
+}
+
 /* Hard cases: roughness 0.01, grazing and exactly polar w_o (the float nearest pi/2), phi_o at
  * +-pi, e = 0.95, eta near 1, strong tilt with a back-facing w_o, u at 0 and 1: every output finite
  * and non-negative, pdf 0 exactly where w_o sees no mesonormal. */
@@ -463,6 +618,8 @@ const hb_test hb_tests_sample_huang[] = {
     { "huang_sample_albedo", test_huang_sample_albedo, 0 },
     { "huang_sample_reference", test_huang_sample_reference, 1 },
     { "huang_sample_hard_cases", test_huang_sample_hard_cases, 1 },
+    { "huang_sample_beckmann_top", test_huang_sample_beckmann_top, 1 },
+    { "huang_sample_pole_rings", test_huang_sample_pole_rings, 0 },
     { "huang_path_chi_square", test_huang_path_chi_square, 0 },
     { "huang_path_albedo", test_huang_path_albedo, 0 },
     { "huang_path_isa", test_huang_path_isa, 1 },

@@ -9,7 +9,7 @@
  *  2. u1, u2 draw a micronormal w_h from the visible normals of w_o on the mesosurface (Heitz 2014):
  *     GGX exactly, by Dupuy and Benyoub's spherical caps (2023); Beckmann by inverting the visible
  *     slope CDF with five safeguarded Newton steps on sqrt(1 - CDF), which converge quadratically
- *     also where the density vanishes linearly at the top;
+ *     also where the density vanishes linearly at the top, 1 - CDF computed without cancellation;
  *  3. w_i is w_o reflected about w_h.
  * Its density per solid angle, which hb_pdf_angles returns, is
  *     pdf(w_i) = 1 / (4 W) * integral over phi_m of cos(phi_m - phi_o) rho G1(w_o) D(w_h, w_m) / (w_o . w_m)
@@ -125,10 +125,30 @@ HB_INLINE void ggx_visible_normal(const hb_huang *h, const vf o[3], vf u1, vf u2
 
 /* A Beckmann visible normal of o (o_z > 0) in the mesonormal's frame (Heitz and d'Eon 2014): in
  * the configuration stretched to roughness 1, o' at inclination t, the slope along o's azimuth has
- * density proportional to e^(-x^2) (cos t - x sin t) for x <= cot t, whose CDF in q = (1 + erf x) / 2
- * is F(q) = (2 q cos t + sin t e^(-x^2) / sqrt(pi)) / (2 q_max cos t + sin t e^(-cot^2 t) / sqrt(pi)),
+ * density proportional to e^(-x^2) (cos t - x sin t) for x <= c = cot t, whose CDF in q = (1 + erf x) / 2
+ * is F(q) = (2 q cos t + sin t e^(-x^2) / sqrt(pi)) / (2 q_max cos t + sin t e^(-c^2) / sqrt(pi)),
  * and the slope across it is normal with variance 1/2. F(q) = u1 is solved by Newton steps on
- * sqrt(1 - F) (F's slope vanishes at q_max, sqrt(1 - F)'s does not), kept inside a bracket. */
+ * sqrt(1 - F) (F's slope vanishes at q_max, sqrt(1 - F)'s does not), kept inside a bracket.
+ * 1 - F is computed as such, never as 1 minus a rounded F: with d = c - x,
+ *     (1 - F) total = (2 / sqrt(pi)) sin t I(d),  I(d) = integral over [0, d] of v e^(-(c - v)^2) dv,
+ * by three-point Gauss-Legendre below d = 1/2 (relative error under 1e-6 there) and as
+ * 2 (q_max - q) cos t - sin t (e^(-x^2) - e^(-c^2)) / sqrt(pi) above it. Newton starts at u1 q_max,
+ * or nearer the top where sqrt(1 - F) ~ k (q_max - q), k^2 = sqrt(pi) e^(c^2) sin t / total. */
+HB_INLINE vf beckmann_one_minus_cdf(vf q, vf x, vf cot, vf sin_t, vf q_max, vf cos_t, vf gauss_top, vf inv_total)
+{
+    vf zero = vf_set1(0.0f), d = vf_max(vf_sub(cot, x), zero), h = vf_mul(vf_set1(0.5f), d);
+    vf a = vf_mul(vf_set1(0.774596669f), h), mid = vf_sub(cot, h); /* nodes h, h -+ a; their c - v */
+    vf lo = vf_add(mid, a), hi = vf_sub(mid, a);
+    vf sum = vf_mul(vf_set1(8.0f / 9.0f), vf_mul(h, vf_exp_flush(vf_max(vf_neg(vf_mul(mid, mid)), vf_set1(-100.0f)))));
+    vf sides = vf_mul(vf_sub(h, a), vf_exp_flush(vf_max(vf_neg(vf_mul(lo, lo)), vf_set1(-100.0f))));
+    sides = vf_fma(vf_add(h, a), vf_exp_flush(vf_max(vf_neg(vf_mul(hi, hi)), vf_set1(-100.0f))), sides);
+    vf near = vf_mul(vf_mul(h, vf_fma(vf_set1(5.0f / 9.0f), sides, sum)), vf_mul(vf_set1(2.0f * HB_INV_SQRT_PI_F), sin_t));
+    vf gauss_x = vf_exp_flush(vf_max(vf_neg(vf_mul(x, x)), vf_set1(-100.0f)));
+    vf far = vf_fnma(vf_mul(sin_t, vf_set1(HB_INV_SQRT_PI_F)), vf_sub(gauss_x, gauss_top),
+                     vf_mul(vf_mul(vf_set1(2.0f), vf_sub(q_max, q)), cos_t));
+    return vf_max(vf_mul(vf_select(vf_lt(d, vf_set1(0.5f)), near, far), inv_total), zero);
+}
+
 HB_INLINE void beckmann_visible_normal(const hb_huang *h, const vf o[3], vf u1, vf u2, vf m[3])
 {
     vf r = vf_set1(h->roughness), one = vf_set1(1.0f), zero = vf_set1(0.0f), inv_sqrt2 = vf_set1(0.707106781f);
@@ -140,21 +160,22 @@ HB_INLINE void beckmann_visible_normal(const hb_huang *h, const vf o[3], vf u1, 
     vf inv_planar = vf_div(one, vf_max(planar, vf_set1(1e-30f)));
     vf cos_a = vf_select(has_azimuth, vf_mul(sx, inv_planar), one), sin_a = vf_select(has_azimuth, vf_mul(sy, inv_planar), zero);
     vf cot = vf_min(vf_div(cos_t, vf_max(sin_t, vf_set1(1e-30f))), vf_set1(1e4f));
-    vf gauss_top = vf_exp_flush(vf_max(vf_neg(vf_mul(cot, cot)), vf_set1(-100.0f))); /* e^(-cot^2) */
+    vf cot2 = vf_mul(cot, cot);
+    vf gauss_top = vf_exp_flush(vf_max(vf_neg(cot2), vf_set1(-100.0f))); /* e^(-c^2) */
     vf tail = vf_mul(vf_mul(sin_t, vf_set1(HB_INV_SQRT_PI_F)), gauss_top);
-    vf q_max = vf_fnma(vf_set1(0.5f), vf_mul(gauss_top, erfcx_as(cot)), one); /* 1 - erfc(cot) / 2 */
+    vf q_max = vf_fnma(vf_set1(0.5f), vf_mul(gauss_top, erfcx_as(cot)), one); /* 1 - erfc(c) / 2 */
     vf inv_total = vf_div(one, vf_fma(vf_add(q_max, q_max), cos_t, tail));
     vf target = vf_sqrt(vf_max(vf_sub(one, u1), zero));
-    vf lo = zero, hi = q_max, q = vf_mul(u1, q_max), x = zero;
-    for (int k = 0; k < HB_BECKMANN_NEWTON_STEPS; k++) {
+    vf k = vf_sqrt(vf_mul(vf_mul(sin_t, inv_total), vf_mul(vf_set1(1.77245385f), vf_exp(vf_min(cot2, vf_set1(80.0f))))));
+    vf lo = zero, hi = q_max, q = vf_mul(u1, q_max), x;
+    q = vf_max(vf_min(q, vf_sub(q_max, vf_div(target, vf_max(k, vf_set1(1e-30f))))), vf_mul(vf_set1(0.5f), q));
+    for (int step = 0; step < HB_BECKMANN_NEWTON_STEPS; step++) {
         x = vf_mul(vf_normal_quantile(q), inv_sqrt2);
-        vf gauss = vf_mul(vf_mul(sin_t, vf_set1(HB_INV_SQRT_PI_F)), vf_exp_flush(vf_max(vf_neg(vf_mul(x, x)), vf_set1(-100.0f))));
-        vf cdf = vf_min(vf_mul(vf_fma(vf_add(q, q), cos_t, gauss), inv_total), one);
-        vm above = vf_gt(cdf, u1);
+        vf root = vf_sqrt(beckmann_one_minus_cdf(q, x, cot, sin_t, q_max, cos_t, gauss_top, inv_total));
+        vm above = vf_lt(root, target); /* F(q) > u1 */
         hi = vf_select(above, q, hi);
         lo = vf_select(above, lo, q);
-        vf root = vf_sqrt(vf_sub(one, cdf));
-        vf slope = vf_mul(vf_mul(vf_set1(2.0f), vf_fnma(x, sin_t, cos_t)), inv_total); /* dF/dq */
+        vf slope = vf_mul(vf_mul(vf_set1(2.0f), vf_mul(sin_t, vf_sub(cot, x))), inv_total); /* dF/dq */
         vf next = vf_add(q, vf_div(vf_mul(vf_add(root, root), vf_sub(root, target)), vf_max(slope, vf_set1(1e-30f))));
         vm inside = vm_and(vf_ge(next, lo), vf_le(next, hi));
         q = vf_select(inside, next, vf_mul(vf_set1(0.5f), vf_add(lo, hi)));
