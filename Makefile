@@ -84,7 +84,10 @@ FUZZ_TARGETS := fuzz_cli fuzz_eval
 BENCH_SRCS := $(wildcard bench/*.c)
 
 STATIC_LIB := $(B)/libhairbsdf.a
-HB_SO_MAJOR := 0
+# The version, from the public header: the soname's major and pkg-config's version.
+HB_VERSION_FIELD = $(shell sed -n 's/^\#define HB_VERSION_$(1) \([0-9]*\)$$/\1/p' include/hairbsdf.h)
+HB_SO_MAJOR := $(call HB_VERSION_FIELD,MAJOR)
+HB_VERSION := $(HB_SO_MAJOR).$(call HB_VERSION_FIELD,MINOR).$(call HB_VERSION_FIELD,PATCH)
 SHARED_LIB := $(B)/libhairbsdf.so.$(HB_SO_MAJOR)
 SHARED_LINK := $(B)/libhairbsdf.so
 TOOL := $(B)/hairbsdf
@@ -93,12 +96,16 @@ ENGINE_EXAMPLE := $(B)/example_engine
 TEST_BIN := $(B)/hairbsdf_tests
 BENCH_BIN := $(B)/hairbsdf_bench
 
-.PHONY: all test check bench bench-instr calibration demo images fuzz fuzz-run install clean
+.PHONY: all test check bench bench-instr calibration demo images fuzz fuzz-run install abi clean
 all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LINK)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE)
 
 $(B)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -MMD -MP -c $< -o $@
+
+# Library units export only what the public header marks HB_API.
+LIB_ONLY_CFLAGS := -fvisibility=hidden -DHB_BUILDING_LIBRARY
+$(B)/src/%.o: ALL_CFLAGS += $(LIB_ONLY_CFLAGS)
 
 # The tests gain nothing from auto-vectorisation, and aarch64 gcc 12's vectoriser crashes
 # (an internal compiler error) on some of their max-reductions.
@@ -111,7 +118,7 @@ KERNEL_CFLAGS ?= -g1
 define KERNEL_RULE
 $(B)/$(1)/%.o: %.c
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(ALL_CFLAGS) $$(KERNEL_CFLAGS) $$(ISA_FLAGS_$(1)) -D$$(ISA_MACRO_$(1)) -MMD -MP -c $$< -o $$@
+	$$(CC) $$(ALL_CFLAGS) $$(LIB_ONLY_CFLAGS) $$(KERNEL_CFLAGS) $$(ISA_FLAGS_$(1)) -D$$(ISA_MACRO_$(1)) -MMD -MP -c $$< -o $$@
 endef
 $(foreach isa,$(ISAS),$(eval $(call KERNEL_RULE,$(isa))))
 
@@ -238,10 +245,16 @@ install: all
 	install -m 644 $(STATIC_LIB) $(DESTDIR)$(PREFIX)/lib/
 	install -m 755 $(SHARED_LIB) $(DESTDIR)$(PREFIX)/lib/
 	ln -sf libhairbsdf.so.$(HB_SO_MAJOR) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(HB_SO_MAJOR).1|' hairbsdf.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/hairbsdf.pc
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(HB_VERSION)|' hairbsdf.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/hairbsdf.pc
 	install -m 755 $(TOOL) $(DESTDIR)$(PREFIX)/bin/
 	$(STRIP) --strip-debug $(DESTDIR)$(PREFIX)/lib/libhairbsdf.a $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so.$(HB_SO_MAJOR) \
 	  $(DESTDIR)$(PREFIX)/bin/$(notdir $(TOOL))
+
+# The shared library exports exactly the functions the public header declares with HB_API.
+abi: $(SHARED_LIB)
+	@nm -D --defined-only $(SHARED_LIB) | awk '$$2 == "T" { print $$3 }' | sort > $(B)/abi.exported
+	@sed -n 's/^HB_API [^(]*[ *]\(hb_[a-z0-9_]*\)(.*/\1/p' include/hairbsdf.h | sort > $(B)/abi.declared
+	@diff $(B)/abi.declared $(B)/abi.exported && echo "abi: $(SHARED_LIB) exports the $$(wc -l < $(B)/abi.declared) functions of include/hairbsdf.h, version $(HB_VERSION)"
 
 clean:
 	rm -rf build

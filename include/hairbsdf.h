@@ -18,8 +18,28 @@
 extern "C" {
 #endif
 
+/* The version of this header. The shared library's soname is libhairbsdf.so.HB_VERSION_MAJOR and
+ * pkg-config's version is HB_VERSION_STRING (the Makefile reads both from here). A minor release only
+ * appends fields to hb_material and hb_options: a program built against an older header passes its
+ * smaller struct_size and the fields it lacks take their defaults. */
 #define HB_VERSION_MAJOR 0
 #define HB_VERSION_MINOR 1
+#define HB_VERSION_PATCH 0
+#define HB_VERSION_STRING "0.1.0"
+
+/* HB_API marks what the library exports; the shared library exports nothing else. Define
+ * HB_STATIC when linking the static library on Windows. */
+#if defined(_WIN32) && !defined(HB_STATIC)
+#if defined(HB_BUILDING_LIBRARY)
+#define HB_API __declspec(dllexport)
+#else
+#define HB_API __declspec(dllimport)
+#endif
+#elif defined(__GNUC__)
+#define HB_API __attribute__((visibility("default")))
+#else
+#define HB_API
+#endif
 
 typedef enum hb_status {
     HB_OK = 0,
@@ -27,12 +47,16 @@ typedef enum hb_status {
     HB_ERR_PARAM,       /* a material parameter is out of range (the message names it) */
     HB_ERR_UNSUPPORTED, /* the model, lobe, term or option combination does not exist (yet) */
     HB_ERR_ISA,         /* the requested instruction set is not available on this CPU */
-    HB_ERR_VERSION,     /* a struct_size field does not match this library */
+    HB_ERR_VERSION,     /* a struct_size from a newer header than this library's, or no release's */
     HB_ERR_NOMEM        /* plan creation could not allocate */
 } hb_status;
 
+/* The library's version at run time, "major.minor.patch"; major, minor and patch (each may be NULL)
+ * receive its numbers. Compare with HB_VERSION_* to detect a library older than the header. */
+HB_API const char *hb_version(int *major, int *minor, int *patch);
+
 /* A short constant description of a status code. */
-const char *hb_status_string(hb_status status);
+HB_API const char *hb_status_string(hb_status status);
 
 /* Optional detail for a failed call: the message names the offending parameter. */
 typedef struct hb_error {
@@ -52,7 +76,7 @@ typedef enum hb_ndf { HB_NDF_GGX, HB_NDF_BECKMANN } hb_ndf;
 
 /* Material parameters (docs/conventions.md). hb_material_default() fills the defaults. */
 typedef struct hb_material {
-    size_t struct_size;  /* sizeof(hb_material), set by hb_material_default */
+    size_t struct_size;  /* sizeof(hb_material), set by hb_material_default; an older header's is accepted */
     double eta;          /* index of refraction, default 1.55 */
     double sigma_a[3];   /* RGB absorption per unit fibre radius, default 0 */
     double eumelanin;    /* concentrations; their absorption (dFH11 sec. 6.1) adds to sigma_a */
@@ -82,10 +106,10 @@ typedef struct hb_material {
     double caustic_limit; /* Delta h_M, default 0.5 (MJC03: 0.5) */
 } hb_material;
 
-void hb_material_default(hb_material *material);
+HB_API void hb_material_default(hb_material *material);
 
 /* sigma_a of the material: sigma_a plus the melanin absorption of dFH11 sec. 6.1. */
-void hb_material_absorption(const hb_material *material, double sigma_a_rgb[3]);
+HB_API void hb_material_absorption(const hb_material *material, double sigma_a_rgb[3]);
 
 /* Speed/accuracy levels: error targets of about 1e-2, 1e-3 and 1e-4 relative to the
  * double reference for N_p (dFH11: the node count follows from beta_n). dFH11's M_p is
@@ -170,7 +194,7 @@ typedef enum hb_azimuthal {
 } hb_azimuthal;
 
 typedef struct hb_options {
-    size_t struct_size; /* sizeof(hb_options), set by hb_options_default */
+    size_t struct_size; /* sizeof(hb_options), set by hb_options_default; an older header's is accepted */
     hb_model model;     /* default HB_MODEL_DEON */
     unsigned lobes;     /* bit mask of (1u << p) and (1u << HB_LOBE_RESIDUAL), HB_LOBES_DEFAULT for the full set */
     hb_term term;       /* default HB_TERM_FULL */
@@ -220,24 +244,24 @@ typedef struct hb_options {
 #define HB_MAX_QUADRATURE_ORDER 512
 #define HB_MAX_DETECTOR_TERMS 16
 
-void hb_options_default(hb_options *options);
+HB_API void hb_options_default(hb_options *options);
 
 typedef struct hb_plan hb_plan;
 
 /* Validates material and options and builds an immutable plan. On failure returns
  * the status, leaves *plan NULL and, if error is not NULL, fills it. */
-hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **plan,
+HB_API hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **plan,
                          hb_error *error);
-void hb_plan_destroy(hb_plan *plan);
+HB_API void hb_plan_destroy(hb_plan *plan);
 
 /* What the plan simulates and what it skipped, in plain words: model, lobes, quadrature, detector,
  * tables, ISA; for a tolerance or budget plan also the lobes dropped (with their measured share of
  * the peak), the configuration chosen, its expected error and expected ns per sample. Writes at most
  * size bytes (always terminated); returns the length the whole text needs, like snprintf. */
-size_t hb_plan_describe(const hb_plan *plan, char *text, size_t size);
+HB_API size_t hb_plan_describe(const hb_plan *plan, char *text, size_t size);
 
 /* The instruction set the plan's kernel uses (never HB_ISA_AUTO). */
-hb_isa hb_plan_isa(const hb_plan *plan);
+HB_API hb_isa hb_plan_isa(const hb_plan *plan);
 
 /* Caller-owned structure-of-arrays batches. */
 typedef struct hb_angles_soa {
@@ -266,9 +290,9 @@ typedef struct hb_eval_report {
 /* Evaluate n samples. report may be NULL. Output arrays must not alias inputs. The batch entry
  * points (eval, sample, pdf) run with subnormal floats flushed to zero and restore the caller's
  * floating-point mode before returning: results below FLT_MIN are 0. */
-hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out,
+HB_API hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out,
                          hb_eval_report *report);
-hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,
+HB_API hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                           hb_eval_report *report);
 
 /* Importance sampling, for path tracers (docs/sampling.md). Given w_o (toward the viewer) and
@@ -299,14 +323,14 @@ typedef struct hb_sample_out {
     hb_rgb_soa weight; /* f(w_i, w_o) / pdf (HHH22 with TT or TRT: an unbiased estimate of it) */
 } hb_sample_out;
 
-int hb_plan_sample_dimensions(const hb_plan *plan); /* 0 when the plan cannot sample */
-hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out,
+HB_API int hb_plan_sample_dimensions(const hb_plan *plan); /* 0 when the plan cannot sample */
+HB_API hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out,
                            hb_eval_report *report);
-hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, hb_eval_report *report);
+HB_API hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, hb_eval_report *report);
 
 /* Counter-based uniform numbers in [0, 1) (24 bits): u[d][k] for sample index first + k and
  * dimension d < dimensions, a pure function of (seed, index, d), the same on every machine. */
-void hb_uniforms(unsigned long long seed, unsigned long long first, size_t n, int dimensions, float *const *u);
+HB_API void hb_uniforms(unsigned long long seed, unsigned long long first, size_t n, int dimensions, float *const *u);
 
 /* A plan's precomputed table, for engines that bake it into a texture (`hairbsdf bake`, docs/engines.md): dFH11 N_p (HB_AZIMUTHAL_TABLE) or HHH22 f_TT + f_TRT (HB_TT_TRT_TABLE).
  * Nodes are uniform from lo to hi on each axis; values are row-major over the axes, then the slot,
@@ -327,13 +351,13 @@ typedef struct hb_table_view {
 } hb_table_view;
 
 /* HB_ERR_UNSUPPORTED when the plan has no table. */
-hb_status hb_plan_table(const hb_plan *plan, hb_table_view *view);
+HB_API hb_status hb_plan_table(const hb_plan *plan, hb_table_view *view);
 
 /* White furnace: E(w_o) = integral over the sphere of f(w_i, w_o) dw_i per channel, by
  * quadrature fine enough for the plan's roughness (docs/conventions.md). A lossless fibre with
  * every order gives E = 1 up to the model's approximations. For HB_TERM_LONGITUDINAL the
  * term T = f / N_p is integrated as T cos(theta_i) over theta_i (dFH11 eq. 5, Fig. 3). */
-hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3]);
+HB_API hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3]);
 
 /* HHH22's energy by scattering order (its Fig. 16: what dropping the lobes beyond TRT loses): the
  * energy leaving a fibre lit along w = (theta, 0), split into R, TT, TRT and every order beyond, by a
@@ -343,15 +367,15 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3]);
  * alpha = 0 (where the model is reciprocal). HHH22 plans of circular fibres only (else
  * HB_ERR_UNSUPPORTED); the walk's cost grows with paths, not with the plan's quality. */
 #define HB_ORDER_GROUPS 4
-hb_status hb_furnace_orders(const hb_plan *plan, double theta, long paths, unsigned long long seed,
+HB_API hb_status hb_furnace_orders(const hb_plan *plan, double theta, long paths, unsigned long long seed,
                             double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS]);
 
 /* Instruction sets: names as used by --isa and the HB_ISA environment variable
  * ("scalar", "sse4.1", "avx2", "avx512", "neon"). */
-const char *hb_isa_name(hb_isa isa);
-hb_isa hb_isa_from_name(const char *name); /* HB_ISA_COUNT if unknown */
-int hb_isa_available(hb_isa isa);          /* compiled in and supported by this CPU and OS */
-hb_isa hb_isa_best(void);                  /* what HB_ISA_AUTO picks without HB_ISA */
+HB_API const char *hb_isa_name(hb_isa isa);
+HB_API hb_isa hb_isa_from_name(const char *name); /* HB_ISA_COUNT if unknown */
+HB_API int hb_isa_available(hb_isa isa);          /* compiled in and supported by this CPU and OS */
+HB_API hb_isa hb_isa_best(void);                  /* what HB_ISA_AUTO picks without HB_ISA */
 
 #ifdef __cplusplus
 }

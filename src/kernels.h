@@ -262,13 +262,6 @@ typedef struct hb_kernels {
     void (*math_map)(hb_math_fn fn, size_t n, const float *a, const float *b, float *out);
 } hb_kernels;
 
-/* Symbols shared between the library's translation units and kept out of a shared library's exports. */
-#if defined(__ELF__) && (defined(__GNUC__) || defined(__clang__))
-#define HB_INTERNAL __attribute__((visibility("hidden")))
-#else
-#define HB_INTERNAL
-#endif
-
 /* NULL when the ISA is not compiled in or not supported by this CPU. */
 const hb_kernels *hb_kernels_for(hb_isa isa);
 

@@ -78,11 +78,38 @@ hb_status hb_plan_fail(hb_error *error, hb_status status, const char *fmt, ...)
 
 static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi; } /* false for NaN */
 
+/* A struct from an older header is a prefix of this one (releases only append fields): its
+ * struct_size bytes go over `out`, which holds the defaults. A larger size comes from a newer
+ * header, whose fields this library cannot honour. */
+static hb_status upgrade_struct(const char *name, const void *in, size_t size, void *out, size_t own_size,
+                                size_t alignment, hb_error *error)
+{
+    if (size > own_size)
+        return hb_plan_fail(error, HB_ERR_VERSION,
+                            "%s.struct_size is %zu, larger than this library's %zu: the program was built against a "
+                            "newer hairbsdf.h (this library is " HB_VERSION_STRING ")", name, size, own_size);
+    if (size < 2 * sizeof(size_t) || size % alignment)
+        return hb_plan_fail(error, HB_ERR_VERSION, "%s.struct_size is %zu, which no release had (%s_default sets it)",
+                            name, size, name);
+    memcpy(out, in, size);
+    return HB_OK;
+}
+
+static hb_status upgrade_structs(const hb_material *material, const hb_options *options, hb_material *m,
+                                 hb_options *o, hb_error *error)
+{
+    hb_material_default(m);
+    hb_options_default(o);
+    hb_status st = upgrade_struct("hb_material", material, material->struct_size, m, sizeof *m, _Alignof(hb_material), error);
+    if (st == HB_OK)
+        st = upgrade_struct("hb_options", options, options->struct_size, o, sizeof *o, _Alignof(hb_options), error);
+    m->struct_size = sizeof *m;
+    o->struct_size = sizeof *o;
+    return st;
+}
+
 static hb_status validate_material(const hb_material *m, hb_error *error)
 {
-    if (m->struct_size != sizeof *m)
-        return hb_plan_fail(error, HB_ERR_VERSION, "hb_material.struct_size is %zu, this library expects %zu",
-                    m->struct_size, sizeof *m);
     if (!(m->eta > 1.0 && m->eta <= ETA_MAX))
         return hb_plan_fail(error, HB_ERR_PARAM, "eta = %g must be in (1, %g]", m->eta, ETA_MAX);
     static const char *const channel[3] = { "r", "g", "b" };
@@ -134,9 +161,6 @@ static hb_status validate_material(const hb_material *m, hb_error *error)
 /* What exists so far: the dFH11 model, and its longitudinal function M_p of the R lobe alone. */
 static hb_status validate_options(const hb_options *o, hb_error *error)
 {
-    if (o->struct_size != sizeof *o)
-        return hb_plan_fail(error, HB_ERR_VERSION, "hb_options.struct_size is %zu, this library expects %zu",
-                    o->struct_size, sizeof *o);
     if (o->model != HB_MODEL_DEON && o->model != HB_MODEL_MARSCHNER && o->model != HB_MODEL_HUANG)
         return hb_plan_fail(error, HB_ERR_PARAM, "model = %d is not a model", (int)o->model);
     if (o->model == HB_MODEL_MARSCHNER && o->term == HB_TERM_FULL && o->lobes != HB_LOBES_DEFAULT &&
@@ -580,7 +604,8 @@ static void derive_huang(hb_plan *plan)
 static hb_status build_plan(const hb_material *material, const hb_options *options, hb_isa isa,
                             const hb_selection *selection, hb_plan **out, hb_error *error);
 
-hb_status hb_plan_create(const hb_material *material, const hb_options *options, hb_plan **out, hb_error *error)
+hb_status hb_plan_create(const hb_material *given_material, const hb_options *given_options, hb_plan **out,
+                         hb_error *error)
 {
     if (error) {
         error->status = HB_OK;
@@ -589,9 +614,16 @@ hb_status hb_plan_create(const hb_material *material, const hb_options *options,
     if (!out)
         return hb_plan_fail(error, HB_ERR_NULL, "plan output pointer is NULL");
     *out = NULL;
-    if (!material || !options)
-        return hb_plan_fail(error, HB_ERR_NULL, "%s is NULL", material ? "options" : "material");
-    hb_status st = validate_material(material, error);
+    if (!given_material || !given_options)
+        return hb_plan_fail(error, HB_ERR_NULL, "%s is NULL", given_material ? "options" : "material");
+    hb_material material_copy;
+    hb_options options_copy;
+    hb_status st = upgrade_structs(given_material, given_options, &material_copy, &options_copy, error);
+    if (st != HB_OK)
+        return st;
+    const hb_material *material = &material_copy;
+    const hb_options *options = &options_copy;
+    st = validate_material(material, error);
     if (st == HB_OK)
         st = validate_options(options, error);
     if (st == HB_OK && options->model == HB_MODEL_HUANG)

@@ -1,5 +1,16 @@
 #include "hairbsdf.h"
 
+const char *hb_version(int *major, int *minor, int *patch)
+{
+    if (major)
+        *major = HB_VERSION_MAJOR;
+    if (minor)
+        *minor = HB_VERSION_MINOR;
+    if (patch)
+        *patch = HB_VERSION_PATCH;
+    return HB_VERSION_STRING;
+}
+
 const char *hb_status_string(hb_status status)
 {
     switch (status) {
@@ -8,7 +19,7 @@ const char *hb_status_string(hb_status status)
     case HB_ERR_PARAM: return "a parameter is out of range";
     case HB_ERR_UNSUPPORTED: return "unsupported model, lobe or option combination";
     case HB_ERR_ISA: return "instruction set not available on this CPU";
-    case HB_ERR_VERSION: return "struct_size does not match this library";
+    case HB_ERR_VERSION: return "struct_size is from a newer header than this library";
     case HB_ERR_NOMEM: return "out of memory";
     }
     return "unknown status";

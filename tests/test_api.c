@@ -82,7 +82,11 @@ static void test_validation(hb_test_ctx *t)
     m.sigma_a[0] = 1e3;
     CHECK(t, create(&m, &o, NULL) == HB_OK, "hard but valid material refused");
     m.struct_size = 8;
-    CHECK(t, create(&m, &o, NULL) == HB_ERR_VERSION, "wrong struct_size accepted");
+    CHECK(t, create(&m, &o, NULL) == HB_ERR_VERSION, "struct_size 8 accepted");
+    m.struct_size = sizeof m + 8; /* a newer header's */
+    hb_error newer;
+    CHECK(t, create(&m, &o, &newer) == HB_ERR_VERSION && strstr(newer.message, "newer hairbsdf.h"),
+          "a larger struct_size: '%s'", newer.message);
 
     /* per-lobe tilt: the printed range [-0.6, 0.6] exactly, not the double 3 * 0.2 */
     static const double lobe_alphas[] = { 0.6000000000000001, -0.6000000000000001, 0.6, -0.6 };
@@ -238,10 +242,63 @@ static void test_isa_selection(hb_test_ctx *t)
     }
 }
 
+/* A program built against an older header passes a smaller struct_size: the fields it lacks take
+ * their defaults, whatever follows its struct in memory. Here the older hb_material ends before the
+ * MJC03 caustic fields and the older hb_options before the tolerance/budget fields; the plan equals
+ * one made from defaults for them, value for value. */
+static void test_older_structs(hb_test_ctx *t)
+{
+    hb_material full_m, old_m;
+    hb_options full_o, old_o;
+    hb_material_default(&full_m);
+    hb_options_default(&full_o);
+    full_m.eta = 1.6;
+    full_m.beta_m = 0.2;
+    full_o.model = HB_MODEL_MARSCHNER;
+    full_o.isa = HB_ISA_SCALAR;
+    old_m = full_m;
+    old_o = full_o;
+    old_m.struct_size = offsetof(hb_material, glint_scale);
+    old_o.struct_size = offsetof(hb_options, tolerance);
+    old_m.glint_scale = old_m.caustic_width = old_m.caustic_fade = old_m.caustic_limit = -7.0; /* past the old end */
+    old_o.tolerance = old_o.budget_ns = -7.0;
+    hb_plan *full = NULL, *old = NULL;
+    hb_error err;
+    CHECK(t, hb_plan_create(&full_m, &full_o, &full, NULL) == HB_OK, "full-size structs refused");
+    CHECK(t, hb_plan_create(&old_m, &old_o, &old, &err) == HB_OK, "older structs refused: %s", err.message);
+    CHECK(t, old_m.struct_size == offsetof(hb_material, glint_scale), "the caller's struct was written");
+    if (full && old) {
+        enum { N = 64 };
+        float ti[N], pi[N], to[N], po[N], a[3][N], b[3][N];
+        for (int k = 0; k < N; k++) {
+            ti[k] = -1.4f + 2.8f * (float)k / N;
+            pi[k] = 0.1f * (float)k - 3.0f;
+            to[k] = 0.3f;
+            po[k] = 0.2f;
+        }
+        hb_eval_angles(full, N, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ a[0], a[1], a[2] }, NULL);
+        hb_eval_angles(old, N, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ b[0], b[1], b[2] }, NULL);
+        int differ = 0;
+        for (int k = 0; k < N; k++)
+            differ += memcmp(&a[0][k], &b[0][k], sizeof(float)) != 0;
+        CHECK(t, differ == 0, "%d of %d values differ from the plan with defaults", differ, N);
+    }
+    hb_plan_destroy(full);
+    hb_plan_destroy(old);
+    int major = -1, minor = -1, patch = -1;
+    const char *version = hb_version(&major, &minor, &patch);
+    char expected[32];
+    snprintf(expected, sizeof expected, "%d.%d.%d", HB_VERSION_MAJOR, HB_VERSION_MINOR, HB_VERSION_PATCH);
+    CHECK(t, major == HB_VERSION_MAJOR && minor == HB_VERSION_MINOR && patch == HB_VERSION_PATCH,
+          "hb_version gives %d.%d.%d", major, minor, patch);
+    CHECK(t, strcmp(version, expected) == 0 && strcmp(version, HB_VERSION_STRING) == 0, "hb_version() = %s", version);
+}
+
 const hb_test hb_tests_api[] = {
     { "api_defaults", test_defaults, 0 },
     { "api_validation", test_validation, 0 },
     { "api_unsupported_and_null", test_unsupported_and_null, 0 },
     { "api_isa_selection", test_isa_selection, 0 },
+    { "api_older_structs", test_older_structs, 0 },
     { NULL, NULL, 0 },
 };

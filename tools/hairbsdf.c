@@ -62,7 +62,7 @@ int main(int argc, char **argv)
     if (strcmp(cmd, "isa") == 0)
         return cmd_isa();
     if (strcmp(cmd, "version") == 0 || strcmp(cmd, "--version") == 0) {
-        printf("hairbsdf %d.%d\n", HB_VERSION_MAJOR, HB_VERSION_MINOR);
+        printf("hairbsdf %s\n", hb_version(NULL, NULL, NULL));
         return 0;
     }
     fprintf(stderr, "hairbsdf: unknown command '%s' (see hairbsdf --help)\n", cmd);

@@ -42,7 +42,7 @@ static void math_map(hb_math_fn fn, size_t n, const float *a, const float *b, fl
     }
 }
 
-HB_INTERNAL const hb_kernels HB_ISA_SYMBOL(kernels) = {
+const hb_kernels HB_ISA_SYMBOL(kernels) = {
     .isa = HB_THIS_ISA,
     .width = HB_W,
     .deon = &HB_ISA_SYMBOL(deon_kernels),

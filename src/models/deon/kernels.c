@@ -76,7 +76,7 @@ static void detector_map(const hb_detector *d, size_t n, const float *x, float *
     }
 }
 
-HB_INTERNAL const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
+const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
     .longitudinal_angles = { longitudinal_angles_abramowitz, longitudinal_angles_paper },
     .longitudinal_vectors = { longitudinal_vectors_abramowitz, longitudinal_vectors_paper },
     .angles = { deon_angles_abramowitz, deon_angles_paper },

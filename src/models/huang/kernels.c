@@ -69,7 +69,7 @@ static void table_row(const hb_huang *h, float theta_i, float phi_i, const hb_hu
     huang_table_row(h, theta_i, phi_i, build, row);
 }
 
-HB_INTERNAL const hb_huang_kernels HB_ISA_SYMBOL(huang_kernels) = {
+const hb_huang_kernels HB_ISA_SYMBOL(huang_kernels) = {
     .angles = angles_kernel,
     .vectors = vectors_kernel,
     .sample = sample_kernel,

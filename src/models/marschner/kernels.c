@@ -51,7 +51,7 @@ static void cubic_map(size_t n, const float *P, const float *Q, float *roots)
     }
 }
 
-HB_INTERNAL const hb_marschner_kernels HB_ISA_SYMBOL(marschner_kernels) = {
+const hb_marschner_kernels HB_ISA_SYMBOL(marschner_kernels) = {
     .longitudinal_angles = longitudinal_angles,
     .longitudinal_vectors = longitudinal_vectors,
     .angles = angles_kernel,
