@@ -116,7 +116,7 @@ void hb_test_longitudinal_setup(const hb_test_ctx *t, hb_material *m, hb_options
 }
 
 static const hb_test *const suites[] = { hb_tests_api, hb_tests_vmath, hb_tests_longitudinal, hb_tests_deon,
-                                          hb_tests_marschner, hb_tests_marschner_full, hb_tests_huang, hb_tests_sample, hb_tests_sample_huang, hb_tests_huang_internal, hb_tests_huang_table, hb_tests_properties, hb_tests_corpus, hb_tests_cli, hb_tests_images, hb_tests_deon_table, hb_tests_plan_select, hb_tests_docs };
+                                          hb_tests_marschner, hb_tests_marschner_full, hb_tests_huang, hb_tests_sample, hb_tests_sample_huang, hb_tests_huang_internal, hb_tests_huang_table, hb_tests_properties, hb_tests_corpus, hb_tests_cli, hb_tests_images, hb_tests_deon_table, hb_tests_plan_select, hb_tests_threads, hb_tests_docs };
 
 static uint64_t name_hash(const char *s)
 {
@@ -201,7 +201,7 @@ int main(int argc, char **argv)
             for (int r = 0; r < runs; r++) {
                 hb_test_ctx t = { test->name, test->per_isa ? isas[r] : HB_ISA_AUTO, NULL,
                                   seed ^ name_hash(test->name), 0, !long_tier, emulated };
-                t.kernels = test->per_isa ? hb_kernels_for(t.isa) : NULL;
+                t.hooks = test->per_isa ? hb_kernel_hooks_for(t.isa) : NULL;
                 test->run(&t);
                 fflush(stdout);
                 if (t.failures > MAX_REPORTED_FAILURES)

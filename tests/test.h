@@ -10,12 +10,12 @@
 #include <stdio.h>
 
 #include "hairbsdf.h"
-#include "kernels.h"
+#include "kernel_hooks.h"
 
 typedef struct hb_test_ctx {
     const char *name;
     hb_isa isa;                /* HB_ISA_AUTO for tests that do not depend on the ISA */
-    const hb_kernels *kernels; /* the ISA's table, NULL for ISA-independent tests */
+    const hb_kernel_hooks *hooks; /* the ISA's kernel internals, NULL for ISA-independent tests */
     uint64_t rng;              /* seeded per test from the run's seed */
     unsigned failures;
     int quick;    /* the quick tier (make test): heavy tests run a subset of their cases; 0: the long tier */
@@ -77,6 +77,7 @@ extern const hb_test hb_tests_sample[];
 extern const hb_test hb_tests_sample_huang[];
 extern const hb_test hb_tests_huang_internal[];
 extern const hb_test hb_tests_huang_table[];
+extern const hb_test hb_tests_threads[];
 extern const hb_test hb_tests_docs[];
 
 #endif

@@ -5,8 +5,8 @@
 #include <string.h>
 
 #include "test.h"
-#include "plan.h"
-#include "quadrature.h"
+#include "models/plan.h"
+#include "math/quadrature.h"
 #include "ref/reference.h"
 
 static hb_plan *deon_plan(hb_test_ctx *t, const hb_material *m, hb_quality quality, unsigned lobes)
@@ -71,7 +71,7 @@ static void test_detector_kernel(hb_test_ctx *t)
             for (int k = 0; k < N; k++)
                 x[k] = (float)(-M_PI + 2 * M_PI * k / N);
             x[N] = 3.14159250f, x[N + 1] = -3.14159250f, x[N + 2] = 1.0f, x[N + 3] = (float)(1.0 + 2 * M_PI);
-            t->kernels->deon->detector_map(d, N + 4, x, out);
+            t->hooks->detector_map(d, N + 4, x, out);
             double worst = 0.0, sum = 0.0;
             for (int k = 0; k < N; k++) {
                 worst = fmax(worst, fabs(out[k] - hb_ref_detector(betas[b], x[k])) / peak);

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "test.h"
-#include "plan.h"
+#include "models/plan.h"
 #include "ref/reference.h"
 
 #define DEG (M_PI / 180.0)

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "test.h"
-#include "plan.h"
+#include "models/plan.h"
 #include "ref/reference.h"
 
 typedef struct internal_case {

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "test.h"
-#include "plan.h"
+#include "models/plan.h"
 #include "ref/reference.h"
 
 typedef struct mjc_case {
@@ -199,7 +199,7 @@ static void test_cubic_roots(hb_test_ctx *t)
                 P[k] = (float)(B / A);
                 Q[k] = (float)(-target / A);
             }
-            t->kernels->marschner->cubic_map(M, P, Q, roots);
+            t->hooks->cubic_map(M, P, Q, roots);
             double b = fmax(B, 0.0), phi_c = 2.0 / 3.0 * b * sqrt(b / (-3.0 * A));
             for (int k = 0; k < M; k++) {
                 if (!cache_ready)

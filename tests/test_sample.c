@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "sampling.h"
-#include "plan.h"
+#include "models/plan.h"
 #include "ref/reference.h"
 
 #define MAX_SAMPLES HB_TEST_MAX_SAMPLES

@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "sampling.h"
-#include "plan.h"
+#include "models/plan.h"
 #include "ref/reference.h"
 
 static hb_sample_buffers *const buf = &hb_samples;

@@ -53,7 +53,7 @@ static double worst_error(hb_test_ctx *t, hb_math_fn fn, ref_fn ref, const input
                           float *where_a, float *where_b)
 {
     float *out = malloc(s->n * sizeof(float));
-    t->kernels->math_map(fn, s->n, s->a, s->b, out);
+    t->hooks->math_map(fn, s->n, s->a, s->b, out);
     double worst = 0.0;
     for (size_t k = 0; k < s->n; k++) {
         double want = ref(s->a[k], s->b[k]);

@@ -7,7 +7,7 @@
 #ifndef HB_VMATH_H
 #define HB_VMATH_H
 
-#include "../simd/simd.h"
+#include "simd/simd.h"
 
 /* pi/2 as float plus the float closest to the rest, for reductions and reflections. */
 #define HB_PIO2_F 1.57079637f

@@ -2,8 +2,8 @@
 #ifndef HB_FRESNEL_H
 #define HB_FRESNEL_H
 
-#include "../math/vmath.h"
-#include "../kernels.h"
+#include "math/vmath.h"
+#include "dielectric.h"
 
 /* Unpolarised Fresnel reflectance entering a dielectric of index eta > 1, cos_i in [0, 1], with
  * c = cos_i, eta c_t = sqrt(eta^2 - 1 + c^2) (Snell):

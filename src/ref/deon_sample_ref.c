@@ -3,7 +3,7 @@
  * (node and lobe-choice weights) define the procedure and are shared. Internal. */
 #include <math.h>
 
-#include "../plan.h"
+#include "models/plan.h"
 #include "reference.h"
 
 /* c_g(theta_o) from the plan's table, as the kernels interpolate it; returns their sum. */

@@ -6,8 +6,9 @@
 #include <stdint.h>
 
 #include "reference.h"
-#include "../plan.h"
-#include "../quadrature.h"
+#include "models/plan.h"
+#include "math/hash.h"
+#include "math/quadrature.h"
 
 enum { U_RULE = 4, PHI_RULE = 4, MAX_POINTS = 1024 };
 

@@ -6,8 +6,8 @@
 #include <math.h>
 
 #include "reference.h"
-#include "../plan.h"
-#include "../quadrature.h"
+#include "models/plan.h"
+#include "math/quadrature.h"
 
 enum { RULE = 15, MAX_PIECES = 1000 };
 

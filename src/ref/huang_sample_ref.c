@@ -4,7 +4,7 @@
 #include <math.h>
 
 #include "reference.h"
-#include "../plan.h"
+#include "models/plan.h"
 
 /* x with (1 + erf(x)) / 2 = u, by bisection. */
 static double normal_half_quantile(double u)

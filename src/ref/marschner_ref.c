@@ -4,7 +4,7 @@
 #include <math.h>
 
 #include "reference.h"
-#include "../plan.h"
+#include "models/plan.h"
 
 double hb_ref_marschner_longitudinal(double beta, double mean, double theta_i, double theta_o)
 {

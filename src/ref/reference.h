@@ -109,11 +109,16 @@ void hb_ref_huang_internal(const hb_plan *plan, double theta_i, double phi_i, do
 #define HB_REF_HUANG_TT_POINTS 32
 #define HB_REF_HUANG_TRT_POINTS 12
 
-/* The plan's term at one direction pair, in double (three channels). */
+/* The plan's term at one direction pair, in double (three channels; src/ref/reference.c). */
 void hb_ref_eval_pair(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
 
 /* Reference batch evaluation of a plan's term: writes f and returns the invalid count. */
 size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out);
 size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out);
+
+/* The plan's sampler and pdf in double (the models that have one: dFH11, HHH22's R lobe). */
+void hb_ref_sample(const hb_plan *plan, double theta_o, double phi_o, const double *u, double *theta_i,
+                   double *phi_i);
+double hb_ref_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o);
 
 #endif

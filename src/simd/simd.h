@@ -1,6 +1,29 @@
-/* Picks the SIMD vocabulary for the ISA this translation unit is compiled for
- * (HB_TARGET_SCALAR, _SSE41, _AVX2, _AVX512 or _NEON, set by the Makefile) and
- * adds the few operations every ISA derives the same way. */
+/* The SIMD vocabulary: the seam between the kernels and the instruction sets. This header picks
+ * the vocabulary of the ISA this translation unit is compiled for (HB_TARGET_SCALAR, _SSE41, _AVX2,
+ * _AVX512 or _NEON, set by the Makefile per src/kernel/isas.h's list) and adds the few operations
+ * every ISA derives the same way. The contract every simd_<isa>.h meets:
+ *
+ * Types and width. HB_W float lanes: scalar 1, SSE4.1 4, AVX2 16 (two 8-lane halves), AVX-512 16,
+ * NEON 4 (see each header). vf: HB_W floats; vi: HB_W 32-bit integers; vm: a lane mask (all bits
+ * or a bit per lane, opaque to the kernels); vdw: HB_W doubles, for the few steps that need them.
+ * HB_ISA_LABEL names the ISA.
+ *
+ * Every operation works lane by lane, with IEEE single-precision rounding to nearest per step:
+ *   vf_set1, vf_loadu, vf_storeu (unaligned, HB_W floats); vf_add, vf_sub, vf_mul, vf_div (correctly
+ *   rounded), vf_sqrt (correctly rounded); vf_min, vf_max (a lane with a NaN operand takes either
+ *   one: kernels never feed them NaN); vf_fma(a, b, c) = a b + c and vf_fnma(a, b, c) = c - a b,
+ *   fused (one rounding) on AVX2, AVX-512 and NEON, two roundings on scalar and SSE4.1;
+ *   vf_round (to nearest, ties to even), vf_select(m, a, b) (a where m), vf_keep(m, a) (a where m,
+ *   else +0); comparisons vf_lt, vf_le, vf_gt, vf_ge, vf_eq (ordered: false for NaN);
+ *   vm_and, vm_or, vm_andnot(a, b) = a and not b, vm_not, vm_bits (bit k: lane k);
+ *   vf_as_vi, vi_as_vf (bit casts); vi_set1, vi_add, vi_sub, vi_mul (low 32 bits), vi_and, vi_or,
+ *   vi_xor, vi_shl, vi_shr (logical), vi_eq; vi_from_vf (the float must be integral and in int32
+ *   range), vf_from_vi; vf_gather(base, idx) (one float per lane), vf_gather4 (four consecutive
+ *   floats per lane, see below);
+ *   vdw_from_vf, vdw_to_vf (rounded to nearest), vdw_set1, vdw_add, vdw_sub, vdw_mul, vdw_div,
+ *   vdw_sqrt, vdw_min, vdw_max, vdw_fma (fused where vf_fma is), vdw_round.
+ * Derived here for every ISA: vf_abs, vf_neg, vf_copysign, vf_floor, vf_rcp (a division),
+ * vf_clamp; the subnormal mode (hb_flush_subnormals, hb_fp_restore). */
 #ifndef HB_SIMD_H
 #define HB_SIMD_H
 
@@ -17,7 +40,7 @@
  * internal paths of a fibre): one out-of-line copy per unit instead of one inlined into every
  * kernel and I0 variant, which is what bounds each unit's compile time and memory. Its vectors
  * cross the call through memory: a few loads and stores per block against hundreds of operations. */
-#define HB_STAGE static __attribute__((noinline))
+#define HB_STAGE static __attribute__((noinline, unused))
 /* Unrolls the loop that follows (over lobes, channels, streams) so its arrays of vectors can live
  * in registers; GCC at -O2 keeps a loop with a large body rolled. Clang reads the same pragma.
  * Sanitizer builds (HB_SANITIZED) drop the hint: GCC cannot unroll some instrumented loops and
@@ -93,7 +116,5 @@ HB_INLINE vf vf_floor(vf a)
 /* Exact reciprocal (a division): the kernels need it correctly rounded. */
 HB_INLINE vf vf_rcp(vf a) { return vf_div(vf_set1(1.0f), a); }
 HB_INLINE vf vf_clamp(vf a, float lo, float hi) { return vf_min(vf_max(a, vf_set1(lo)), vf_set1(hi)); }
-/* False for NaN and +-Inf. */
-HB_INLINE vm vf_isfinite(vf a) { return vf_le(vf_abs(a), vf_set1(3.40282347e38f)); }
 
 #endif

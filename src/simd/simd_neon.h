@@ -33,7 +33,6 @@ HB_INLINE vm vf_le(vf a, vf b) { return vcleq_f32(a, b); }
 HB_INLINE vm vf_gt(vf a, vf b) { return vcgtq_f32(a, b); }
 HB_INLINE vm vf_ge(vf a, vf b) { return vcgeq_f32(a, b); }
 HB_INLINE vm vf_eq(vf a, vf b) { return vceqq_f32(a, b); }
-HB_INLINE vm vf_ne(vf a, vf b) { return vmvnq_u32(vceqq_f32(a, b)); }
 
 HB_INLINE vm vm_and(vm a, vm b) { return vandq_u32(a, b); }
 HB_INLINE vm vm_or(vm a, vm b) { return vorrq_u32(a, b); }

@@ -35,7 +35,6 @@ HB_INLINE vm vf_le(vf a, vf b) { return a <= b; }
 HB_INLINE vm vf_gt(vf a, vf b) { return a > b; }
 HB_INLINE vm vf_ge(vf a, vf b) { return a >= b; }
 HB_INLINE vm vf_eq(vf a, vf b) { return a == b; }
-HB_INLINE vm vf_ne(vf a, vf b) { return a != b; }
 
 HB_INLINE vm vm_and(vm a, vm b) { return a & b; }
 HB_INLINE vm vm_or(vm a, vm b) { return a | b; }

@@ -48,7 +48,6 @@ HB_INLINE vm vf_le(vf a, vf b) { return _mm_cmple_ps(a, b); }
 HB_INLINE vm vf_gt(vf a, vf b) { return _mm_cmpgt_ps(a, b); }
 HB_INLINE vm vf_ge(vf a, vf b) { return _mm_cmpge_ps(a, b); }
 HB_INLINE vm vf_eq(vf a, vf b) { return _mm_cmpeq_ps(a, b); }
-HB_INLINE vm vf_ne(vf a, vf b) { return _mm_cmpneq_ps(a, b); }
 
 HB_INLINE vm vm_and(vm a, vm b) { return _mm_and_ps(a, b); }
 HB_INLINE vm vm_or(vm a, vm b) { return _mm_or_ps(a, b); }

@@ -5,8 +5,8 @@
 #define HB_DEON_AZIMUTHAL_H
 
 #include "longitudinal.h"
-#include "../fresnel.h"
-#include "../../math/multilinear.h"
+#include "models/fresnel.h"
+#include "math/multilinear.h"
 
 /* cos(n phi) for n = 1..terms by the Chebyshev recurrence, for the Fourier detectors. */
 HB_INLINE void cos_multiples(vf cos_phi, int terms, vf *out)

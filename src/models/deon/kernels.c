@@ -1,9 +1,9 @@
 /* dFH11's batch kernels for one ISA: the Makefile compiles this file once per instruction
  * set (-DHB_TARGET_<NAME> and that ISA's flags) into hb_<isa>_deon_kernels. */
-#include "../../isa/batch.h"
+#include "kernel/batch.h"
+#include "kernels.h"
 #include "sample.h"
 
-#define HB_DEON_SAMPLE_DIMENSIONS 5
 HB_INLINE vm load_deon_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
 {
     return load_sample(in, HB_DEON_SAMPLE_DIMENSIONS, i, lanes, a);
@@ -63,19 +63,6 @@ static void np_row(const hb_deon *deon, float cos_theta_d, size_t n, const float
     deon_np_row(deon, cos_theta_d, n, phi, out);
 }
 
-/* D_p(x) = (D_p(x - 0) + D_p(-x - 0)) / 2, D_p being even: the kernel's detector, for the tests. */
-static void detector_map(const hb_detector *d, size_t n, const float *x, float *out)
-{
-    for (size_t i = 0; i < n; i += HB_W) {
-        size_t lanes = n - i < HB_W ? n - i : HB_W;
-        vf phi, cos_n_phi[HB_MAX_DETECTOR_TERMS + 1];
-        load_block(&x, 1, i, lanes, 0.0f, &phi);
-        cos_multiples(vf_cos(phi), d->fourier ? d->terms : 0, cos_n_phi);
-        vf pair = detector_pair(d, phi, vf_set1(0.0f), cos_n_phi, (deon_shape){ 0, 1, 0 });
-        store_block(out, i, lanes, vf_mul(pair, vf_set1(0.5f)));
-    }
-}
-
 const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
     .longitudinal_angles = { longitudinal_angles_abramowitz, longitudinal_angles_paper },
     .longitudinal_vectors = { longitudinal_vectors_abramowitz, longitudinal_vectors_paper },
@@ -84,5 +71,4 @@ const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
     .sample = { deon_sample_abramowitz, deon_sample_paper },
     .pdf = { deon_pdf_abramowitz, deon_pdf_paper },
     .np_row = np_row,
-    .detector_map = detector_map,
 };

@@ -14,8 +14,8 @@
 #ifndef HB_DEON_LONGITUDINAL_H
 #define HB_DEON_LONGITUDINAL_H
 
-#include "../../math/vmath.h"
-#include "../../kernels.h"
+#include "math/vmath.h"
+#include "constants.h"
 
 /* log of dFH11 eq. 15, the 10-term series S(x) = sum_{i<=10} (x^2/4)^i / (i!)^2. For
  * u = x^2/4 > 1 it is evaluated as u^10 R(1/u) so that no power overflows. */

@@ -1,10 +1,10 @@
 /* HHH22's batch kernels for one ISA: the Makefile compiles this file once per instruction
  * set (-DHB_TARGET_<NAME> and that ISA's flags) into hb_<isa>_huang_kernels. */
-#include "../../isa/batch.h"
+#include "kernel/batch.h"
 #include "eval.h"
+#include "kernels.h"
 #include "sample_paths.h"
 
-#define HB_HUANG_SAMPLE_DIMENSIONS 3
 HB_INLINE vm load_huang_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
 {
     return load_sample(in, HB_HUANG_SAMPLE_DIMENSIONS, i, lanes, a);

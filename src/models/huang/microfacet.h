@@ -4,8 +4,8 @@
 #ifndef HB_HUANG_MICROFACET_H
 #define HB_HUANG_MICROFACET_H
 
-#include "../../math/vmath.h"
-#include "../../kernels.h"
+#include "math/vmath.h"
+#include "constants.h"
 
 #define HB_INV_PI_F 0.318309886f
 #define HB_INV_SQRT_PI_F 0.564189584f

@@ -8,7 +8,7 @@
 #define HB_HUANG_R_LOBE_H
 
 #include "microfacet.h"
-#include "../fresnel.h"
+#include "models/fresnel.h"
 
 /* cos(theta_o) is floored so S_R's 1 / cos(theta_o) stays finite at a grazing w_o (without G the
  * lobe grows like 1 / cos(theta_o) there; the float nearest pi/2 has cos = -4.4e-8). */

@@ -4,7 +4,7 @@
 #ifndef HB_HUANG_RNG_H
 #define HB_HUANG_RNG_H
 
-#include "../../math/vmath.h"
+#include "math/vmath.h"
 
 /* A bijective 32-bit mix (two multiply-xorshift rounds, the "lowbias32" constants of
  * C. Wellons' hash prospector). */

@@ -7,7 +7,7 @@
 #define HB_HUANG_TABLE_H
 
 #include "internal.h"
-#include "../../math/multilinear.h"
+#include "math/multilinear.h"
 
 /* asinh(x) = sign(x) log(|x| + sqrt(x^2 + 1)): the warp of s (monotone and continuous, which is
  * all the grid needs; its absolute error is a few float ulps of the index). */

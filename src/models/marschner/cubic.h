@@ -12,7 +12,7 @@
 #ifndef HB_MARSCHNER_CUBIC_H
 #define HB_MARSCHNER_CUBIC_H
 
-#include "../../math/vmath.h"
+#include "math/vmath.h"
 
 /* |P| below this is treated as this (with its sign): the roots are continuous there, and
  * it keeps z = Q / (2 r^3) below 1e17 for every cubic of the model, so z^2 cannot overflow. */

@@ -4,8 +4,8 @@
 #ifndef HB_MARSCHNER_LONGITUDINAL_H
 #define HB_MARSCHNER_LONGITUDINAL_H
 
-#include "../../math/vmath.h"
-#include "../../kernels.h"
+#include "math/vmath.h"
+#include "constants.h"
 
 /* 1/cos^2(theta_d) diverges (integrably) where theta_i -> -pi/2 and theta_o -> pi/2 together;
  * cos^2(theta_d) is floored so the term stays finite. */

@@ -7,9 +7,9 @@
 
 #include <string.h>
 
-#include "../simd/simd.h"
-#include "../math/vmath.h"
-#include "../kernels.h"
+#include "simd/simd.h"
+#include "math/vmath.h"
+#include "hairbsdf.h"
 
 /* hb_<isa>_<name>: the per-ISA name of a model's table (internal to the library). */
 #if defined(HB_TARGET_SCALAR)

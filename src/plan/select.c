@@ -1,96 +1,31 @@
 /* Plans that choose their own configuration (options.tolerance, options.budget_ns): which lobes a
  * material needs, measured at plan creation, and which named configuration (quality, quadrature
  * order, N_p table) meets the tolerance most cheaply or the budget most accurately, from the
- * calibration that `make bench` measures (src/calibration.c). docs/engines.md. */
+ * calibration that `make bench` measures (calibration.c). docs/engines.md. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "calibration.h"
-#include "plan.h"
-
-/* The named configurations, as the bench names its rows. */
-typedef struct preset {
-    hb_model model;
-    const char *name;
-    hb_quality quality;
-    int quadrature_order;
-    hb_azimuthal azimuthal;
-    hb_tt_trt tt_trt; /* HHH22 with TT and TRT ("all/..."): the paper's estimator or the table */
-} preset;
-
-static const preset presets[] = {
-    { HB_MODEL_DEON, "full/fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_DEON, "full/balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_DEON, "full/high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_DEON, "full/order35", HB_QUALITY_BALANCED, 35, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_DEON, "full/order35-high", HB_QUALITY_HIGH, 35, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_DEON, "full/table-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_TABLE, HB_TT_TRT_MC },
-    { HB_MODEL_DEON, "full/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_TABLE, HB_TT_TRT_MC },
-    { HB_MODEL_DEON, "full/table-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_TABLE, HB_TT_TRT_MC },
-    { HB_MODEL_MARSCHNER, "full/closed-form", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_HUANG, "R/analytic", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_HUANG, "R/G-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_HUANG, "R/G-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_HUANG, "R/G-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_HUANG, "all/mc-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_HUANG, "all/mc-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
-    { HB_MODEL_HUANG, "all/table-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_TABLE },
-    { HB_MODEL_HUANG, "all/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_TABLE },
-};
-#define N_PRESETS ((int)(sizeof presets / sizeof presets[0]))
-
-/* HHH22's R lobe has App. A's closed form for GGX without shadowing on circular fibres. */
-static int huang_analytic(const hb_material *m, const hb_options *o)
-{
-    return m->ndf == HB_NDF_GGX && o->shadowing == HB_SHADOWING_NONE && m->eccentricity == 0.0 &&
-           o->r_integration != HB_R_INTEGRATION_NUMERIC;
-}
-
-/* Whether a preset computes the same model as the options (only its accuracy and cost differ). */
-static int preset_applies(const preset *p, const hb_material *m, const hb_options *o, unsigned lobes)
-{
-    if (p->model != o->model)
-        return 0;
-    if (p->azimuthal == HB_AZIMUTHAL_TABLE && o->r_fresnel != HB_R_FRESNEL_OFFSET)
-        return 0;
-    if (o->model == HB_MODEL_HUANG && strncmp(p->name, "all/", 4) == 0) /* the bench times R + TT + TRT */
-        return lobes == 7u;
-    if (o->model == HB_MODEL_HUANG)
-        return lobes == 1u << HB_LOBE_R && (strcmp(p->name, "R/analytic") == 0) == huang_analytic(m, o);
-    return 1;
-}
+#include "creation.h"
 
 /* The preset the options amount to, for describing any plan; NULL if none. */
-static const preset *preset_of(const hb_material *m, const hb_options *o, unsigned lobes)
+static const hb_preset *preset_of(const hb_model_ops *ops, const hb_material *m, const hb_options *o, unsigned lobes)
 {
-    for (int k = 0; k < N_PRESETS; k++) {
-        const preset *p = &presets[k];
-        if (preset_applies(p, m, o, lobes) &&
-            (o->model == HB_MODEL_MARSCHNER || (huang_analytic(m, o) && lobes == 1u) ||
-             (p->quality == o->quality && p->quadrature_order == o->quadrature_order && p->azimuthal == o->azimuthal &&
-              (lobes == 1u || o->model != HB_MODEL_HUANG || p->tt_trt == o->tt_trt))))
-            return p;
-    }
+    for (int k = 0; k < ops->preset_count; k++)
+        if (ops->preset_applies(&ops->presets[k], m, o, lobes) && ops->preset_is(&ops->presets[k], m, o, lobes))
+            return &ops->presets[k];
     return NULL;
 }
 
 /* The calibration entry of a preset on the ISA, else on scalar (ranked by scalar timings). */
-static const hb_calibration_entry *entry_for(const hb_calibration *c, const preset *p, hb_isa isa, int *fallback)
+static const hb_calibration_entry *entry_for(const hb_calibration *c, const hb_model_ops *ops, const hb_preset *p,
+                                             hb_isa isa, int *fallback)
 {
-    static const char *const model_names[] = { "marschner", "deon", "huang" };
-    const hb_calibration_entry *e = hb_calibration_find(c, model_names[p->model], p->name, hb_isa_name(isa));
+    const hb_calibration_entry *e = hb_calibration_find(c, ops->name, p->name, hb_isa_name(isa));
     *fallback = !e;
-    return e ? e : hb_calibration_find(c, model_names[p->model], p->name, "scalar");
-}
-
-/* All lobes the options ask for, as a mask. */
-static unsigned requested_lobes(const hb_options *o)
-{
-    if (o->model == HB_MODEL_DEON)
-        return o->lobes == HB_LOBES_DEFAULT ? ((2u << o->pmax) - 1u) | 1u << HB_LOBE_RESIDUAL : o->lobes;
-    return o->lobes == HB_LOBES_DEFAULT ? 7u : o->lobes;
+    return e ? e : hb_calibration_find(c, ops->name, p->name, "scalar");
 }
 
 enum { PROBE_THETA_I = 17, PROBE_THETA_O = 61, PROBE_CONE = 15, PROBE_PHI = 32 };
@@ -119,8 +54,8 @@ static void probe_directions(const hb_material *m, float *ti, float *pi, float *
 
 /* share[p]: the largest value of lobe p over the probe directions and channels, over the peak of
  * the sum of the lobes there. */
-static hb_status measure_lobes(const hb_material *m, const hb_options *base, unsigned lobes, double *share,
-                               hb_error *error)
+static hb_status measure_lobes(const hb_material *m, const hb_options *base, hb_isa isa, unsigned lobes,
+                               double *share, hb_error *error)
 {
     float *buffer = malloc((size_t)PROBES * 8 * sizeof *buffer);
     double *sum = calloc((size_t)PROBES * 3, sizeof *sum), *lobe_max = calloc(HB_MAX_LOBES + 1, sizeof *lobe_max);
@@ -135,11 +70,13 @@ static hb_status measure_lobes(const hb_material *m, const hb_options *base, uns
             hb_options o = *base;
             o.lobes = 1u << p;
             hb_plan *plan;
-            st = hb_plan_create(m, &o, &plan, error);
+            st = hb_plan_build(m, &o, isa, NULL, &plan, error);
             if (st != HB_OK)
                 break;
-            hb_eval_angles(plan, PROBES, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
-            hb_plan_destroy(plan);
+            size_t invalid;
+            hb_model_ops_of(o.model)->eval_angles(plan, PROBES, (hb_angles_soa){ ti, pi, to, po },
+                                                  (hb_rgb_soa){ f[0], f[1], f[2] }, &invalid);
+            hb_plan_free(plan);
             for (size_t k = 0; k < PROBES; k++)
                 for (int c = 0; c < 3; c++) {
                     sum[3 * k + (size_t)c] += f[c][k];
@@ -170,19 +107,19 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
         sel->active = 1;
         sel->tolerance = in->tolerance, sel->budget_ns = in->budget_ns;
     }
-    unsigned lobes = requested_lobes(in) & ~sel->dropped;
-    static const char *const model_names[] = { "marschner", "deon", "huang" };
+    const hb_model_ops *ops = hb_model_ops_of(in->model);
+    unsigned lobes = ops->lobes(in) & ~sel->dropped;
     hb_calibration calibration;
     hb_status st = hb_calibration_open(in->calibration, &calibration, error);
     if (st != HB_OK)
         return st;
     snprintf(sel->calibration, sizeof sel->calibration, "%s", in->calibration ? in->calibration : "built in");
     double allowed = in->tolerance; /* what the configuration may still spend after dropped lobes */
-    if (in->tolerance > 0.0 && in->model != HB_MODEL_HUANG && !again) {
+    if (in->tolerance > 0.0 && ops->drops_lobes && !again) {
         hb_options base = *in;
         base.tolerance = 0.0, base.budget_ns = 0.0, base.quality = HB_QUALITY_BALANCED, base.quadrature_order = 0;
         base.azimuthal = HB_AZIMUTHAL_QUADRATURE, base.isa = isa;
-        st = measure_lobes(m, &base, lobes, sel->share, error);
+        st = measure_lobes(m, &base, isa, lobes, sel->share, error);
         if (st != HB_OK) {
             hb_calibration_close(&calibration);
             return st;
@@ -205,14 +142,14 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
     }
     if (in->tolerance > 0.0)
         allowed = in->tolerance - sel->dropped_bound;
-    const preset *best = NULL;
+    const hb_preset *best = NULL;
     const hb_calibration_entry *best_entry = NULL, *fastest = NULL, *most_accurate = NULL;
     int candidates = 0;
-    for (int k = 0; k < N_PRESETS; k++) {
+    for (int k = 0; k < ops->preset_count; k++) {
         int fallback;
         const hb_calibration_entry *e;
-        if (!preset_applies(&presets[k], m, in, lobes) || !(e = entry_for(&calibration, &presets[k], isa, &fallback)) ||
-            (sel->refused >> k & 1u))
+        if (!ops->preset_applies(&ops->presets[k], m, in, lobes) ||
+            !(e = entry_for(&calibration, ops, &ops->presets[k], isa, &fallback)) || (sel->refused >> k & 1u))
             continue;
         candidates++;
         fastest = !fastest || e->ns < fastest->ns ? e : fastest;
@@ -222,7 +159,7 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
                                                           : e->error < best_entry->error ||
                                                                 (e->error == best_entry->error && e->ns < best_entry->ns));
         if (fits && better) {
-            best = &presets[k], best_entry = e;
+            best = &ops->presets[k], best_entry = e;
             sel->ranked_by_scalar = fallback;
         }
     }
@@ -231,7 +168,7 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
     if (!candidates)
         st = hb_plan_fail(error, HB_ERR_UNSUPPORTED,
                           "no calibrated configuration of the %s model for these options: tolerance and budget plans "
-                          "cover deon, marschner, and huang with R alone or R + TT + TRT", model_names[in->model]);
+                          "cover deon, marschner, and huang with R alone or R + TT + TRT", ops->name);
     else if (!best && in->tolerance > 0.0)
         st = hb_plan_fail(error, HB_ERR_UNSUPPORTED,
                           "tolerance %g leaves %.3g for the configuration after dropped lobes, below every calibrated "
@@ -246,13 +183,13 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
         return st;
     }
     snprintf(sel->configuration, sizeof sel->configuration, "%s", best->name);
-    sel->preset = (int)(best - presets);
+    sel->preset = (int)(best - ops->presets);
     sel->expected_error = best_entry->error + sel->dropped_bound;
     sel->expected_ns = best_entry->ns;
     out->quality = best->quality;
     out->quadrature_order = best->quadrature_order;
     out->azimuthal = best->azimuthal;
-    if (in->model == HB_MODEL_HUANG && lobes != 1u)
+    if (lobes & ~1u) /* a preset's TT/TRT method matters only where a plan has more than R */
         out->tt_trt = best->tt_trt;
     out->table_tolerance = 0.0;
     out->lobes = lobes;
@@ -263,12 +200,13 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
 /* The calibrated figures of a plain plan's configuration, for hb_plan_describe. */
 int hb_plan_expected(const hb_plan *plan, char *configuration, size_t size, double *ns, double *err)
 {
-    unsigned lobes = requested_lobes(&plan->options);
-    const preset *p = preset_of(&plan->material, &plan->options, lobes);
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    unsigned lobes = ops->lobes(&plan->options);
+    const hb_preset *p = preset_of(ops, &plan->material, &plan->options, lobes);
     hb_calibration c;
     int fallback = 0, found = 0;
     if (p && hb_calibration_open(NULL, &c, NULL) == HB_OK) {
-        const hb_calibration_entry *e = entry_for(&c, p, plan->isa, &fallback);
+        const hb_calibration_entry *e = entry_for(&c, ops, p, plan->isa, &fallback);
         if (e && !fallback) {
             snprintf(configuration, size, "%s", p->name);
             *ns = e->ns, *err = e->error;

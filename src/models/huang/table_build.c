@@ -1,10 +1,10 @@
 /* HHH22 TT/TRT table (HB_TT_TRT_TABLE): its grid, chosen from quality and roughness, and its
- * rows, each built by the plan's kernel (src/models/huang/table.h). docs/huang.md has the measured error and build time per quality. */
+ * rows, each built by the plan's kernel (src/models/huang/table.h); and its view for hb_plan_table. docs/huang.md has the measured error and build time per quality. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "plan.h"
+#include "huang.h"
 
 /* Per quality (fast, balanced, high): nodes in theta_i and in phi_i (elliptical), the delta step
  * and the step of u = asinh(s / roughness) (near s = 0 that is the step in s over the roughness),
@@ -43,7 +43,7 @@ static hb_status out_of_memory(hb_error *error, void *a, void *b, void *c)
     return HB_ERR_NOMEM;
 }
 
-hb_status hb_plan_build_huang_table(hb_plan *plan, hb_error *error)
+hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
 {
     hb_huang *h = &plan->huang;
     hb_huang_table *t = &h->table;
@@ -90,12 +90,35 @@ hb_status hb_plan_build_huang_table(hb_plan *plan, hb_error *error)
         for (int m = 0; m < t->n_phi_i; m++) {
             double theta_i = -M_PI_2 + M_PI * i / (t->n_theta_i - 1);
             double phi_i = t->n_phi_i > 1 ? M_PI_2 * m / (t->n_phi_i - 1) : 0.0;
-            plan->kernels->huang->table_row(h, (float)theta_i, (float)phi_i, &build,
+            ((const hb_huang_kernels *)plan->kernels)->table_row(h, (float)theta_i, (float)phi_i, &build,
                                            values + ((size_t)i * (size_t)t->n_phi_i + (size_t)m) * row);
         }
     free(grid);
     free(scratch);
     plan->huang_table = values;
     t->values = values;
+    return HB_OK;
+}
+
+hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *v)
+{
+    if (!plan->huang_table)
+        return HB_ERR_UNSUPPORTED;
+    *v = (hb_table_view){ .model = HB_MODEL_HUANG };
+    const hb_huang_table *t = &plan->huang.table;
+    int k = 0;
+    v->size[k] = t->n_theta_i, v->lo[k] = -M_PI_2, v->hi[k] = M_PI_2, v->axis[k++] = "theta_i";
+    if (t->n_phi_i > 1)
+        v->size[k] = t->n_phi_i, v->lo[k] = 0.0, v->hi[k] = M_PI_2,
+        v->axis[k++] = "phi_i folded into [0, pi/2] by the fibre's symmetries (delta's sign follows)";
+    v->size[k] = t->n_sum, v->lo[k] = t->u_lo, v->hi[k] = t->u_lo + (t->n_sum - 1) / t->u_scale,
+    v->axis[k++] = "asinh((theta_i + theta_o) / roughness)";
+    v->size[k] = t->n_delta, v->lo[k] = t->delta_lo, v->hi[k] = t->delta_lo + (t->n_delta - 1) / t->delta_scale,
+    v->axis[k++] = t->n_phi_i > 1 ? "phi_o - phi_i in [-pi, pi]" : "|phi_o - phi_i| in [0, pi]";
+    v->axes = k;
+    v->slots = 1;
+    v->slot_lobes[0] = plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT);
+    v->values = plan->huang_table;
+    v->error = NAN;
     return HB_OK;
 }

@@ -2,25 +2,15 @@
  * or, for HB_QUALITY_REFERENCE, the double-precision procedure. No allocation. */
 #include <math.h>
 
-#include "plan.h"
+#include "math/hash.h"
+#include "models/model.h"
 #include "ref/reference.h"
-
-#define HB_DEON_DIMENSIONS 5
-#define HB_HUANG_DIMENSIONS 3
-#define HB_MOST_DIMENSIONS HB_DEON_DIMENSIONS
 
 int hb_plan_sample_dimensions(const hb_plan *plan)
 {
     if (!plan || plan->options.term != HB_TERM_FULL)
         return 0;
-    if (plan->options.model == HB_MODEL_DEON && plan->options.r_fresnel == HB_R_FRESNEL_OFFSET)
-        return HB_DEON_DIMENSIONS;
-    if (plan->options.model == HB_MODEL_HUANG && plan->huang.lobes == 1u << HB_LOBE_R)
-        return HB_HUANG_DIMENSIONS;
-    /* TT and TRT are sampled by the kernels only (the double path has no TT/TRT sampler) */
-    if (plan->options.model == HB_MODEL_HUANG && plan->kernels)
-        return HB_HUANG_PATH_DIMENSIONS;
-    return 0;
+    return hb_model_ops_of(plan->options.model)->sample_dimensions(plan);
 }
 
 static int angles_valid(float theta, float phi)
@@ -28,39 +18,23 @@ static int angles_valid(float theta, float phi)
     return fabsf(theta) <= 1.57079637f && fabsf(phi) <= HB_PHI_LIMIT; /* false for NaN */
 }
 
-/* The double procedures of the plan's model. */
-static void ref_sample(const hb_plan *plan, double theta_o, double phi_o, const double *u, double *theta_i,
-                       double *phi_i)
-{
-    if (plan->options.model == HB_MODEL_HUANG)
-        hb_ref_huang_sample(plan, theta_o, phi_o, u, theta_i, phi_i);
-    else
-        hb_ref_deon_sample(plan, theta_o, phi_o, u, theta_i, phi_i);
-}
-
-static double ref_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o)
-{
-    return plan->options.model == HB_MODEL_HUANG ? hb_ref_huang_pdf(plan, theta_i, phi_i, theta_o, phi_o)
-                                                 : hb_ref_deon_pdf(plan, theta_i, phi_i, theta_o, phi_o);
-}
-
 /* The reference path, one sample at a time. */
 static size_t sample_ref(const hb_plan *plan, int dims, size_t n, hb_sample_in in, hb_sample_out out)
 {
     size_t invalid = 0;
     for (size_t k = 0; k < n; k++) {
-        double u[HB_MOST_DIMENSIONS], theta_i = 0.0, phi_i = 0.0, f[3] = { 0.0, 0.0, 0.0 }, pdf = 0.0;
+        double u[HB_SAMPLE_DIMENSIONS], theta_i = 0.0, phi_i = 0.0, f[3] = { 0.0, 0.0, 0.0 }, pdf = 0.0;
         int ok = angles_valid(in.theta_o[k], in.phi_o[k]);
         for (int d = 0; d < dims; d++) {
             u[d] = in.u[d][k];
             ok = ok && u[d] >= 0.0 && u[d] <= 1.0;
         }
         if (ok) {
-            ref_sample(plan, in.theta_o[k], in.phi_o[k], u, &theta_i, &phi_i);
+            hb_ref_sample(plan, in.theta_o[k], in.phi_o[k], u, &theta_i, &phi_i);
             float ti = (float)theta_i, pi = (float)phi_i; /* f and pdf where the caller will see the sample */
             theta_i = ti;
             phi_i = pi;
-            pdf = ref_pdf(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k]);
+            pdf = hb_ref_pdf(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k]);
             hb_ref_eval_pair(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k], f);
         } else {
             invalid++;
@@ -93,10 +67,8 @@ hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sa
     size_t invalid = 0;
     if (!plan->kernels)
         invalid = sample_ref(plan, dims, n, in, out);
-    else if (plan->options.model == HB_MODEL_HUANG)
-        plan->kernels->huang->sample(&plan->huang, n, in, out, &invalid);
     else
-        plan->kernels->deon->sample[plan->options.i0](&plan->deon, n, in, out, &invalid);
+        hb_model_ops_of(plan->options.model)->sample(plan, n, in, out, &invalid);
     if (report)
         report->invalid = invalid;
     return HB_OK;
@@ -114,25 +86,15 @@ hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *
     if (!plan->kernels) {
         for (size_t k = 0; k < n; k++) {
             int ok = angles_valid(in.theta_i[k], in.phi_i[k]) && angles_valid(in.theta_o[k], in.phi_o[k]);
-            pdf[k] = ok ? (float)ref_pdf(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k]) : 0.0f;
+            pdf[k] = ok ? (float)hb_ref_pdf(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k]) : 0.0f;
             invalid += !ok;
         }
-    } else if (plan->options.model == HB_MODEL_HUANG) {
-        plan->kernels->huang->pdf(&plan->huang, n, in, pdf, &invalid);
     } else {
-        plan->kernels->deon->pdf[plan->options.i0](&plan->deon, n, in, pdf, &invalid);
+        hb_model_ops_of(plan->options.model)->pdf(plan, n, in, pdf, &invalid);
     }
     if (report)
         report->invalid = invalid;
     return HB_OK;
-}
-
-/* SplitMix64's finaliser (Steele, Lea and Flood 2014): a bijective 64-bit mix. */
-unsigned long long hb_mix64(unsigned long long x)
-{
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
 }
 
 void hb_uniforms(unsigned long long seed, unsigned long long first, size_t n, int dimensions, float *const *u)

@@ -1,10 +1,10 @@
 /* dFH11 N_p table (HB_AZIMUTHAL_TABLE): its resolution refined from the tolerance, rows built by
- * the plan's kernel (src/models/deon/azimuthal.h); and hb_plan_table, the view engines bake. */
+ * the plan's kernel (src/models/deon/azimuthal.h); and its view for hb_plan_table, which engines bake. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "plan.h"
+#include "deon.h"
 
 static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
 
@@ -21,7 +21,8 @@ static void build_rows(const hb_plan *plan, int n_cd, const double *cd, int n_ph
 {
     size_t row = (size_t)n_phi * (size_t)plan->deon.table_slots * 3;
     for (int j = 0; j < n_cd; j++)
-        plan->kernels->deon->np_row(&plan->deon, (float)cd[j], (size_t)n_phi, phi, out + (size_t)j * row);
+        ((const hb_deon_kernels *)plan->kernels)->np_row(&plan->deon, (float)cd[j], (size_t)n_phi, phi,
+                                                          out + (size_t)j * row);
 }
 
 /* Uniform node coordinates in [0, hi]; with `half`, the midpoints. */
@@ -51,7 +52,7 @@ static double midpoint_error(const float *values, const float *mid, int lines, i
     return worst;
 }
 
-hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error)
+hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
 {
     hb_deon *d = &plan->deon;
     d->table_slots = 0;
@@ -124,43 +125,18 @@ hb_status hb_plan_build_deon_table(hb_plan *plan, hb_error *error)
     }
 }
 
-hb_status hb_plan_table(const hb_plan *plan, hb_table_view *v)
+hb_status hb_deon_table_view(const hb_plan *plan, hb_table_view *v)
 {
-    if (!plan || !v)
-        return HB_ERR_NULL;
-    *v = (hb_table_view){ .model = plan->options.model };
-    if (plan->deon_table) {
-        const hb_deon *d = &plan->deon;
-        *v = (hb_table_view){ .model = HB_MODEL_DEON, .axes = 2, .size = { d->table_cd, d->table_phi },
-                              .lo = { 0.0, 0.0 }, .hi = { 1.0, M_PI },
-                              .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]" },
-                              .slots = d->table_slots, .values = plan->deon_table, .error = plan->table_error };
-        for (int s = 0; s < d->table_slots; s++)
-            for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-                if (hb_deon_lobe_on(d, p) && d->m_group[p] == d->table_leader[s])
-                    v->slot_lobes[s] |= 1u << p;
-    } else if (plan->huang_table) {
-        const hb_huang_table *t = &plan->huang.table;
-        int k = 0;
-        v->model = HB_MODEL_HUANG;
-        v->size[k] = t->n_theta_i, v->lo[k] = -M_PI_2, v->hi[k] = M_PI_2, v->axis[k++] = "theta_i";
-        if (t->n_phi_i > 1)
-            v->size[k] = t->n_phi_i, v->lo[k] = 0.0, v->hi[k] = M_PI_2,
-            v->axis[k++] = "phi_i folded into [0, pi/2] by the fibre's symmetries (delta's sign follows)";
-        v->size[k] = t->n_sum, v->lo[k] = t->u_lo, v->hi[k] = t->u_lo + (t->n_sum - 1) / t->u_scale,
-        v->axis[k++] = "asinh((theta_i + theta_o) / roughness)";
-        v->size[k] = t->n_delta, v->lo[k] = t->delta_lo, v->hi[k] = t->delta_lo + (t->n_delta - 1) / t->delta_scale,
-        v->axis[k++] = t->n_phi_i > 1 ? "phi_o - phi_i in [-pi, pi]" : "|phi_o - phi_i| in [0, pi]";
-        v->axes = k;
-        v->slots = 1;
-        v->slot_lobes[0] = plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT);
-        v->values = plan->huang_table;
-        v->error = NAN;
-    } else {
+    if (!plan->deon_table)
         return HB_ERR_UNSUPPORTED;
-    }
-    v->count = (size_t)v->slots * 3;
-    for (int k = 0; k < v->axes; k++)
-        v->count *= (size_t)v->size[k];
+    const hb_deon *d = &plan->deon;
+    *v = (hb_table_view){ .model = HB_MODEL_DEON, .axes = 2, .size = { d->table_cd, d->table_phi },
+                          .lo = { 0.0, 0.0 }, .hi = { 1.0, M_PI },
+                          .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]" },
+                          .slots = d->table_slots, .values = plan->deon_table, .error = plan->table_error };
+    for (int s = 0; s < d->table_slots; s++)
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            if (hb_deon_lobe_on(d, p) && d->m_group[p] == d->table_leader[s])
+                v->slot_lobes[s] |= 1u << p;
     return HB_OK;
 }

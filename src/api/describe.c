@@ -1,0 +1,41 @@
+/* hb_plan_describe: what a plan simulates, what it skipped and why, and what it is expected to cost. */
+#include "plan/creation.h"
+
+size_t hb_plan_describe(const hb_plan *plan, char *out, size_t size)
+{
+    hb_text t = { out, size, 0 };
+    if (out && size)
+        out[0] = '\0';
+    if (!plan)
+        return 0;
+    hb_model_ops_of(plan->options.model)->describe(&t, plan);
+    hb_say(&t, "evaluation: %s\n", plan->kernels ? hb_isa_name(plan->isa) : "double-precision reference (scalar)");
+    const hb_selection *s = &plan->selection;
+    if (s->active) {
+        if (s->tolerance > 0.0)
+            hb_say(&t, "chosen for a tolerance of %.3g of the peak f: %s\n", s->tolerance, s->configuration);
+        else
+            hb_say(&t, "chosen for a budget of %.4g ns per sample: %s\n", s->budget_ns, s->configuration);
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            if (s->measured >> p & 1u)
+                hb_say(&t, "  %s: largest value %.2g of the peak f (measured on a grid of directions) -> %s\n", hb_lobe_name(p),
+                    s->share[p], s->dropped >> p & 1u ? "skipped" : "simulated");
+        if (s->refused)
+            hb_say(&t, "not chosen although calibrated better: %s\n", s->refusal);
+        if (s->dropped)
+            hb_say(&t, "skipped lobes cost at most %.2g of the peak (twice their measured maxima)\n", s->dropped_bound);
+        hb_say(&t, "expected error: %.2g (calibrated max error%s); expected cost: %.4g ns per sample on %s%s (calibration: %s)\n",
+            s->expected_error, s->dropped ? " plus the skipped lobes" : "", s->expected_ns,
+            s->ranked_by_scalar ? "scalar x86" : hb_isa_name(plan->isa),
+            s->ranked_by_scalar ? ", this ISA is not calibrated" : "", s->calibration);
+    } else {
+        char configuration[32];
+        double ns, err;
+        if (plan->kernels && hb_plan_expected(plan, configuration, sizeof configuration, &ns, &err))
+            hb_say(&t, "calibrated as %s: error %.2g, %.4g ns per sample on %s (built-in calibration)\n", configuration, err,
+                ns, hb_isa_name(plan->isa));
+        else
+            hb_say(&t, "no calibrated figures for this configuration (make bench measures it)\n");
+    }
+    return t.length;
+}

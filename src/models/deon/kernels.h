@@ -1,0 +1,36 @@
+/* dFH11's kernels for one ISA: src/models/deon/kernels.c, compiled once per ISA into
+ * hb_<isa>_deon_kernels. */
+#ifndef HB_DEON_KERNELS_H
+#define HB_DEON_KERNELS_H
+
+#include <stddef.h>
+
+#include "constants.h"
+
+typedef void (*hb_longitudinal_angles_fn)(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,
+                                          float *out, size_t *invalid);
+typedef void (*hb_longitudinal_vectors_fn)(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,
+                                           float *out, size_t *invalid);
+
+typedef void (*hb_deon_angles_fn)(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,
+                                  size_t *invalid);
+typedef void (*hb_deon_vectors_fn)(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,
+                                   size_t *invalid);
+typedef void (*hb_deon_sample_fn)(const hb_deon *deon, size_t n, hb_sample_in in, hb_sample_out out,
+                                  size_t *invalid);
+typedef void (*hb_deon_pdf_fn)(const hb_deon *deon, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
+
+typedef void (*hb_deon_np_row_fn)(const hb_deon *deon, float cos_theta_d, size_t n, const float *phi, float *out);
+
+typedef struct hb_deon_kernels {
+    hb_longitudinal_angles_fn longitudinal_angles[2];   /* indexed by hb_i0 */
+    hb_longitudinal_vectors_fn longitudinal_vectors[2]; /* indexed by hb_i0 */
+    hb_deon_angles_fn angles[2];                        /* indexed by hb_i0 */
+    hb_deon_vectors_fn vectors[2];
+    hb_deon_sample_fn sample[2];
+    hb_deon_pdf_fn pdf[2];
+    hb_deon_np_row_fn np_row; /* one row of the N_p table, out[(k * slots + s) * 3 + c] */
+} hb_deon_kernels;
+
+
+#endif

@@ -1,0 +1,143 @@
+/* dFH11 behind the model interface (models/model.h): its kernels through the plan, its
+ * description, furnace rule and named configurations. */
+#include <math.h>
+
+#include "deon.h"
+
+static unsigned lobes(const hb_options *o)
+{
+    return o->lobes == HB_LOBES_DEFAULT ? ((2u << o->pmax) - 1u) | 1u << HB_LOBE_RESIDUAL : o->lobes;
+}
+
+static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    const hb_deon_kernels *k = plan->kernels;
+    if (plan->options.term == HB_TERM_LONGITUDINAL) {
+        k->longitudinal_angles[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, invalid);
+        hb_spread_channels(n, out);
+    } else {
+        k->angles[plan->options.i0](&plan->deon, n, in, out, invalid);
+    }
+}
+
+static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    const hb_deon_kernels *k = plan->kernels;
+    if (plan->options.term == HB_TERM_LONGITUDINAL) {
+        k->longitudinal_vectors[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, invalid);
+        hb_spread_channels(n, out);
+    } else {
+        k->vectors[plan->options.i0](&plan->deon, n, in, out, invalid);
+    }
+}
+
+/* The sampler draws eq. 14's per-offset R Fresnel; eq. 12's half-angle factor has no sampler. */
+static int sample_dimensions(const hb_plan *plan)
+{
+    return plan->options.term == HB_TERM_FULL && plan->options.r_fresnel == HB_R_FRESNEL_OFFSET
+               ? HB_DEON_SAMPLE_DIMENSIONS : 0;
+}
+
+static void sample(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+{
+    ((const hb_deon_kernels *)plan->kernels)->sample[plan->options.i0](&plan->deon, n, in, out, invalid);
+}
+
+static void pdf(const hb_plan *plan, size_t n, hb_angles_soa in, float *out, size_t *invalid)
+{
+    ((const hb_deon_kernels *)plan->kernels)->pdf[plan->options.i0](&plan->deon, n, in, out, invalid);
+}
+
+static void describe(hb_text *t, const hb_plan *plan)
+{
+    const hb_deon *d = &plan->deon;
+    hb_say(t, "model: d'Eon 2011 (dFH11), f = sum_p M_p N_p, %s; lobes: ",
+        d->channels == 1 ? "grey (one channel computed, copied to RGB)" : "RGB");
+    hb_say_lobes(t, d->lobes);
+    hb_say(t, d->lobes >> HB_LOBE_RESIDUAL & 1u ? " (residual: every order above %d in closed form)\n" : "\n", d->pmax);
+    int groups = 0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        groups += hb_deon_group_leader(d, p);
+    hb_say(t, "M_p (eq. 7): %s I0; %d distinct M_p per sample (lobes with the same roughness and shift share one%s)\n",
+        plan->options.i0 == HB_I0_ABRAMOWITZ ? "A&S 9.8.1/9.8.2" : "the paper's 10-term series for", groups,
+        plan->material.alpha == 0.0 ? "; no tilt" : "");
+    if (d->np_table)
+        hb_say(t, "N_p (eq. 10): bilinear from a %d x %d table per M_p group over sqrt(cos theta_d) x |phi| "
+               "(midpoint error %.2g of each group's peak), built with the order-%d Gauss-Legendre rule%s\n",
+            d->table_cd, d->table_phi, plan->table_error, d->order, d->mapped ? " (mapped)" : "");
+    else
+        hb_say(t, "N_p (eq. 10): order-%d Gauss-Legendre rule %s across the fibre, %d nodes per sample "
+               "(gamma_i >= 0, detected at +-phi), quality %s\n", d->order,
+            d->mapped ? "in u, gamma_i = (pi/2) asin(0.8 u) / asin(0.8)" : "in gamma_i", d->nodes,
+            hb_quality_name(plan->options.quality));
+    for (int p = 0; p <= d->pmax && p < HB_MAX_LOBES; p++)
+        if (d->lobes >> p & 1u)
+            hb_say(t, d->detector[p].fourier ? "  detector %s (eq. 11, beta_n %.3g): Fourier series, %d terms\n"
+                                          : "  detector %s (eq. 11, beta_n %.3g): Gaussians at phi - 2 pi k, |k| <= %d\n",
+                hb_lobe_name(p), plan->beta_n[p],
+                d->detector[p].terms);
+}
+
+/* The longitudinal term T is f / N_p: its energy is the integral of T cos(theta_i) over theta_i
+ * alone, as if N_p integrated to 1 (dFH11 eq. 5 and Fig. 3). Otherwise the periodic midpoint rule
+ * in phi with steps of beta_n / 1.5 (its error for a Gaussian of width beta and step h is about
+ * exp(-2 pi^2 beta^2 / h^2) = 5e-20). */
+static void furnace_rule(const hb_plan *plan, double *beta_m, int *azimuths, int *passes)
+{
+    int longitudinal = plan->options.term == HB_TERM_LONGITUDINAL;
+    double beta_n = HUGE_VAL;
+    *beta_m = HUGE_VAL;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        if (plan->deon.lobes >> p & 1u || (longitudinal && p == HB_LOBE_R)) {
+            *beta_m = fmin(*beta_m, sqrt(plan->v[p]));
+            if (p < HB_MAX_LOBES)
+                beta_n = fmin(beta_n, plan->beta_n[p]);
+        }
+    *azimuths = longitudinal ? 1 : (int)ceil(3.0 * M_PI / fmin(beta_n, 1.0)) + 8;
+    *passes = 1;
+}
+
+static const hb_preset presets[] = {
+    { "full/fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "full/balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "full/high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "full/order35", HB_QUALITY_BALANCED, 35, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "full/order35-high", HB_QUALITY_HIGH, 35, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "full/table-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_TABLE, HB_TT_TRT_MC },
+    { "full/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_TABLE, HB_TT_TRT_MC },
+    { "full/table-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_TABLE, HB_TT_TRT_MC },
+};
+
+/* The N_p table needs the offset R Fresnel. */
+static int preset_applies(const hb_preset *p, const hb_material *m, const hb_options *o, unsigned lobe_mask)
+{
+    (void)m, (void)lobe_mask;
+    return p->azimuthal != HB_AZIMUTHAL_TABLE || o->r_fresnel == HB_R_FRESNEL_OFFSET;
+}
+
+static int preset_is(const hb_preset *p, const hb_material *m, const hb_options *o, unsigned lobe_mask)
+{
+    (void)m, (void)lobe_mask;
+    return p->quality == o->quality && p->quadrature_order == o->quadrature_order && p->azimuthal == o->azimuthal;
+}
+
+const hb_model_ops hb_deon_model = {
+    .name = "deon",
+    .lobes = lobes,
+    .validate = hb_deon_validate,
+    .derive = hb_deon_derive,
+    .release = hb_deon_release,
+    .eval_angles = eval_angles,
+    .eval_vectors = eval_vectors,
+    .sample_dimensions = sample_dimensions,
+    .sample = sample,
+    .pdf = pdf,
+    .table = hb_deon_table_view,
+    .describe = describe,
+    .furnace_rule = furnace_rule,
+    .presets = presets,
+    .preset_count = sizeof presets / sizeof presets[0],
+    .preset_applies = preset_applies,
+    .preset_is = preset_is,
+    .drops_lobes = 1,
+};

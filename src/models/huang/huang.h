@@ -1,0 +1,14 @@
+/* HHH22's operations (model.c) and the parts they call across the model's folder. Internal. */
+#ifndef HB_HUANG_HUANG_H
+#define HB_HUANG_HUANG_H
+
+#include "kernels.h"
+#include "models/model.h"
+
+hb_status hb_huang_validate(const hb_material *m, const hb_options *o, hb_error *error); /* plan.c */
+hb_status hb_huang_derive(hb_plan *plan, hb_error *error);
+void hb_huang_release(hb_plan *plan);
+hb_status hb_huang_build_table(hb_plan *plan, hb_error *error);    /* table_build.c */
+hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *view); /* table_build.c */
+
+#endif

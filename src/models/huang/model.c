@@ -1,0 +1,139 @@
+/* HHH22 behind the model interface (models/model.h): its kernels through the plan, its
+ * description, furnace rule and named configurations. */
+#include <math.h>
+#include <string.h>
+
+#include "huang.h"
+#include "math/hash.h"
+
+static unsigned lobes(const hb_options *o) { return o->lobes == HB_LOBES_DEFAULT ? 7u : o->lobes; }
+
+static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    ((const hb_huang_kernels *)plan->kernels)->angles(&plan->huang, n, in, out, invalid);
+}
+
+static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    ((const hb_huang_kernels *)plan->kernels)->vectors(&plan->huang, n, in, out, invalid);
+}
+
+/* R alone is sampled exactly, with TT and TRT by traced paths; the double path has no TT/TRT sampler. */
+static int sample_dimensions(const hb_plan *plan)
+{
+    if (plan->huang.lobes == 1u << HB_LOBE_R)
+        return HB_HUANG_SAMPLE_DIMENSIONS;
+    return plan->kernels ? HB_HUANG_PATH_DIMENSIONS : 0;
+}
+
+static void sample(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+{
+    ((const hb_huang_kernels *)plan->kernels)->sample(&plan->huang, n, in, out, invalid);
+}
+
+static void pdf(const hb_plan *plan, size_t n, hb_angles_soa in, float *out, size_t *invalid)
+{
+    ((const hb_huang_kernels *)plan->kernels)->pdf(&plan->huang, n, in, out, invalid);
+}
+
+static void describe(hb_text *t, const hb_plan *plan)
+{
+    const hb_huang *h = &plan->huang;
+    hb_say(t, "model: Huang 2022 (HHH22), microfacet %s roughness %.3g, %s, %s fibre%s; lobes: ",
+        h->beckmann ? "Beckmann" : "GGX", plan->material.roughness, h->shadowing ? "Smith G" : "no shadowing (G = 1)",
+        h->elliptical ? "elliptical" : "circular", h->tilted ? ", tilted scales" : "");
+    hb_say_lobes(t, h->lobes);
+    hb_say(t, "\n");
+    if (h->lobes & 1u) {
+        if (h->analytic)
+            hb_say(t, "R (eq. 12): App. A's closed form\n");
+        else
+            hb_say(t, "R (eq. 12): Simpson, %d panels%s\n", h->panels,
+                h->step_rule ? " (the paper's uniform steps)" : " in the peak-following variable");
+    }
+    if (h->lobes & 6u) {
+        if (h->table.values)
+            hb_say(t, "TT + TRT: interpolated from a table (%d theta_i x %d phi_i x %d x %d)\n", h->table.n_theta_i,
+                h->table.n_phi_i, h->table.n_sum, h->table.n_delta);
+        else if (plan->kernels)
+            hb_say(t, "TT + TRT (eqs. 31, 32): Simpson over %d panels of the entry azimuth, one random internal path per "
+                   "node (seed %llu)\n", h->tt_panels, plan->options.seed);
+        else
+            hb_say(t, "TT + TRT: nested quadrature in double\n");
+    }
+}
+
+/* HHH22's lobes are about a roughness wide in theta and (TT, the forward focus) in phi. Its
+ * Monte-Carlo TT and TRT put few points inside the narrow TT lobe, so one pass would carry 5-10% of
+ * the estimator's noise; 16 passes with independent numbers bring it to about a quarter of that. */
+static void furnace_rule(const hb_plan *plan, double *beta_m, int *azimuths, int *passes)
+{
+    *beta_m = plan->material.roughness;
+    *azimuths = (int)ceil(3.0 * M_PI / fmin(plan->material.roughness, 1.0)) + 8;
+    int monte_carlo = plan->kernels && !plan->huang.table.values &&
+                      (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT));
+    *passes = monte_carlo ? 16 : 1;
+}
+
+/* The Monte-Carlo numbers are drawn by sample index, which restarts with every furnace chunk: a
+ * key per chunk keeps the chunks' numbers independent. */
+static void rekey(hb_plan *copy, const hb_plan *plan, unsigned long long chunk)
+{
+    copy->huang.rng_key = plan->huang.rng_key ^ (uint32_t)hb_mix64(chunk);
+}
+
+static const hb_preset presets[] = {
+    { "R/analytic", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "R/G-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "R/G-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "R/G-high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "all/mc-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "all/mc-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "all/table-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_TABLE },
+    { "all/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_TABLE },
+};
+
+/* App. A's closed form covers GGX without shadowing on circular fibres. */
+static int analytic(const hb_material *m, const hb_options *o)
+{
+    return m->ndf == HB_NDF_GGX && o->shadowing == HB_SHADOWING_NONE && m->eccentricity == 0.0 &&
+           o->r_integration != HB_R_INTEGRATION_NUMERIC;
+}
+
+/* The bench times R alone ("R/...") and R + TT + TRT ("all/..."). */
+static int preset_applies(const hb_preset *p, const hb_material *m, const hb_options *o, unsigned lobe_mask)
+{
+    if (strncmp(p->name, "all/", 4) == 0)
+        return lobe_mask == 7u;
+    return lobe_mask == 1u << HB_LOBE_R && (strcmp(p->name, "R/analytic") == 0) == analytic(m, o);
+}
+
+static int preset_is(const hb_preset *p, const hb_material *m, const hb_options *o, unsigned lobe_mask)
+{
+    if (lobe_mask == 1u && analytic(m, o))
+        return 1;
+    return p->quality == o->quality && p->quadrature_order == o->quadrature_order && p->azimuthal == o->azimuthal &&
+           (lobe_mask == 1u || p->tt_trt == o->tt_trt);
+}
+
+const hb_model_ops hb_huang_model = {
+    .name = "huang",
+    .lobes = lobes,
+    .validate = hb_huang_validate,
+    .derive = hb_huang_derive,
+    .release = hb_huang_release,
+    .eval_angles = eval_angles,
+    .eval_vectors = eval_vectors,
+    .sample_dimensions = sample_dimensions,
+    .sample = sample,
+    .pdf = pdf,
+    .table = hb_huang_table_view,
+    .describe = describe,
+    .furnace_rule = furnace_rule,
+    .rekey = rekey,
+    .presets = presets,
+    .preset_count = sizeof presets / sizeof presets[0],
+    .preset_applies = preset_applies,
+    .preset_is = preset_is,
+    .drops_lobes = 0,
+};

@@ -1,0 +1,71 @@
+/* The interface every scattering model implements (docs/architecture.md). Plan creation asks a
+ * model to validate its own options and to derive its constants and tables; the public entry points
+ * evaluate, sample and describe through it; tolerance and budget plans choose among its named
+ * configurations. A model defines one hb_model_ops in src/models/<model>/model.c, and
+ * src/models/models.c lists them. Internal. */
+#ifndef HB_MODELS_MODEL_H
+#define HB_MODELS_MODEL_H
+
+#include <string.h>
+
+#include "plan.h"
+#include "text.h"
+
+/* A named configuration, as the bench names its rows and the calibration its entries. */
+typedef struct hb_preset {
+    const char *name;
+    hb_quality quality;
+    int quadrature_order;
+    hb_azimuthal azimuthal;
+    hb_tt_trt tt_trt;
+} hb_preset;
+
+typedef struct hb_model_ops {
+    const char *name; /* "deon": as the CLI, the bench and the calibration name the model */
+
+    /* Plan creation, after the checks every model shares (src/plan/validate.c). */
+    unsigned (*lobes)(const hb_options *o); /* the lobe mask the options ask for (resolving HB_LOBES_DEFAULT) */
+    hb_status (*validate)(const hb_material *m, const hb_options *o, hb_error *error);
+    /* The plan's constants for plan->material, options and isa; sets plan->kernels to the ISA's
+     * table, or NULL where the plan evaluates with the double reference; builds tables. */
+    hb_status (*derive)(hb_plan *plan, hb_error *error);
+    void (*release)(hb_plan *plan); /* frees what derive allocated */
+
+    /* Evaluation by the plan's kernels (plan->kernels != NULL); invalid samples are counted. */
+    void (*eval_angles)(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid);
+    void (*eval_vectors)(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid);
+    int (*sample_dimensions)(const hb_plan *plan); /* 0: the plan cannot sample */
+    void (*sample)(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid);
+    void (*pdf)(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
+    hb_status (*table)(const hb_plan *plan, hb_table_view *view); /* HB_ERR_UNSUPPORTED: no table */
+
+    /* hb_plan_describe's model paragraph. */
+    void (*describe)(hb_text *t, const hb_plan *plan);
+    /* hb_furnace's rule: the narrowest longitudinal width and the azimuths the midpoint rule needs;
+     * passes > 1 re-keys a Monte-Carlo estimator (rekey, on a copy of the plan) for each chunk. */
+    void (*furnace_rule)(const hb_plan *plan, double *beta_m, int *azimuths, int *passes);
+    void (*rekey)(hb_plan *copy, const hb_plan *plan, unsigned long long chunk);
+
+    /* Tolerance and budget plans (src/plan/select.c): the named configurations; which compute the
+     * options' model (only accuracy and cost differ) for a lobe set; which one plain options are;
+     * whether a tolerance plan may drop lobes it measures as negligible. */
+    const hb_preset *presets;
+    int preset_count;
+    int (*preset_applies)(const hb_preset *p, const hb_material *m, const hb_options *o, unsigned lobes);
+    int (*preset_is)(const hb_preset *p, const hb_material *m, const hb_options *o, unsigned lobes);
+    int drops_lobes;
+} hb_model_ops;
+
+/* A separable model's longitudinal term is one value per sample: copied to the other channels. */
+static inline void hb_spread_channels(size_t n, hb_rgb_soa out)
+{
+    if (out.g != out.r)
+        memcpy(out.g, out.r, n * sizeof(float));
+    if (out.b != out.r)
+        memcpy(out.b, out.r, n * sizeof(float));
+}
+
+/* The model of an hb_model value; NULL if there is none (src/models/models.c). */
+const hb_model_ops *hb_model_ops_of(hb_model model);
+
+#endif

@@ -1,0 +1,22 @@
+/* A growing description (hb_plan_describe): appended to a caller's buffer, truncated to its size,
+ * the full length counted. Internal. */
+#ifndef HB_MODELS_TEXT_H
+#define HB_MODELS_TEXT_H
+
+#include <stddef.h>
+
+typedef struct hb_text {
+    char *out;
+    size_t size, length;
+} hb_text;
+
+void hb_say(hb_text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* "R, TT, TRT" for a lobe mask, "none" for 0. */
+void hb_say_lobes(hb_text *t, unsigned lobes);
+
+/* The name of lobe p (an order, or HB_LOBE_RESIDUAL) and of a quality level. */
+const char *hb_lobe_name(int p);
+const char *hb_quality_name(int quality);
+
+#endif

@@ -1,0 +1,141 @@
+/* The checks every plan passes before its model's own (hb_model_ops.validate): each material
+ * parameter and option in its range, and the option combinations no model has. */
+#include <math.h>
+
+#include "creation.h"
+
+/* Valid ranges. v = beta_m^2 in [1e-4, 10] is where M_p's accuracy is tested. */
+#define BETA_M_MIN 0.01
+#define BETA_M_MAX 3.1622776601683795
+#define BETA_N_MIN 0.02
+#define BETA_N_MAX 3.0
+#define ALPHA_MAX 0.2
+#define LOBE_ALPHA_MAX 0.6 /* three times ALPHA_MAX, written out: 3 * 0.2 rounds above 0.6 */
+#define ETA_MAX 10.0
+#define ROUGHNESS_MIN 1e-3
+#define ROUGHNESS_MAX 1.0
+#define ECCENTRICITY_MAX 0.99
+
+static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi; } /* false for NaN */
+
+static hb_status validate_material(const hb_material *m, hb_error *error)
+{
+    if (!(m->eta > 1.0 && m->eta <= ETA_MAX))
+        return hb_plan_fail(error, HB_ERR_PARAM, "eta = %g must be in (1, %g]", m->eta, ETA_MAX);
+    static const char *const channel[3] = { "r", "g", "b" };
+    for (int c = 0; c < 3; c++)
+        if (!(m->sigma_a[c] >= 0.0 && isfinite(m->sigma_a[c])))
+            return hb_plan_fail(error, HB_ERR_PARAM, "sigma_a.%s = %g must be finite and >= 0", channel[c], m->sigma_a[c]);
+    if (!(m->eumelanin >= 0.0 && isfinite(m->eumelanin)))
+        return hb_plan_fail(error, HB_ERR_PARAM, "eumelanin = %g must be finite and >= 0", m->eumelanin);
+    if (!(m->pheomelanin >= 0.0 && isfinite(m->pheomelanin)))
+        return hb_plan_fail(error, HB_ERR_PARAM, "pheomelanin = %g must be finite and >= 0", m->pheomelanin);
+    if (!in_range(m->beta_m, BETA_M_MIN, BETA_M_MAX))
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %g must be in [%g, %g] (v = beta_m^2 in [1e-4, 10])",
+                    m->beta_m, BETA_M_MIN, BETA_M_MAX);
+    for (int p = 0; p < HB_MAX_LOBES; p++)
+        if (m->lobe_beta_m[p] != 0.0 && !in_range(m->lobe_beta_m[p], BETA_M_MIN, BETA_M_MAX))
+            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_beta_m[%d] = %g must be 0 (derived) or in [%g, %g]", p,
+                        m->lobe_beta_m[p], BETA_M_MIN, BETA_M_MAX);
+    if (!in_range(m->beta_n, BETA_N_MIN, BETA_N_MAX))
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_n = %g must be in [%g, %g]", m->beta_n, BETA_N_MIN, BETA_N_MAX);
+    for (int p = 0; p < HB_MAX_LOBES; p++)
+        if (m->lobe_beta_n[p] != 0.0 && !in_range(m->lobe_beta_n[p], BETA_N_MIN, BETA_N_MAX))
+            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_beta_n[%d] = %g must be 0 (derived) or in [%g, %g]", p,
+                        m->lobe_beta_n[p], BETA_N_MIN, BETA_N_MAX);
+    if (!in_range(m->alpha, -ALPHA_MAX, ALPHA_MAX))
+        return hb_plan_fail(error, HB_ERR_PARAM, "alpha = %g must be in [%g, %g] radians", m->alpha, -ALPHA_MAX, ALPHA_MAX);
+    for (int p = 0; p < HB_MAX_LOBES; p++)
+        if ((m->lobe_alpha_override >> p & 1u) && !in_range(m->lobe_alpha[p], -LOBE_ALPHA_MAX, LOBE_ALPHA_MAX))
+            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_alpha[%d] = %g must be in [%g, %g] radians", p, m->lobe_alpha[p],
+                        -LOBE_ALPHA_MAX, LOBE_ALPHA_MAX);
+    if (m->ndf != HB_NDF_GGX && m->ndf != HB_NDF_BECKMANN)
+        return hb_plan_fail(error, HB_ERR_PARAM, "ndf = %d is neither HB_NDF_GGX nor HB_NDF_BECKMANN", (int)m->ndf);
+    if (!in_range(m->roughness, ROUGHNESS_MIN, ROUGHNESS_MAX))
+        return hb_plan_fail(error, HB_ERR_PARAM, "roughness = %g must be in [%g, %g]", m->roughness, ROUGHNESS_MIN,
+                    ROUGHNESS_MAX);
+    if (!in_range(m->eccentricity, 0.0, ECCENTRICITY_MAX))
+        return hb_plan_fail(error, HB_ERR_PARAM, "eccentricity = %g must be in [0, %g]", m->eccentricity,
+                    ECCENTRICITY_MAX);
+    if (!in_range(m->glint_scale, 0.0, 100.0))
+        return hb_plan_fail(error, HB_ERR_PARAM, "glint_scale = %g must be in [0, 100]", m->glint_scale);
+    if (!in_range(m->caustic_width, 1e-3, 1.0))
+        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_width = %g must be in [0.001, 1] radians", m->caustic_width);
+    if (!in_range(m->caustic_fade, 1e-3, 2.0))
+        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_fade = %g must be in [0.001, 2]", m->caustic_fade);
+    if (!in_range(m->caustic_limit, 0.0, 2.0))
+        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_limit = %g must be in [0, 2]", m->caustic_limit);
+    return HB_OK;
+}
+
+/* The options' ranges and the combinations no model has; each model then checks its own. */
+static hb_status validate_options(const hb_options *o, hb_error *error)
+{
+    if (!hb_model_ops_of(o->model))
+        return hb_plan_fail(error, HB_ERR_PARAM, "model = %d is not a model", (int)o->model);
+    if ((unsigned)o->tt_trt > HB_TT_TRT_TABLE)
+        return hb_plan_fail(error, HB_ERR_PARAM, "tt_trt = %d is not a TT/TRT evaluation method", (int)o->tt_trt);
+    if (o->tt_panels < 0 || o->tt_panels > HB_MAX_TT_PANELS || o->tt_panels % 2)
+        return hb_plan_fail(error, HB_ERR_PARAM, "tt_panels = %d must be 0 (from quality) or even, in [2, %d]", o->tt_panels,
+                            HB_MAX_TT_PANELS);
+    if (o->term != HB_TERM_FULL && o->term != HB_TERM_LONGITUDINAL)
+        return hb_plan_fail(error, HB_ERR_PARAM, "term = %d is not a term", (int)o->term);
+    if (o->pmax < 0 || o->pmax >= HB_MAX_LOBES)
+        return hb_plan_fail(error, HB_ERR_PARAM, "pmax = %d must be in [0, %d]", o->pmax, HB_MAX_LOBES - 1);
+    unsigned allowed = (2u << o->pmax) - 1u;
+    if (o->term == HB_TERM_LONGITUDINAL && o->lobes != HB_LOBES_DEFAULT && o->lobes != 1u << HB_LOBE_R)
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the longitudinal term is evaluated for the R lobe only");
+    if (o->term == HB_TERM_FULL && (o->lobes & ~(allowed | 1u << HB_LOBE_RESIDUAL)))
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x asks for an order above pmax = %d", o->lobes, o->pmax);
+    if ((unsigned)o->quality > HB_QUALITY_REFERENCE)
+        return hb_plan_fail(error, HB_ERR_PARAM, "quality = %d is not a quality level", (int)o->quality);
+    if (o->i0 != HB_I0_ABRAMOWITZ && o->i0 != HB_I0_PAPER)
+        return hb_plan_fail(error, HB_ERR_PARAM, "i0 = %d is not an I0 variant", (int)o->i0);
+    if (o->absorption != HB_ABSORPTION_CORRECTED && o->absorption != HB_ABSORPTION_PAPER)
+        return hb_plan_fail(error, HB_ERR_PARAM, "absorption = %d is not an absorption variant", (int)o->absorption);
+    if (o->r_fresnel != HB_R_FRESNEL_HALF_ANGLE && o->r_fresnel != HB_R_FRESNEL_OFFSET)
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_fresnel = %d is not a variant", (int)o->r_fresnel);
+    if (!(o->tolerance == 0.0 || in_range(o->tolerance, 1e-6, 0.5)))
+        return hb_plan_fail(error, HB_ERR_PARAM, "tolerance = %g must be 0 (none) or in [1e-6, 0.5]", o->tolerance);
+    if (!(o->budget_ns == 0.0 || in_range(o->budget_ns, 1e-3, 1e9)))
+        return hb_plan_fail(error, HB_ERR_PARAM, "budget_ns = %g must be 0 (none) or in [0.001, 1e9]", o->budget_ns);
+    if (o->tolerance > 0.0 && o->budget_ns > 0.0)
+        return hb_plan_fail(error, HB_ERR_PARAM, "tolerance and budget_ns exclude each other: a plan meets one or the other");
+    if ((o->tolerance > 0.0 || o->budget_ns > 0.0) && (o->quality == HB_QUALITY_REFERENCE || o->term != HB_TERM_FULL))
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "a tolerance or budget plan chooses among the float configurations of "
+                    "the full model: not with the reference quality or the longitudinal term");
+    if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE && o->azimuthal != HB_AZIMUTHAL_TABLE)
+        return hb_plan_fail(error, HB_ERR_PARAM, "azimuthal = %d is not a variant", (int)o->azimuthal);
+    if (!(o->table_tolerance == 0.0 || in_range(o->table_tolerance, 1e-6, 0.5)))
+        return hb_plan_fail(error, HB_ERR_PARAM, "table_tolerance = %g must be 0 (from quality) or in [1e-6, 0.5]",
+                    o->table_tolerance);
+    if (o->quadrature_order < 0 || o->quadrature_order > HB_MAX_QUADRATURE_ORDER)
+        return hb_plan_fail(error, HB_ERR_PARAM, "quadrature_order = %d must be 0 (from quality) or in [1, %d]",
+                    o->quadrature_order, HB_MAX_QUADRATURE_ORDER);
+    if (o->detector_tolerance != 0.0 && !in_range(o->detector_tolerance, 1e-12, 0.1))
+        return hb_plan_fail(error, HB_ERR_PARAM, "detector_tolerance = %g must be 0 (from quality) or in [1e-12, 0.1]",
+                    o->detector_tolerance);
+    if ((unsigned)o->isa >= HB_ISA_COUNT)
+        return hb_plan_fail(error, HB_ERR_PARAM, "isa = %d is not an instruction set", (int)o->isa);
+    if (o->shadowing != HB_SHADOWING_SMITH && o->shadowing != HB_SHADOWING_NONE)
+        return hb_plan_fail(error, HB_ERR_PARAM, "shadowing = %d is not a shadowing variant", (int)o->shadowing);
+    if ((unsigned)o->r_integration > HB_R_INTEGRATION_NUMERIC)
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_integration = %d is not an integration method", (int)o->r_integration);
+    if (o->r_panels < 0 || o->r_panels > HB_MAX_R_PANELS || o->r_panels % 2)
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_panels = %d must be 0 (from quality) or even, in [2, %d]", o->r_panels,
+                    HB_MAX_R_PANELS);
+    if (!(o->r_step == 0.0 || in_range(o->r_step, 1e-3, 10.0)))
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_step = %g must be 0 (peak-following panels) or in [0.001, 10]",
+                    o->r_step);
+    if (o->r_step > 0.0 && o->r_panels > 0)
+        return hb_plan_fail(error, HB_ERR_PARAM, "r_step and r_panels exclude each other: the step fixes the panels");
+    return HB_OK;
+}
+
+hb_status hb_plan_validate(const hb_material *m, const hb_options *o, hb_error *error)
+{
+    hb_status st = validate_material(m, error);
+    if (st == HB_OK)
+        st = validate_options(o, error);
+    return st == HB_OK ? hb_model_ops_of(o->model)->validate(m, o, error) : st;
+}
