@@ -32,8 +32,11 @@ enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
 #define HB_ARCH_NAME "a CPU"
 #endif
 
-/* What a row times: hb_eval_angles, hb_sample_angles or hb_pdf_angles. */
-typedef enum bench_op { OP_EVAL, OP_SAMPLE, OP_PDF } bench_op;
+/* What a row times: hb_eval_angles, hb_sample_angles or hb_pdf_angles, or their near-field forms
+ * (hb_eval_near, hb_sample_near, hb_pdf_near) at each sample's h. */
+typedef enum bench_op { OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR } bench_op;
+
+static int op_is(bench_op op, bench_op far) { return op == far || op == far + OP_EVAL_NEAR; }
 
 typedef struct row {
     const char *model, *term, *variant;
@@ -55,7 +58,7 @@ static int compare_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static float theta_i[BATCH], phi_i[BATCH], theta_o[BATCH], phi_o[BATCH];
+static float theta_i[BATCH], phi_i[BATCH], theta_o[BATCH], phi_o[BATCH], offset_h[BATCH];
 static float out[3][BATCH], ref[3][BATCH];
 static float uniforms[HB_SAMPLE_DIMENSIONS][BATCH], sampled_theta[BATCH], sampled_phi[BATCH], sampled_pdf[BATCH];
 
@@ -64,14 +67,23 @@ static float uniforms[HB_SAMPLE_DIMENSIONS][BATCH], sampled_theta[BATCH], sample
 static void run_op(const hb_plan *plan, bench_op op)
 {
     hb_angles_soa in = { theta_i, phi_i, theta_o, phi_o };
+    hb_near_soa near = { theta_i, phi_i, theta_o, phi_o, offset_h };
+    hb_sample_out sampled = { sampled_theta, sampled_phi, sampled_pdf, { out[0], out[1], out[2] } };
     if (op == OP_EVAL) {
         hb_eval_angles(plan, BATCH, in, (hb_rgb_soa){ out[0], out[1], out[2] }, NULL);
+    } else if (op == OP_EVAL_NEAR) {
+        hb_eval_near(plan, BATCH, near, (hb_rgb_soa){ out[0], out[1], out[2] }, NULL);
     } else if (op == OP_SAMPLE) {
         hb_sample_in sample_in = { theta_o, phi_o, { uniforms[0], uniforms[1], uniforms[2], uniforms[3], uniforms[4], uniforms[5], uniforms[6], uniforms[7] } };
-        hb_sample_angles(plan, BATCH, sample_in,
-                         (hb_sample_out){ sampled_theta, sampled_phi, sampled_pdf, { out[0], out[1], out[2] } }, NULL);
+        hb_sample_angles(plan, BATCH, sample_in, sampled, NULL);
+    } else if (op == OP_SAMPLE_NEAR) {
+        hb_sample_near_in sample_in = { theta_o, phi_o, offset_h, { uniforms[0], uniforms[1], uniforms[2], uniforms[3], uniforms[4], uniforms[5], uniforms[6], uniforms[7] } };
+        hb_sample_near(plan, BATCH, sample_in, sampled, NULL);
     } else {
-        hb_pdf_angles(plan, BATCH, in, out[0], NULL);
+        if (op == OP_PDF_NEAR)
+            hb_pdf_near(plan, BATCH, near, out[0], NULL);
+        else
+            hb_pdf_angles(plan, BATCH, in, out[0], NULL);
         memcpy(out[1], out[0], sizeof out[0]);
         memcpy(out[2], out[0], sizeof out[0]);
     }
@@ -87,6 +99,7 @@ static void make_inputs(double v)
         theta_o[k] = k % 2 ? (float)asin(2 * w - 1) : (float)fmax(-1.5707, fmin(1.5707, -theta_i[k] + sqrt(v) * (4 * w - 2)));
         phi_i[k] = (float)(2 * M_PI * u - M_PI);
         phi_o[k] = (float)(2 * M_PI * w - M_PI);
+        offset_h[k] = (float)(2.0 * rand() / RAND_MAX - 1.0);
     }
 }
 
@@ -109,13 +122,17 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, row
     qsort(t, (size_t)repeats, sizeof t[0], compare_double);
     /* HHH22 path weights and eq. 33's pdf are estimates themselves: no reference */
     int traced = o->model == HB_MODEL_HUANG && (o->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)) && op != OP_EVAL;
-    if (op == OP_SAMPLE && !traced) { /* the weight's error: f_ref / pdf at the sampled directions */
+    if (op_is(op, OP_SAMPLE) && !traced) { /* the weight's error: f_ref / pdf at the sampled directions */
         hb_options ro = *o;
         ro.quality = HB_QUALITY_REFERENCE;
         hb_plan *reference;
         hb_plan_create(m, &ro, &reference, NULL);
-        hb_eval_angles(reference, NREF, (hb_angles_soa){ sampled_theta, sampled_phi, theta_o, phi_o },
-                       (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+        hb_rgb_soa f_ref = { ref[0], ref[1], ref[2] };
+        if (op == OP_SAMPLE_NEAR)
+            hb_eval_near(reference, NREF, (hb_near_soa){ sampled_theta, sampled_phi, theta_o, phi_o, offset_h }, f_ref,
+                         NULL);
+        else
+            hb_eval_angles(reference, NREF, (hb_angles_soa){ sampled_theta, sampled_phi, theta_o, phi_o }, f_ref, NULL);
         hb_plan_destroy(reference);
         for (int c = 0; c < 3; c++)
             for (int k = 0; k < NREF; k++)
@@ -277,6 +294,32 @@ static const config configs[] = {
     { "huang", "pdf-all", "balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "HHH22 sampling pdf with TT and TRT, balanced" },
+    /* CBTB16 (pbrt-v4's hair): near-field f at each sample's h per quality (the float and the double
+     * M_p), its sampler and pdf, the far field (the mean over h) per quality, and R alone */
+    { "chiang", "near", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "CBTB16 near field at h, balanced (float M_p)" },
+    { "chiang", "near", "high", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "CBTB16 near field at h, high (double M_p)" },
+    { "chiang", "sample-near", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "CBTB16 sampling at h (direction, pdf and f / pdf), balanced" },
+    { "chiang", "pdf-near", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "CBTB16 sampling pdf at h, balanced" },
+    { "chiang", "far", "fast", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "CBTB16 far field (mean over h), fast" },
+    { "chiang", "far", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "CBTB16 far field (mean over h), balanced" },
+    { "chiang", "far", "high", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "CBTB16 far field (mean over h), high" },
+    { "chiang", "effects", "R", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "effect: CBTB16 near field, R only" },
     /* what each effect costs: the balanced dFH11 row without TRT and above (dark hair), without the tilt,
      * R alone; MJC03 R alone and R + TT; HHH22's R lobe on an elliptical fibre */
     { "deon", "effects", "R+TT", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
@@ -395,13 +438,19 @@ static void reference_of(const hb_material *m, const config *c)
     hb_plan *plan;
     hb_plan_create(m, &o, &plan, NULL);
     /* (a sampling row's reference is made per ISA at its sampled directions, in time_plan) */
-    if (c->op == OP_PDF) {
-        hb_pdf_angles(plan, NREF, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o }, ref[0], NULL);
+    hb_angles_soa in = { theta_i, phi_i, theta_o, phi_o };
+    hb_near_soa near = { theta_i, phi_i, theta_o, phi_o, offset_h };
+    if (op_is(c->op, OP_PDF)) {
+        if (c->op == OP_PDF_NEAR)
+            hb_pdf_near(plan, NREF, near, ref[0], NULL);
+        else
+            hb_pdf_angles(plan, NREF, in, ref[0], NULL);
         memcpy(ref[1], ref[0], sizeof ref[0]);
         memcpy(ref[2], ref[0], sizeof ref[0]);
     } else if (c->op == OP_EVAL) {
-        hb_eval_angles(plan, NREF, (hb_angles_soa){ theta_i, phi_i, theta_o, phi_o },
-                       (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+        hb_eval_angles(plan, NREF, in, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+    } else if (c->op == OP_EVAL_NEAR) {
+        hb_eval_near(plan, NREF, near, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
     }
     hb_plan_destroy(plan);
 }

@@ -23,9 +23,9 @@ extern "C" {
  * appends fields to hb_material and hb_options: a program built against an older header passes its
  * smaller struct_size and the fields it lacks take their defaults. */
 #define HB_VERSION_MAJOR 0
-#define HB_VERSION_MINOR 1
+#define HB_VERSION_MINOR 2
 #define HB_VERSION_PATCH 0
-#define HB_VERSION_STRING "0.1.0"
+#define HB_VERSION_STRING "0.2.0"
 
 /* HB_API marks what the library exports; the shared library exports nothing else. Define
  * HB_STATIC when linking the static library on Windows. */
@@ -64,7 +64,9 @@ typedef struct hb_error {
     char message[256];
 } hb_error;
 
-typedef enum hb_model { HB_MODEL_MARSCHNER, HB_MODEL_DEON, HB_MODEL_HUANG } hb_model;
+/* MJC03, dFH11, HHH22 and CBTB16 (Chiang, Bitterli, Tappan and Burley 2016, as pbrt-v4's HairBxDF;
+ * docs/chiang.md). */
+typedef enum hb_model { HB_MODEL_MARSCHNER, HB_MODEL_DEON, HB_MODEL_HUANG, HB_MODEL_CHIANG } hb_model;
 
 /* Orders p of scattering; a lobe set is a bit mask of (1u << p). HB_LOBE_RESIDUAL stands
  * for every order above the plan's pmax, folded into one lobe (dFH11; docs/deon.md). */
@@ -110,6 +112,11 @@ HB_API void hb_material_default(hb_material *material);
 
 /* sigma_a of the material: sigma_a plus the melanin absorption of dFH11 sec. 6.1. */
 HB_API void hb_material_absorption(const hb_material *material, double sigma_a_rgb[3]);
+
+/* The absorption per unit radius that gives a fibre of CBTB16 azimuthal roughness beta_n in [0, 1]
+ * the multiply-scattered colour rgb (each channel in (0, 1]): CBTB16 eq. 9's fit, as pbrt-v4's
+ * SigmaAFromReflectance. Returns HB_ERR_PARAM (naming the channel) outside those ranges. */
+HB_API hb_status hb_absorption_from_colour(const double rgb[3], double beta_n, double sigma_a_rgb[3], hb_error *error);
 
 /* Speed/accuracy levels: error targets of about 1e-2, 1e-3 and 1e-4 relative to the
  * double reference for N_p (dFH11: the node count follows from beta_n). dFH11's M_p is
@@ -295,6 +302,16 @@ HB_API hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in,
 HB_API hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                           hb_eval_report *report);
 
+/* Near-field evaluation (CBTB16): each sample also gives h in [-1, 1], the signed offset across the
+ * fibre's width at which w_o's ray meets it (docs/chiang.md: h's sign and pbrt's). hb_eval_angles of
+ * the same plan is the far-field f, the mean over h by the plan's quadrature. A sample is invalid
+ * as in hb_eval_angles, or when h is NaN or |h| > 1. Plans of models without a near field return
+ * HB_ERR_UNSUPPORTED. */
+typedef struct hb_near_soa {
+    const float *theta_i, *phi_i, *theta_o, *phi_o, *h;
+} hb_near_soa;
+HB_API hb_status hb_eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, hb_eval_report *report);
+
 /* Importance sampling, for path tracers (docs/sampling.md). Given w_o (toward the viewer) and
  * uniform random numbers, hb_sample_angles draws w_i (toward the light) with a density close
  * to f(w_i, w_o), and returns w_i, its solid-angle pdf and the weight f / pdf per channel (so an
@@ -327,6 +344,17 @@ HB_API int hb_plan_sample_dimensions(const hb_plan *plan); /* 0 when the plan ca
 HB_API hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out,
                            hb_eval_report *report);
 HB_API hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, hb_eval_report *report);
+
+/* Near-field sampling and pdf (CBTB16): as hb_sample_angles and hb_pdf_angles at each sample's
+ * offset h (hb_eval_near); HB_ERR_UNSUPPORTED for plans without a near field. The far-field calls
+ * of the same plan draw h from one more uniform number and return the far-field pdf. */
+typedef struct hb_sample_near_in {
+    const float *theta_o, *phi_o, *h;
+    const float *u[HB_SAMPLE_DIMENSIONS];
+} hb_sample_near_in;
+HB_API hb_status hb_sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out,
+                                hb_eval_report *report);
+HB_API hb_status hb_pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *pdf, hb_eval_report *report);
 
 /* Counter-based uniform numbers in [0, 1) (24 bits): u[d][k] for sample index first + k and
  * dimension d < dimensions, a pure function of (seed, index, d), the same on every machine. */

@@ -1,12 +1,14 @@
 /* Helpers of the sampling tests: see sampling.h. */
+#include <math.h>
 #include <string.h>
 
 #include "sampling.h"
 
 hb_sample_buffers hb_samples;
 
-void hb_test_sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double theta_o, double phi_o,
-                          unsigned long long seed)
+/* The batch at offset h (near field), or far-field where h is NaN. */
+static void sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double theta_o, double phi_o, double h,
+                         unsigned long long seed)
 {
     hb_sample_buffers *b = &hb_samples;
     float *u[HB_SAMPLE_DIMENSIONS];
@@ -16,12 +18,31 @@ void hb_test_sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double 
     for (size_t k = 0; k < n; k++) {
         b->to[k] = (float)theta_o;
         b->po[k] = (float)phi_o;
+        b->h[k] = (float)h;
     }
-    hb_sample_in in = { b->to, b->po, { b->u[0], b->u[1], b->u[2], b->u[3], b->u[4], b->u[5], b->u[6], b->u[7] } };
     hb_sample_out out = { b->ti, b->pi, b->pdf, { b->w[0], b->w[1], b->w[2] } };
     hb_eval_report report;
-    CHECK(t, hb_sample_angles(plan, n, in, out, &report) == HB_OK, "hb_sample_angles failed");
+    if (isnan(h)) {
+        hb_sample_in in = { b->to, b->po, { b->u[0], b->u[1], b->u[2], b->u[3], b->u[4], b->u[5], b->u[6], b->u[7] } };
+        CHECK(t, hb_sample_angles(plan, n, in, out, &report) == HB_OK, "hb_sample_angles failed");
+    } else {
+        hb_sample_near_in in = { b->to, b->po, b->h,
+                                 { b->u[0], b->u[1], b->u[2], b->u[3], b->u[4], b->u[5], b->u[6], b->u[7] } };
+        CHECK(t, hb_sample_near(plan, n, in, out, &report) == HB_OK, "hb_sample_near failed");
+    }
     CHECK(t, report.invalid == 0, "%zu samples reported invalid", report.invalid);
+}
+
+void hb_test_sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double theta_o, double phi_o,
+                          unsigned long long seed)
+{
+    sample_batch(t, plan, n, theta_o, phi_o, NAN, seed);
+}
+
+void hb_test_sample_batch_near(hb_test_ctx *t, const hb_plan *plan, size_t n, double theta_o, double phi_o, double h,
+                               unsigned long long seed)
+{
+    sample_batch(t, plan, n, theta_o, phi_o, h, seed);
 }
 
 unsigned long long hb_test_next_seed(hb_test_ctx *t) { return (unsigned long long)(hb_test_uniform(t) * 0x1p53); }
@@ -61,8 +82,8 @@ static void gauss_rule(int gl, const double **x, const double **w)
  * up to the poles (in sin(theta), a lobe at a pole has a square-root edge), split into sub x sub
  * parts (twice as many each way in the two strips at each pole, where lobes crowd) with a gl x gl
  * rule. One strip of cells at a time through the buffers' scratch. */
-double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, int nt, int np,
-                              int sub_default, int gl, double *prob)
+static double cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, double h, int nt, int np,
+                             int sub_default, int gl, double *prob)
 {
     hb_sample_buffers *b = &hb_samples;
     const double *x, *w;
@@ -83,13 +104,16 @@ double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, d
                     b->pi[n] = (float)(-M_PI + (c * sub + j / gl + 0.5 * (1.0 + x[j % gl])) * dphi);
                     b->to[n] = (float)theta_o;
                     b->po[n] = (float)phi_o;
+                    b->h[n] = (float)h;
                     weight[n] = w[i % gl] * w[j % gl] * cos(theta) * dtheta * dphi / 4.0;
                 }
+        hb_angles_soa far = { b->ti, b->pi, b->to, b->po };
+        hb_near_soa near = { b->ti, b->pi, b->to, b->po, b->h };
+        hb_rgb_soa f = { b->pdf2, b->f[1], b->f[2] };
         if (of_pdf)
-            hb_pdf_angles(plan, n, (hb_angles_soa){ b->ti, b->pi, b->to, b->po }, b->pdf2, NULL);
+            isnan(h) ? hb_pdf_angles(plan, n, far, b->pdf2, NULL) : hb_pdf_near(plan, n, near, b->pdf2, NULL);
         else
-            hb_eval_angles(plan, n, (hb_angles_soa){ b->ti, b->pi, b->to, b->po },
-                           (hb_rgb_soa){ b->pdf2, b->f[1], b->f[2] }, NULL);
+            isnan(h) ? hb_eval_angles(plan, n, far, f, NULL) : hb_eval_near(plan, n, near, f, NULL);
         n = 0;
         for (int c = 0; c < np; c++) {
             double p = 0.0;
@@ -100,6 +124,18 @@ double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, d
         }
     }
     return total;
+}
+
+double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, int nt, int np,
+                              int sub_default, int gl, double *prob)
+{
+    return cell_integrals(plan, of_pdf, theta_o, phi_o, NAN, nt, np, sub_default, gl, prob);
+}
+
+double hb_test_cell_integrals_near(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, double h, int nt,
+                                   int np, int sub_default, int gl, double *prob)
+{
+    return cell_integrals(plan, of_pdf, theta_o, phi_o, h, nt, np, sub_default, gl, prob);
 }
 
 /* Upper tail of the chi-square distribution with k degrees of freedom (Wilson-Hilferty). */

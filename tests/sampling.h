@@ -11,13 +11,17 @@ enum { HB_TEST_MAX_SAMPLES = 200000 };
 typedef struct hb_sample_buffers {
     float to[HB_TEST_MAX_SAMPLES], po[HB_TEST_MAX_SAMPLES], u[HB_SAMPLE_DIMENSIONS][HB_TEST_MAX_SAMPLES];
     float ti[HB_TEST_MAX_SAMPLES], pi[HB_TEST_MAX_SAMPLES], pdf[HB_TEST_MAX_SAMPLES], w[3][HB_TEST_MAX_SAMPLES];
-    float f[3][HB_TEST_MAX_SAMPLES], pdf2[HB_TEST_MAX_SAMPLES];
+    float f[3][HB_TEST_MAX_SAMPLES], pdf2[HB_TEST_MAX_SAMPLES], h[HB_TEST_MAX_SAMPLES];
 } hb_sample_buffers;
 extern hb_sample_buffers hb_samples;
 
 /* n samples for w_o = (theta_o, phi_o) with hb_uniforms(seed); checks none is reported invalid. */
 void hb_test_sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double theta_o, double phi_o,
                           unsigned long long seed);
+
+/* The same at offset h through hb_sample_near (near-field plans). */
+void hb_test_sample_batch_near(hb_test_ctx *t, const hb_plan *plan, size_t n, double theta_o, double phi_o, double h,
+                               unsigned long long seed);
 
 /* A seed for hb_uniforms drawn from the test's own (printed) seed. */
 unsigned long long hb_test_next_seed(hb_test_ctx *t);
@@ -28,6 +32,10 @@ unsigned long long hb_test_next_seed(hb_test_ctx *t);
  * (gl 6 or 8; np * (2 sub gl)^2 <= HB_TEST_MAX_SAMPLES). Returns the sum. */
 double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, int nt, int np, int sub,
                               int gl, double *prob);
+
+/* The same at offset h, of hb_pdf_near or hb_eval_near's first channel. */
+double hb_test_cell_integrals_near(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, double h, int nt,
+                                   int np, int sub, int gl, double *prob);
 
 /* For the batch's first n samples, with hb_pdf_angles at the sampled directions in pdf2 and f in f:
  * the pdf is the sampled one bit for bit, weights and pdfs are finite and >= 0, and the weights are

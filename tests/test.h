@@ -78,6 +78,7 @@ extern const hb_test hb_tests_sample_huang[];
 extern const hb_test hb_tests_huang_internal[];
 extern const hb_test hb_tests_huang_table[];
 extern const hb_test hb_tests_threads[];
+extern const hb_test hb_tests_chiang[];
 extern const hb_test hb_tests_docs[];
 
 #endif

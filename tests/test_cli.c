@@ -147,6 +147,14 @@ static void test_eval_errors(hb_test_ctx *t)
     CHECK(t, r.status == 0 && atof(r.out) > 0.0, "huang reference: %d %s %s", r.status, r.out, r.err);
     run_tool(t, "eval --term longitudinal --isa avx9", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "--isa"), "unknown isa: %d %s", r.status, r.err);
+    /* the near-field model reads h in a fifth column (header included); |h| > 1 is an invalid sample */
+    run_tool(t, "eval --model chiang", "theta_i,phi_i,theta_o,phi_o,h\n0.1,0.2,-0.3,0.4,0.5\n0.1,0.2,-0.3,0.4,1.5\n", &r);
+    CHECK(t, r.status == 0 && atof(r.out) > 0.0 && strstr(r.out, "\n0,0,0\n") && strstr(r.err, "1 invalid sample"),
+          "chiang near field: %d %s %s", r.status, r.out, r.err);
+    run_tool(t, "eval --model chiang", "0.1,0.2,-0.3,0.4\n", &r);
+    CHECK(t, r.status == 1 && strstr(r.err, "phi_o,h"), "chiang without h: %d %s", r.status, r.err);
+    run_tool(t, "eval --model chiang --far", "0.1,0.2,-0.3,0.4\n", &r);
+    CHECK(t, r.status == 0 && atof(r.out) > 0.0, "chiang far field: %d %s %s", r.status, r.out, r.err);
 }
 
 static void test_help(hb_test_ctx *t)

@@ -63,24 +63,35 @@ typedef struct corpus_term {
     hb_shadowing shadowing;
     int analytic;
     double tolerance; /* the path's own stated float tolerance, when above a row's */
+    float h;          /* CBTB16: the near field at this offset */
 } corpus_term;
 
 enum { R_ONLY = 1u << HB_LOBE_R, R_TT_TRT = 7u };
 
 static const corpus_term terms[] = {
-    { "deon", HB_MODEL_DEON, HB_TERM_FULL, HB_LOBES_DEFAULT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0 },
-    { "deon longitudinal", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_LOBES_DEFAULT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0 },
-    { "marschner", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_LOBES_DEFAULT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0 },
+    { "deon", HB_MODEL_DEON, HB_TERM_FULL, HB_LOBES_DEFAULT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0, 0.0f },
+    { "deon longitudinal", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_LOBES_DEFAULT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0, 0.0f },
+    { "marschner", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_LOBES_DEFAULT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0, 0.0f },
     { "marschner longitudinal", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_LOBES_DEFAULT, HB_NDF_GGX,
-      HB_SHADOWING_SMITH, 0, 0.0 },
-    { "huang R", HB_MODEL_HUANG, HB_TERM_FULL, R_ONLY, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0 },
-    { "huang R beckmann", HB_MODEL_HUANG, HB_TERM_FULL, R_ONLY, HB_NDF_BECKMANN, HB_SHADOWING_SMITH, 0, 0.0 },
-    { "huang R analytic", HB_MODEL_HUANG, HB_TERM_FULL, R_ONLY, HB_NDF_GGX, HB_SHADOWING_NONE, 1, 0.0 },
+      HB_SHADOWING_SMITH, 0, 0.0, 0.0f },
+    { "huang R", HB_MODEL_HUANG, HB_TERM_FULL, R_ONLY, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0, 0.0f },
+    { "huang R beckmann", HB_MODEL_HUANG, HB_TERM_FULL, R_ONLY, HB_NDF_BECKMANN, HB_SHADOWING_SMITH, 0, 0.0, 0.0f },
+    { "huang R analytic", HB_MODEL_HUANG, HB_TERM_FULL, R_ONLY, HB_NDF_GGX, HB_SHADOWING_NONE, 1, 0.0, 0.0f },
     /* Beckmann's float visible normal (Newton on Giles' erfinv) is 5e-3 from the double's after two
      * interfaces (test_huang_internal) */
-    { "huang R+TT+TRT", HB_MODEL_HUANG, HB_TERM_FULL, R_TT_TRT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0 },
-    { "huang R+TT+TRT beckmann", HB_MODEL_HUANG, HB_TERM_FULL, R_TT_TRT, HB_NDF_BECKMANN, HB_SHADOWING_SMITH, 0, 5e-3 },
+    { "huang R+TT+TRT", HB_MODEL_HUANG, HB_TERM_FULL, R_TT_TRT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 0.0, 0.0f },
+    { "huang R+TT+TRT beckmann", HB_MODEL_HUANG, HB_TERM_FULL, R_TT_TRT, HB_NDF_BECKMANN, HB_SHADOWING_SMITH, 0, 5e-3, 0.0f },
+    /* CBTB16's near field at the fibre's edge and inside; its float azimuth limits it to 3e-5
+     * (docs/chiang.md) */
+    { "chiang near h 1", HB_MODEL_CHIANG, HB_TERM_FULL, HB_LOBES_DEFAULT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 3e-5, 1.0f },
+    { "chiang near h -0.3", HB_MODEL_CHIANG, HB_TERM_FULL, HB_LOBES_DEFAULT, HB_NDF_GGX, HB_SHADOWING_SMITH, 0, 3e-5,
+      -0.3f },
 };
+
+static int circular_only(const corpus_term *term)
+{
+    return term->model == HB_MODEL_DEON || term->model == HB_MODEL_CHIANG || term->analytic;
+}
 
 /* The row's plan for a term; NULL when the term does not apply (an ellipse for dFH11 or for App. A). */
 static hb_plan *row_plan(const corpus_row *r, const corpus_term *term, unsigned lobes, hb_quality quality, hb_isa isa)
@@ -93,27 +104,35 @@ static hb_plan *row_plan(const corpus_row *r, const corpus_term *term, unsigned 
     m.sigma_a[0] = m.sigma_a[1] = m.sigma_a[2] = r->sigma_a;
     m.beta_m = r->beta_m, m.beta_n = r->beta_n, m.alpha = r->alpha, m.eccentricity = r->eccentricity;
     o.model = term->model, o.term = term->term, o.quality = quality, o.isa = isa, o.lobes = lobes;
+    if (term->model == HB_MODEL_CHIANG) { /* its roughnesses in [0, 1], beta_m from 0.027 (v_TT >= 1e-4) */
+        m.beta_m = fmax(0.027, fmin(r->beta_m, 1.0));
+        m.beta_n = fmin(r->beta_n, 1.0);
+    }
     if (term->model == HB_MODEL_HUANG) {
         m.roughness = fmin(r->beta_m, 1.0);
         m.ndf = term->ndf;
         o.shadowing = term->shadowing;
         o.r_integration = term->analytic ? HB_R_INTEGRATION_ANALYTIC : HB_R_INTEGRATION_AUTO;
     }
-    if (r->eccentricity > 0.0 && (term->model == HB_MODEL_DEON || term->analytic))
+    if (r->eccentricity > 0.0 && circular_only(term))
         return NULL;
     hb_plan *plan = NULL;
     hb_plan_create(&m, &o, &plan, NULL);
     return plan;
 }
 
-/* f of the row's single sample; returns the number of invalid samples, -1 if the plan was refused. */
-static int eval_row(const corpus_row *r, const hb_plan *plan, float f[3])
+/* f of the row's single sample (near-field terms at their h); returns the number of invalid samples,
+ * -1 if the plan was refused. */
+static int eval_row(const corpus_row *r, const corpus_term *term, const hb_plan *plan, float f[3])
 {
     if (!plan)
         return -1;
     hb_eval_report rep;
-    hb_eval_angles(plan, 1, (hb_angles_soa){ &r->theta_i, &r->phi_i, &r->theta_o, &r->phi_o },
-                   (hb_rgb_soa){ &f[0], &f[1], &f[2] }, &rep);
+    hb_rgb_soa out = { &f[0], &f[1], &f[2] };
+    if (term->model == HB_MODEL_CHIANG)
+        hb_eval_near(plan, 1, (hb_near_soa){ &r->theta_i, &r->phi_i, &r->theta_o, &r->phi_o, &term->h }, out, &rep);
+    else
+        hb_eval_angles(plan, 1, (hb_angles_soa){ &r->theta_i, &r->phi_i, &r->theta_o, &r->phi_o }, out, &rep);
     return (int)rep.invalid;
 }
 
@@ -124,7 +143,7 @@ static void reference_row(const corpus_row *r, const corpus_term *term, const hb
     int internal = term->model == HB_MODEL_HUANG && term->lobes != R_ONLY;
     hb_plan *reference = row_plan(r, term, internal ? R_ONLY : term->lobes, HB_QUALITY_REFERENCE, HB_ISA_SCALAR);
     float f[3] = { 0, 0, 0 };
-    eval_row(r, reference, f);
+    eval_row(r, term, reference, f);
     hb_plan_destroy(reference);
     double tt[3] = { 0, 0, 0 }, trt[3] = { 0, 0, 0 };
     if (internal)
@@ -147,9 +166,9 @@ static void test_hard_case_corpus(hb_test_ctx *t)
                 const corpus_row *r = &rows[i];
                 float f[3];
                 hb_plan *plan = row_plan(r, &terms[k], terms[k].lobes, (hb_quality)q, t->isa);
-                if (!plan && r->eccentricity > 0.0 && (terms[k].model == HB_MODEL_DEON || terms[k].analytic))
+                if (!plan && r->eccentricity > 0.0 && circular_only(&terms[k]))
                     continue; /* not this term's fibre */
-                int invalid = eval_row(r, plan, f);
+                int invalid = eval_row(r, &terms[k], plan, f);
                 CHECK(t, invalid >= 0, "line %d (%s): plan refused", r->line, terms[k].name);
                 if (!strcmp(r->expect, "invalid")) {
                     CHECK(t, invalid == 1 && f[0] == 0 && f[1] == 0 && f[2] == 0, "line %d (%s q%d): invalid %d, f %g",

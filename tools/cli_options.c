@@ -9,7 +9,7 @@
 
 const char cli_model_options_help[] =
     "Model options:\n"
-    "  --model deon|marschner|huang   scattering model (default deon)\n"
+    "  --model deon|marschner|huang|chiang  scattering model (default deon; chiang: pbrt-v4's, near-field)\n"
     "  --term full|longitudinal       full f, or only dFH11's M_p of the R lobe (default full)\n"
     "  --lobes R,TT,TRT,TRRT,residual|all  orders p to include (default all: up to --pmax plus residual)\n"
     "  --quality fast|balanced|high|reference   reference runs the double-precision path\n"
@@ -163,7 +163,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     static const char *const r_integrations[] = { "auto", "analytic", "numeric", NULL };
     static const char *const tt_trts[] = { "mc", "reference", "table", NULL };
     static const char *const azimuthals[] = { "quadrature", "table", NULL };
-    static const char *const models[] = { "marschner", "deon", "huang", NULL };
+    static const char *const models[] = { "marschner", "deon", "huang", "chiang", NULL };
     static const char *const terms[] = { "full", "longitudinal", NULL };
     static const char *const qualities[] = { "fast", "balanced", "high", "reference", NULL };
     static const char *const i0s[] = { "abramowitz", "paper", NULL };
@@ -234,7 +234,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     int k = 0;
     const char *expected = NULL;
     if (strcmp(name, "--model") == 0) {
-        if ((k = pick(value, models)) >= 0) o->model = (hb_model)k; else expected = "marschner, deon or huang";
+        if ((k = pick(value, models)) >= 0) o->model = (hb_model)k; else expected = "marschner, deon, huang or chiang";
     } else if (strcmp(name, "--term") == 0) {
         if ((k = pick(value, terms)) >= 0) o->term = (hb_term)k; else expected = "full or longitudinal";
     } else if (strcmp(name, "--quality") == 0) {

@@ -1,4 +1,5 @@
-/* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o from a file or stdin, f_r,f_g,f_b to a file or stdout
+/* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o (near-field models: and h) from a file or stdin,
+ * f_r,f_g,f_b to a file or stdout
  * hairbsdf pdf: the same rows, the sampling pdf of w_i given w_o (docs/sampling.md). */
 #include <errno.h>
 #include <math.h>
@@ -12,33 +13,34 @@
 #define BATCH 1024
 
 typedef struct eval_batch {
-    float in[4][BATCH];
+    float in[5][BATCH];
     float out[3][BATCH];
     size_t count;
 } eval_batch;
 
 /* Whether a row is a valid sample as hb_eval_angles defines it (hairbsdf.h): finite angles,
- * |theta| at most the float pi/2, |phi| at most HB_PHI_LIMIT. */
-static int row_valid(const float row[4])
+ * |theta| at most the float pi/2, |phi| at most HB_PHI_LIMIT, and |h| <= 1 (near field). */
+static int row_valid(const float *row, int columns)
 {
-    for (int c = 0; c < 4; c++)
-        if (!(fabsf(row[c]) <= (c % 2 ? HB_PHI_LIMIT : 1.57079637f)))
+    for (int c = 0; c < columns; c++)
+        if (!(fabsf(row[c]) <= (c == 4 ? 1.0f : c % 2 ? HB_PHI_LIMIT : 1.57079637f)))
             return 0;
     return 1;
 }
 
 /* Evaluates and prints the rows held so far (f, or the pdf) to out; returns the invalid-sample count. */
-static size_t flush(const hb_plan *plan, int pdf, eval_batch *b, FILE *out)
+static size_t flush(const hb_plan *plan, int pdf, int near, eval_batch *b, FILE *out)
 {
     if (!b->count)
         return 0;
     hb_angles_soa in = { b->in[0], b->in[1], b->in[2], b->in[3] };
+    hb_near_soa in_near = { b->in[0], b->in[1], b->in[2], b->in[3], b->in[4] };
     hb_rgb_soa rgb = { b->out[0], b->out[1], b->out[2] };
     hb_eval_report report = { 0 };
     if (pdf)
-        hb_pdf_angles(plan, b->count, in, b->out[0], &report);
+        near ? hb_pdf_near(plan, b->count, in_near, b->out[0], &report) : hb_pdf_angles(plan, b->count, in, b->out[0], &report);
     else
-        hb_eval_angles(plan, b->count, in, rgb, &report);
+        near ? hb_eval_near(plan, b->count, in_near, rgb, &report) : hb_eval_angles(plan, b->count, in, rgb, &report);
     for (size_t k = 0; k < b->count; k++)
         if (pdf)
             fprintf(out, "%.9g\n", b->out[0][k]);
@@ -50,9 +52,10 @@ static size_t flush(const hb_plan *plan, int pdf, eval_batch *b, FILE *out)
 
 static void eval_usage(FILE *to, int pdf)
 {
-    fprintf(to, "usage: hairbsdf %s [options] [--strict] [-o OUTPUT] [INPUT.csv]\n"
-                "Reads theta_i,phi_i,theta_o,phi_o (radians) per line from INPUT.csv or stdin; writes %s\n"
-                "per line to OUTPUT or stdout. An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4)\n"
+    fprintf(to, "usage: hairbsdf %s [options] [--strict] [--far] [-o OUTPUT] [INPUT.csv]\n"
+                "Reads theta_i,phi_i,theta_o,phi_o (radians) per line from INPUT.csv or stdin, and h (the offset in\n"
+                "[-1, 1]) after them for a near-field model (chiang) unless --far (its mean over h); writes %s\n"
+                "per line to OUTPUT or stdout. An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1)\n"
                 "gives %s and is reported with its line; with --strict it is an error.\n%s",
             pdf ? "pdf" : "eval",
             pdf ? "the solid-angle pdf with which 'hairbsdf sample' draws w_i given w_o" : "f_r,f_g,f_b",
@@ -63,7 +66,7 @@ int cmd_eval(int argc, char **argv, int pdf)
 {
     const char *name = pdf ? "hairbsdf pdf" : "hairbsdf eval";
     const char *input_path = NULL, *output_path = NULL;
-    int strict = 0;
+    int strict = 0, far = 0;
     cli_model_args args;
     cli_model_args_default(&args);
     char err[256];
@@ -74,6 +77,10 @@ int cmd_eval(int argc, char **argv, int pdf)
         }
         if (strcmp(argv[i], "--strict") == 0) {
             strict = 1;
+            continue;
+        }
+        if (strcmp(argv[i], "--far") == 0) {
+            far = 1;
             continue;
         }
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
@@ -105,6 +112,9 @@ int cmd_eval(int argc, char **argv, int pdf)
         hb_plan_destroy(plan);
         return 2;
     }
+    /* a model with a near field answers a call of no samples */
+    int near = !far && hb_eval_near(plan, 0, (hb_near_soa){ 0 }, (hb_rgb_soa){ 0 }, NULL) == HB_OK;
+    int columns = near ? 5 : 4;
     FILE *in = input_path ? fopen(input_path, "r") : stdin;
     FILE *out = output_path ? fopen(output_path, "w") : stdout;
     if (!in || !out) {
@@ -127,43 +137,43 @@ int cmd_eval(int argc, char **argv, int pdf)
         char *s = csv_trim(lineno == 1 ? csv_skip_bom(line) : line);
         if (!*s && !nul)
             continue;
-        float row[4];
+        float row[5];
         char copy[512];
         snprintf(copy, sizeof copy, "%s", s);
-        if (!nul && !seen_content && csv_is_header(s)) {
+        if (!nul && !seen_content && csv_is_header(s, columns)) {
             seen_content = 1;
             continue;
         }
-        int parsed = !nul && csv_parse_row(s, row);
-        if (parsed && !row_valid(row)) {
+        int parsed = !nul && csv_parse_row(s, row, columns);
+        if (parsed && !row_valid(row, columns)) {
             first_invalid = first_invalid ? first_invalid : lineno;
             if (strict) {
-                flush(plan, pdf, &batch, out);
-                fprintf(stderr, "%s: line %ld: invalid sample '%s' (NaN or Inf angle, |theta| > pi/2 or |phi| > 1e4)\n",
+                flush(plan, pdf, near, &batch, out);
+                fprintf(stderr, "%s: line %ld: invalid sample '%s' (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4 or |h| > 1)\n",
                         name, lineno, copy);
                 status = 1;
                 break;
             }
         }
         if (!parsed) {
-            invalid += flush(plan, pdf, &batch, out);
-            fprintf(stderr, "%s: line %ld: malformed row '%s'%s (want theta_i,phi_i,theta_o,phi_o%s)\n", name, lineno,
-                    copy, nul ? " with a NUL byte" : "", lineno == 1 ? ", or that header" : "");
+            invalid += flush(plan, pdf, near, &batch, out);
+            fprintf(stderr, "%s: line %ld: malformed row '%s'%s (want theta_i,phi_i,theta_o,phi_o%s%s)\n", name, lineno,
+                    copy, nul ? " with a NUL byte" : "", near ? ",h" : "", lineno == 1 ? ", or that header" : "");
             status = 1;
             break;
         }
         seen_content = 1;
-        for (int c = 0; c < 4; c++)
+        for (int c = 0; c < columns; c++)
             batch.in[c][batch.count] = row[c];
         if (++batch.count == BATCH)
-            invalid += flush(plan, pdf, &batch, out);
+            invalid += flush(plan, pdf, near, &batch, out);
     }
     if (!status)
-        invalid += flush(plan, pdf, &batch, out);
+        invalid += flush(plan, pdf, near, &batch, out);
     free(line);
     hb_plan_destroy(plan);
     if (invalid)
-        fprintf(stderr, "%s: %zu invalid sample%s (NaN/Inf angle, |theta| > pi/2 or |phi| > 1e4), the first on line %ld, "
+        fprintf(stderr, "%s: %zu invalid sample%s (NaN/Inf angle, |theta| > pi/2, |phi| > 1e4 or |h| > 1), the first on line %ld, "
                         "written as %s\n",
                 name, invalid, invalid == 1 ? "" : "s", first_invalid, pdf ? "0" : "0,0,0");
     int read_failed = ferror(in);

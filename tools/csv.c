@@ -17,12 +17,12 @@ char *csv_trim(char *s)
 }
 
 /* Four comma-separated numbers (nan and inf parse, and become invalid samples). */
-int csv_parse_row(char *line, float row[4])
+int csv_parse_row(char *line, float *row, int columns)
 {
     char *field = line;
-    for (int c = 0; c < 4; c++) {
+    for (int c = 0; c < columns; c++) {
         char *comma = strchr(field, ',');
-        if ((c < 3) != (comma != NULL))
+        if ((c < columns - 1) != (comma != NULL))
             return 0;
         if (comma)
             *comma = '\0';
@@ -38,12 +38,12 @@ int csv_parse_row(char *line, float row[4])
     return 1;
 }
 
-/* theta_i,phi_i,theta_o,phi_o, each name trimmed of white space. */
-int csv_is_header(const char *line)
+/* theta_i,phi_i,theta_o,phi_o (and h), each name trimmed of white space. */
+int csv_is_header(const char *line, int columns)
 {
-    static const char *const names[4] = { "theta_i", "phi_i", "theta_o", "phi_o" };
+    static const char *const names[5] = { "theta_i", "phi_i", "theta_o", "phi_o", "h" };
     const char *field = line;
-    for (int c = 0; c < 4; c++) {
+    for (int c = 0; c < columns; c++) {
         while (isspace((unsigned char)*field))
             field++;
         size_t length = strlen(names[c]);
@@ -52,7 +52,7 @@ int csv_is_header(const char *line)
         field += length;
         while (isspace((unsigned char)*field))
             field++;
-        if (*field != (c < 3 ? ',' : '\0'))
+        if (*field != (c < columns - 1 ? ',' : '\0'))
             return 0;
         field++;
     }

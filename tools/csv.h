@@ -5,12 +5,13 @@
 /* Strips leading and trailing white space in place. */
 char *csv_trim(char *s);
 
-/* theta_i,phi_i,theta_o,phi_o: four comma-separated numbers (nan and inf parse, and become
- * invalid samples). Modifies line. Returns 0 for a malformed row. */
-int csv_parse_row(char *line, float row[4]);
+/* theta_i,phi_i,theta_o,phi_o (columns 4) or theta_i,phi_i,theta_o,phi_o,h (columns 5, a near-field
+ * model): comma-separated numbers (nan and inf parse, and become invalid samples). Modifies line.
+ * Returns 0 for a malformed row. */
+int csv_parse_row(char *line, float *row, int columns);
 
-/* Whether a (trimmed) line is the header theta_i,phi_i,theta_o,phi_o. */
-int csv_is_header(const char *line);
+/* Whether a (trimmed) line is the header theta_i,phi_i,theta_o,phi_o (and h for columns 5). */
+int csv_is_header(const char *line, int columns);
 
 /* Past a UTF-8 byte-order mark at the start of a line (what some editors write first). */
 char *csv_skip_bom(char *line);

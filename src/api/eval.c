@@ -1,5 +1,7 @@
 /* Public batch entry points: argument checks, then the plan's model (its kernels) or, for a
  * reference plan, the double-precision path. No allocation. */
+#include <math.h>
+
 #include "models/model.h"
 #include "ref/reference.h"
 
@@ -46,6 +48,39 @@ hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_r
         hb_model_ops_of(plan->options.model)->eval_vectors(plan, n, in, out, &invalid);
     else
         invalid = hb_ref_eval_vectors(plan, n, in, out);
+    report_invalid(report, invalid);
+    return HB_OK;
+}
+
+static int near_valid(const hb_near_soa *in, size_t k)
+{
+    return fabsf(in->theta_i[k]) <= 1.57079637f && fabsf(in->theta_o[k]) <= 1.57079637f &&
+           fabsf(in->phi_i[k]) <= HB_PHI_LIMIT && fabsf(in->phi_o[k]) <= HB_PHI_LIMIT && fabsf(in->h[k]) <= 1.0f;
+}
+
+hb_status hb_eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, hb_eval_report *report)
+{
+    hb_status st = check_out(plan, n, out);
+    if (st != HB_OK)
+        return st;
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    if (!ops->eval_near)
+        return HB_ERR_UNSUPPORTED;
+    if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o || !in.h))
+        return HB_ERR_NULL;
+    size_t invalid = 0;
+    if (plan->kernels) {
+        ops->eval_near(plan, n, in, out, &invalid);
+    } else {
+        for (size_t k = 0; k < n; k++) {
+            double f[3] = { 0.0, 0.0, 0.0 };
+            if (near_valid(&in, k))
+                hb_ref_eval_near_pair(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k], in.h[k], f);
+            else
+                invalid++;
+            out.r[k] = (float)f[0], out.g[k] = (float)f[1], out.b[k] = (float)f[2];
+        }
+    }
     report_invalid(report, invalid);
     return HB_OK;
 }

@@ -18,24 +18,33 @@ static int angles_valid(float theta, float phi)
     return fabsf(theta) <= 1.57079637f && fabsf(phi) <= HB_PHI_LIMIT; /* false for NaN */
 }
 
-/* The reference path, one sample at a time. */
-static size_t sample_ref(const hb_plan *plan, int dims, size_t n, hb_sample_in in, hb_sample_out out)
+/* The reference path, one sample at a time; h: each sample's offset (near field), or NULL. */
+static size_t sample_ref(const hb_plan *plan, int dims, size_t n, const float *theta_o, const float *phi_o,
+                         const float *h, const float *const *uniforms, hb_sample_out out)
 {
     size_t invalid = 0;
     for (size_t k = 0; k < n; k++) {
         double u[HB_SAMPLE_DIMENSIONS], theta_i = 0.0, phi_i = 0.0, f[3] = { 0.0, 0.0, 0.0 }, pdf = 0.0;
-        int ok = angles_valid(in.theta_o[k], in.phi_o[k]);
+        int ok = angles_valid(theta_o[k], phi_o[k]) && (!h || fabsf(h[k]) <= 1.0f);
         for (int d = 0; d < dims; d++) {
-            u[d] = in.u[d][k];
+            u[d] = uniforms[d][k];
             ok = ok && u[d] >= 0.0 && u[d] <= 1.0;
         }
         if (ok) {
-            hb_ref_sample(plan, in.theta_o[k], in.phi_o[k], u, &theta_i, &phi_i);
+            if (h)
+                hb_ref_sample_near(plan, theta_o[k], phi_o[k], h[k], u, &theta_i, &phi_i);
+            else
+                hb_ref_sample(plan, theta_o[k], phi_o[k], u, &theta_i, &phi_i);
             float ti = (float)theta_i, pi = (float)phi_i; /* f and pdf where the caller will see the sample */
             theta_i = ti;
             phi_i = pi;
-            pdf = hb_ref_pdf(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k]);
-            hb_ref_eval_pair(plan, theta_i, phi_i, in.theta_o[k], in.phi_o[k], f);
+            if (h) {
+                pdf = hb_ref_pdf_near(plan, theta_i, phi_i, theta_o[k], phi_o[k], h[k]);
+                hb_ref_eval_near_pair(plan, theta_i, phi_i, theta_o[k], phi_o[k], h[k], f);
+            } else {
+                pdf = hb_ref_pdf(plan, theta_i, phi_i, theta_o[k], phi_o[k]);
+                hb_ref_eval_pair(plan, theta_i, phi_i, theta_o[k], phi_o[k], f);
+            }
         } else {
             invalid++;
         }
@@ -49,6 +58,43 @@ static size_t sample_ref(const hb_plan *plan, int dims, size_t n, hb_sample_in i
     return invalid;
 }
 
+/* The pointers a sampling call of n > 0 samples reads and writes (h: the near field's, or NULL). */
+static hb_status sample_arguments(size_t n, const float *theta_o, const float *phi_o, int near, const float *h,
+                                  const float *const *u, int dims, hb_sample_out out)
+{
+    if (!n)
+        return HB_OK;
+    if (!theta_o || !phi_o || (near && !h) || !out.theta_i || !out.phi_i || !out.pdf || !out.weight.r ||
+        !out.weight.g || !out.weight.b)
+        return HB_ERR_NULL;
+    for (int d = 0; d < dims; d++)
+        if (!u[d])
+            return HB_ERR_NULL;
+    return HB_OK;
+}
+
+static void report_invalid(hb_eval_report *report, size_t invalid)
+{
+    if (report)
+        report->invalid = invalid;
+}
+
+/* The reference pdf, one sample at a time; h: each sample's offset (near field), or NULL. */
+static size_t pdf_ref(const hb_plan *plan, size_t n, const float *theta_i, const float *phi_i, const float *theta_o,
+                      const float *phi_o, const float *h, float *pdf)
+{
+    size_t invalid = 0;
+    for (size_t k = 0; k < n; k++) {
+        int ok = angles_valid(theta_i[k], phi_i[k]) && angles_valid(theta_o[k], phi_o[k]) && (!h || fabsf(h[k]) <= 1.0f);
+        double p = !ok ? 0.0
+                 : h   ? hb_ref_pdf_near(plan, theta_i[k], phi_i[k], theta_o[k], phi_o[k], h[k])
+                       : hb_ref_pdf(plan, theta_i[k], phi_i[k], theta_o[k], phi_o[k]);
+        pdf[k] = (float)p;
+        invalid += !ok;
+    }
+    return invalid;
+}
+
 hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, hb_eval_report *report)
 {
     if (!plan)
@@ -56,21 +102,15 @@ hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sa
     int dims = hb_plan_sample_dimensions(plan);
     if (dims == 0)
         return HB_ERR_UNSUPPORTED;
-    if (n) {
-        if (!in.theta_o || !in.phi_o || !out.theta_i || !out.phi_i || !out.pdf || !out.weight.r || !out.weight.g ||
-            !out.weight.b)
-            return HB_ERR_NULL;
-        for (int d = 0; d < dims; d++)
-            if (!in.u[d])
-                return HB_ERR_NULL;
-    }
+    hb_status st = sample_arguments(n, in.theta_o, in.phi_o, 0, NULL, in.u, dims, out);
+    if (st != HB_OK)
+        return st;
     size_t invalid = 0;
     if (!plan->kernels)
-        invalid = sample_ref(plan, dims, n, in, out);
+        invalid = sample_ref(plan, dims, n, in.theta_o, in.phi_o, NULL, in.u, out);
     else
         hb_model_ops_of(plan->options.model)->sample(plan, n, in, out, &invalid);
-    if (report)
-        report->invalid = invalid;
+    report_invalid(report, invalid);
     return HB_OK;
 }
 
@@ -83,17 +123,54 @@ hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *
     if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o || !pdf))
         return HB_ERR_NULL;
     size_t invalid = 0;
-    if (!plan->kernels) {
-        for (size_t k = 0; k < n; k++) {
-            int ok = angles_valid(in.theta_i[k], in.phi_i[k]) && angles_valid(in.theta_o[k], in.phi_o[k]);
-            pdf[k] = ok ? (float)hb_ref_pdf(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k]) : 0.0f;
-            invalid += !ok;
-        }
-    } else {
+    if (!plan->kernels)
+        invalid = pdf_ref(plan, n, in.theta_i, in.phi_i, in.theta_o, in.phi_o, NULL, pdf);
+    else
         hb_model_ops_of(plan->options.model)->pdf(plan, n, in, pdf, &invalid);
-    }
-    if (report)
-        report->invalid = invalid;
+    report_invalid(report, invalid);
+    return HB_OK;
+}
+
+/* The near field's number count: the far-field sampler's less the one it turns into h. */
+static int near_dimensions(const hb_plan *plan)
+{
+    return plan && hb_model_ops_of(plan->options.model)->sample_near ? hb_plan_sample_dimensions(plan) - 1 : 0;
+}
+
+hb_status hb_sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out,
+                         hb_eval_report *report)
+{
+    if (!plan)
+        return HB_ERR_NULL;
+    int dims = near_dimensions(plan);
+    if (dims <= 0)
+        return HB_ERR_UNSUPPORTED;
+    hb_status st = sample_arguments(n, in.theta_o, in.phi_o, 1, in.h, in.u, dims, out);
+    if (st != HB_OK)
+        return st;
+    size_t invalid = 0;
+    if (!plan->kernels)
+        invalid = sample_ref(plan, dims, n, in.theta_o, in.phi_o, in.h, in.u, out);
+    else
+        hb_model_ops_of(plan->options.model)->sample_near(plan, n, in, out, &invalid);
+    report_invalid(report, invalid);
+    return HB_OK;
+}
+
+hb_status hb_pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *pdf, hb_eval_report *report)
+{
+    if (!plan)
+        return HB_ERR_NULL;
+    if (near_dimensions(plan) <= 0)
+        return HB_ERR_UNSUPPORTED;
+    if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o || !in.h || !pdf))
+        return HB_ERR_NULL;
+    size_t invalid = 0;
+    if (!plan->kernels)
+        invalid = pdf_ref(plan, n, in.theta_i, in.phi_i, in.theta_o, in.phi_o, in.h, pdf);
+    else
+        hb_model_ops_of(plan->options.model)->pdf_near(plan, n, in, pdf, &invalid);
+    report_invalid(report, invalid);
     return HB_OK;
 }
 

@@ -38,6 +38,11 @@ typedef struct hb_model_ops {
     void (*sample)(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid);
     void (*pdf)(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
     hb_status (*table)(const hb_plan *plan, hb_table_view *view); /* HB_ERR_UNSUPPORTED: no table */
+    /* Near-field models: the same at each sample's offset h (plan->kernels != NULL); NULL when the
+     * model has no near field. */
+    void (*eval_near)(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);
+    void (*sample_near)(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid);
+    void (*pdf_near)(const hb_plan *plan, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
 
     /* hb_plan_describe's model paragraph. */
     void (*describe)(hb_text *t, const hb_plan *plan);

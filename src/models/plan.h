@@ -5,6 +5,7 @@
 #define HB_MODELS_PLAN_H
 
 #include "hairbsdf.h"
+#include "models/chiang/constants.h"
 #include "models/deon/constants.h"
 #include "models/huang/constants.h"
 #include "models/marschner/constants.h"
@@ -46,6 +47,11 @@ struct hb_plan {
     double huang_tilt;  /* the mesonormal inclination tau (eq. 39) */
     hb_huang huang;
     float *huang_table; /* owns huang.table.values (HB_TT_TRT_TABLE) */
+    /* CBTB16 (src/models/chiang/plan.c) */
+    double chiang_v[HB_CHIANG_TERMS]; /* M_p's variance: R, TT, TRT, residual */
+    double chiang_s;                  /* the logistic scale of N_p */
+    int chiang_far_capped;            /* the far field's rule asked for more than HB_CHIANG_MAX_NODES */
+    hb_chiang chiang;
     hb_selection selection; /* tolerance and budget plans */
 };
 

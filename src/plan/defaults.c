@@ -1,9 +1,9 @@
 /* The public defaults of a material and of options (plan creation fills what an older struct lacks
- * with them), and a material's absorption. */
+ * with them), a material's absorption, and the absorption of a hair colour. */
 #include <math.h>
 #include <string.h>
 
-#include "hairbsdf.h"
+#include "models/plan.h"
 
 void hb_material_default(hb_material *m)
 {
@@ -30,6 +30,25 @@ void hb_material_absorption(const hb_material *m, double out[3])
     static const double pheomelanin_rgb[3] = { 0.187, 0.4, 1.05 };
     for (int c = 0; c < 3; c++)
         out[c] = m->sigma_a[c] + m->eumelanin * eumelanin_rgb[c] + m->pheomelanin * pheomelanin_rgb[c];
+}
+
+hb_status hb_absorption_from_colour(const double rgb[3], double beta_n, double sigma_a[3], hb_error *error)
+{
+    if (!rgb || !sigma_a)
+        return hb_plan_fail(error, HB_ERR_NULL, "rgb and sigma_a_rgb must not be NULL");
+    if (!(beta_n >= 0.0 && beta_n <= 1.0))
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_n = %g must be in [0, 1] (CBTB16's scale)", beta_n);
+    static const char *const channel[3] = { "r", "g", "b" };
+    for (int c = 0; c < 3; c++)
+        if (!(rgb[c] > 0.0 && rgb[c] <= 1.0))
+            return hb_plan_fail(error, HB_ERR_PARAM, "rgb.%s = %g must be in (0, 1]", channel[c], rgb[c]);
+    /* CBTB16's fit of the multiple-scattering colour of a fibre under its azimuthal roughness:
+     * sigma_a = (log(C) / (5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5))^2 */
+    double b = beta_n;
+    double d = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * pow(b, 3) + 5.574 * pow(b, 4) + 0.245 * pow(b, 5);
+    for (int c = 0; c < 3; c++)
+        sigma_a[c] = (log(rgb[c]) / d) * (log(rgb[c]) / d);
+    return HB_OK;
 }
 
 void hb_options_default(hb_options *o)

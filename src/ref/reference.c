@@ -15,6 +15,10 @@ void hb_ref_eval_pair(const hb_plan *plan, double theta_i, double phi_i, double 
         hb_ref_huang(plan, theta_i, phi_i, theta_o, phi_o, f);
         return;
     }
+    if (plan->options.model == HB_MODEL_CHIANG) {
+        hb_ref_chiang_far(plan, theta_i, phi_i, theta_o, phi_o, f, NULL);
+        return;
+    }
     if (plan->options.model == HB_MODEL_MARSCHNER) {
         if (plan->options.term == HB_TERM_LONGITUDINAL)
             f[0] = f[1] = f[2] = hb_ref_marschner_longitudinal(plan->marschner_beta[HB_LOBE_R],
@@ -80,10 +84,31 @@ size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_
     return invalid;
 }
 
+void hb_ref_eval_near_pair(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                           double f[3])
+{
+    hb_ref_chiang_near(plan, theta_i, phi_i, theta_o, phi_o, h, f, NULL);
+}
+
+void hb_ref_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double *u,
+                        double *theta_i, double *phi_i)
+{
+    hb_ref_chiang_sample_near(plan, theta_o, phi_o, h, u, theta_i, phi_i);
+}
+
+double hb_ref_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h)
+{
+    double f[3], pdf;
+    hb_ref_chiang_near(plan, theta_i, phi_i, theta_o, phi_o, h, f, &pdf);
+    return pdf;
+}
+
 void hb_ref_sample(const hb_plan *plan, double theta_o, double phi_o, const double *u, double *theta_i,
                    double *phi_i)
 {
-    if (plan->options.model == HB_MODEL_HUANG)
+    if (plan->options.model == HB_MODEL_CHIANG)
+        hb_ref_chiang_sample_near(plan, theta_o, phi_o, 2.0 * u[HB_CHIANG_NEAR_DIMENSIONS] - 1.0, u, theta_i, phi_i);
+    else if (plan->options.model == HB_MODEL_HUANG)
         hb_ref_huang_sample(plan, theta_o, phi_o, u, theta_i, phi_i);
     else
         hb_ref_deon_sample(plan, theta_o, phi_o, u, theta_i, phi_i);
@@ -91,6 +116,11 @@ void hb_ref_sample(const hb_plan *plan, double theta_o, double phi_o, const doub
 
 double hb_ref_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o)
 {
+    if (plan->options.model == HB_MODEL_CHIANG) {
+        double f[3], pdf;
+        hb_ref_chiang_far(plan, theta_i, phi_i, theta_o, phi_o, f, &pdf);
+        return pdf;
+    }
     return plan->options.model == HB_MODEL_HUANG ? hb_ref_huang_pdf(plan, theta_i, phi_i, theta_o, phi_o)
                                                  : hb_ref_deon_pdf(plan, theta_i, phi_i, theta_o, phi_o);
 }

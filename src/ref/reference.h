@@ -109,6 +109,15 @@ void hb_ref_huang_internal(const hb_plan *plan, double theta_i, double phi_i, do
 #define HB_REF_HUANG_TT_POINTS 32
 #define HB_REF_HUANG_TRT_POINTS 12
 
+/* CBTB16 (chiang_ref.c): f near-field at h and the far field (the mean over h, adaptive), each
+ * with its sampler's pdf (pdf may be NULL); the kernels' sampler in double at h from four numbers. */
+void hb_ref_chiang_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                        double f[3], double *pdf);
+void hb_ref_chiang_far(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                       double f[3], double *pdf);
+void hb_ref_chiang_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double u[4],
+                               double *theta_i, double *phi_i);
+
 /* The plan's term at one direction pair, in double (three channels; src/ref/reference.c). */
 void hb_ref_eval_pair(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
 
@@ -116,7 +125,14 @@ void hb_ref_eval_pair(const hb_plan *plan, double theta_i, double phi_i, double 
 size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out);
 size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out);
 
-/* The plan's sampler and pdf in double (the models that have one: dFH11, HHH22's R lobe). */
+/* Near-field models (CBTB16) at offset h: f, the sampler and its pdf, in double. */
+void hb_ref_eval_near_pair(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                           double f[3]);
+void hb_ref_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double *u,
+                        double *theta_i, double *phi_i);
+double hb_ref_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h);
+
+/* The plan's sampler and pdf in double (the models that have one: dFH11, HHH22's R lobe, CBTB16). */
 void hb_ref_sample(const hb_plan *plan, double theta_o, double phi_o, const double *u, double *theta_i,
                    double *phi_i);
 double hb_ref_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o);

@@ -17,8 +17,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memcpy(buf, data + 1, n);
     buf[n] = '\0';
     if (data[0] & 1) { /* one CSV row */
-        float row[4];
-        csv_parse_row(csv_trim(buf), row);
+        float row[5];
+        csv_parse_row(csv_trim(buf), row, data[0] & 2 ? 5 : 4);
         return 0;
     }
     char *argv[24] = { "eval" }; /* options, one per line, as the eval command reads them */

@@ -1,6 +1,7 @@
 /* libFuzzer: arbitrary bytes as material, options and directions. Plan creation either refuses
  * with a message or succeeds, and every valid sample's f must be finite and >= 0; where the plan
- * samples, sampled directions are in range and pdfs and weights finite and >= 0. */
+ * samples, sampled directions are in range and pdfs and weights finite and >= 0; where it has a
+ * near field, the same at offsets h from the bytes (many outside [-1, 1], which must be counted). */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -19,6 +20,15 @@ static size_t take(const uint8_t **data, size_t *size, void *out, size_t n)
     memcpy(out, *data, k);
     *data += k, *size -= k;
     return k;
+}
+
+/* Every valid sample's f finite and >= 0. */
+static void check_rgb(float f[3][MAX_SAMPLES], size_t n)
+{
+    for (int c = 0; c < 3; c++)
+        for (size_t k = 0; k < n; k++)
+            if (!(isfinite(f[c][k]) && f[c][k] >= 0.0f))
+                abort();
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -84,10 +94,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         if (rep.invalid > n)
             abort();
-        for (int c = 0; c < 3; c++)
-            for (size_t k = 0; k < n; k++)
-                if (!(isfinite(f[c][k]) && f[c][k] >= 0.0f))
-                    abort();
+        check_rgb(f, n);
     }
     if (hb_plan_sample_dimensions(plan) > 0) { /* u from the first two streams (some outside [0, 1]) */
         float u[3][MAX_SAMPLES], ti[MAX_SAMPLES], pi[MAX_SAMPLES], pdf[MAX_SAMPLES];
@@ -111,6 +118,31 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                     abort();
         }
         hb_pdf_angles(plan, n, (hb_angles_soa){ a[0], a[1], a[2], a[3] }, pdf, &rep);
+        for (size_t k = 0; k < n; k++)
+            if (!(isfinite(pdf[k]) && pdf[k] >= 0.0f))
+                abort();
+    }
+    float h[MAX_SAMPLES], pdf[MAX_SAMPLES], ti[MAX_SAMPLES], pi[MAX_SAMPLES];
+    for (size_t k = 0; k < n; k++)
+        h[k] = a[1][k] * a[2][k];
+    hb_eval_report rep;
+    if (hb_eval_near(plan, n, (hb_near_soa){ a[0], a[1], a[2], a[3], h }, (hb_rgb_soa){ f[0], f[1], f[2] }, &rep) ==
+        HB_OK) {
+        if (rep.invalid > n)
+            abort();
+        check_rgb(f, n);
+        float u[MAX_SAMPLES];
+        for (size_t k = 0; k < n; k++)
+            u[k] = a[0][k] - floorf(a[0][k]);
+        hb_sample_near_in in = { a[2], a[3], h, { u, a[1], u, a[0], u, u, u, u } };
+        if (hb_sample_near(plan, n, in, (hb_sample_out){ ti, pi, pdf, { f[0], f[1], f[2] } }, &rep) != HB_OK ||
+            rep.invalid > n)
+            abort();
+        for (size_t k = 0; k < n; k++)
+            if (!(fabsf(ti[k]) <= 1.5707964f && fabsf(pi[k]) <= 3.1415927f && isfinite(pdf[k]) && pdf[k] >= 0.0f &&
+                  isfinite(f[0][k]) && f[0][k] >= 0.0f))
+                abort();
+        hb_pdf_near(plan, n, (hb_near_soa){ a[0], a[1], a[2], a[3], h }, pdf, &rep);
         for (size_t k = 0; k < n; k++)
             if (!(isfinite(pdf[k]) && pdf[k] >= 0.0f))
                 abort();

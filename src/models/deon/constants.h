@@ -26,6 +26,10 @@ typedef struct hb_longitudinal {
     float shift_hi[3], shift_lo[3];
 } hb_longitudinal;
 
+/* dFH11 eq. 7's constants for variance v and shift, in double, and rounded for the float path below
+ * HB_QUALITY_HIGH (src/models/deon/plan.c). */
+void hb_longitudinal_derive(hb_longitudinal *l, double v, double shift, hb_quality quality);
+
 /* dFH11's Gaussian detector D_p (eq. 11), a wrapped Gaussian (a Jacobi theta function),
  * truncated at plan creation to the cheaper of its two series for the tolerance. */
 typedef struct hb_detector {

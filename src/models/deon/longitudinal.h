@@ -246,6 +246,25 @@ HB_INLINE vf longitudinal_deon_vectors(const hb_longitudinal *lobe, const vf wi[
     return longitudinal_deon(lobe, one_minus_cos_sum, x, i0);
 }
 
+/* theta_i drawn from M_p(v, theta_i, theta_o - shift) cos(theta_i) (dFH11 eq. 7 is the projection
+ * of a von Mises-Fisher lobe about the mirror direction; d'Eon et al. 2013): the lobe's polar angle
+ * psi by its inverse CDF, 1 - cos psi = -v log(u1 + (1 - u1) e^(-2/v)) (e2 = e^(-2/v), stable as
+ * v -> 0), its azimuth 2 pi u2, projected on the fibre axis. */
+HB_INLINE vf longitudinal_sample(vf v, vf e2, vf cos_shift, vf sin_shift, vf theta_o, vf u1, vf u2)
+{
+    vf so, co;
+    vf_sincos(theta_o, &so, &co);
+    vf sin_o = vf_fnma(co, sin_shift, vf_mul(so, cos_shift));      /* sin(theta_o - shift) */
+    vf cos_o = vf_abs(vf_fma(co, cos_shift, vf_mul(so, sin_shift))); /* |cos(theta_o - shift)| */
+    vf inner = vf_fma(vf_sub(vf_set1(1.0f), u1), e2, u1);
+    vf one_minus_cos_psi = vf_min(vf_mul(vf_neg(v), vf_log(inner)), vf_set1(2.0f));
+    vf sin_psi = vf_sqrt(vf_max(vf_mul(one_minus_cos_psi, vf_sub(vf_set1(2.0f), one_minus_cos_psi)), vf_set1(0.0f)));
+    vf cos_azimuth = vf_cos(vf_mul(u2, vf_set1(HB_TWO_PI_F)));
+    vf sin_i = vf_fma(vf_mul(sin_psi, cos_azimuth), cos_o,
+                      vf_mul(vf_sub(one_minus_cos_psi, vf_set1(1.0f)), sin_o)); /* mirror: theta = -(theta_o - shift) */
+    return vf_asin(vf_clamp(sin_i, -1.0f, 1.0f));
+}
+
 /* M[p] for every group leader p of plan d at one sample. Each M_p is a chain of some forty dependent
  * operations and the kernels are bound by its latency, not by throughput: the float path's first
  * stage runs for every group before any second stage (I0 and the exponential), so the groups'

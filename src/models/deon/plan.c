@@ -47,8 +47,7 @@ static double lobe_shift(const hb_material *m, int p)
     return p < 3 ? ratio[p] * m->alpha : 0.0;
 }
 
-/* dFH11 eq. 7 constants, in double, and rounded for the float path. */
-static void derive_longitudinal(hb_longitudinal *l, double v, double shift, hb_quality quality)
+void hb_longitudinal_derive(hb_longitudinal *l, double v, double shift, hb_quality quality)
 {
     l->inv_v = 1.0 / v;
     l->log_norm = -log(v) - log(-expm1(-2.0 / v));
@@ -132,7 +131,7 @@ static void derive_constants(hb_plan *plan)
         int q = p == HB_LOBE_RESIDUAL ? o->pmax : p;
         double beta = m->lobe_beta_m[q] > 0.0 ? m->lobe_beta_m[q] : m->beta_m;
         plan->v[p] = beta * beta;
-        derive_longitudinal(&d->longitudinal[p], plan->v[p], p == HB_LOBE_RESIDUAL ? 0.0 : lobe_shift(m, p), o->quality);
+        hb_longitudinal_derive(&d->longitudinal[p], plan->v[p], p == HB_LOBE_RESIDUAL ? 0.0 : lobe_shift(m, p), o->quality);
     }
     double tol = o->detector_tolerance > 0.0 ? o->detector_tolerance : quality_levels[o->quality].detector_tolerance;
     for (int p = 0; p < HB_MAX_LOBES; p++) {

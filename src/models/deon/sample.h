@@ -61,18 +61,7 @@ HB_INLINE vf deon_sample_theta(const hb_deon *d, const vf c[HB_MAX_LOBES + 1], v
         sin_shift = vf_select(take, vf_set1((float)l->sin_shift), sin_shift);
         cumulative = vf_add(cumulative, c[p]);
     }
-    vf so, co;
-    vf_sincos(theta_o, &so, &co);
-    vf sin_o = vf_fnma(co, sin_shift, vf_mul(so, cos_shift));      /* sin(theta_o - shift) */
-    vf cos_o = vf_abs(vf_fma(co, cos_shift, vf_mul(so, sin_shift))); /* |cos(theta_o - shift)| */
-    /* the vMF polar angle about the mirror direction (inverse CDF, stable for v -> 0) */
-    vf inner = vf_fma(vf_sub(vf_set1(1.0f), u[1]), e2, u[1]);
-    vf one_minus_cos_psi = vf_min(vf_mul(vf_neg(v), vf_log(inner)), vf_set1(2.0f));
-    vf sin_psi = vf_sqrt(vf_max(vf_mul(one_minus_cos_psi, vf_sub(vf_set1(2.0f), one_minus_cos_psi)), vf_set1(0.0f)));
-    vf cos_azimuth = vf_cos(vf_mul(u[2], vf_set1(HB_TWO_PI_F)));
-    vf sin_i = vf_fma(vf_mul(sin_psi, cos_azimuth), cos_o,
-                      vf_mul(vf_sub(one_minus_cos_psi, vf_set1(1.0f)), sin_o)); /* mirror: theta = -(theta_o - shift) */
-    return vf_asin(vf_clamp(sin_i, -1.0f, 1.0f));
+    return longitudinal_sample(v, e2, cos_shift, sin_shift, theta_o, u[1], u[2]);
 }
 
 /* Steps 2 and 3: phi = phi_o - phi_i given theta_i. */

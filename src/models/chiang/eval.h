@@ -1,0 +1,172 @@
+/* CBTB16 over the SIMD vocabulary (docs/chiang.md): f = sum_p M_p A_p N_p for R, TT, TRT, plus
+ * the residual M_3 A_3 / (2 pi), near-field at the offset h, as pbrt-v4's HairBxDF computes it;
+ * and the lobe-choice density of its sampler, which shares every term but A_p. */
+#ifndef HB_CHIANG_EVAL_H
+#define HB_CHIANG_EVAL_H
+
+#include "constants.h"
+#include "models/deon/longitudinal.h"
+#include "models/fresnel.h"
+
+/* What the attenuations give at one offset h for w_o: A_p per channel (dFH11 eqs. 13, 14 at w_o's
+ * side, as CBTB16 takes them, and its residual lobe), the sampler's lobe probabilities P_p (A_p's channel mean over the plan's
+ * lobes, normalised; with_pdf only) and the exit azimuths Phi(p, h) of the explicit orders. */
+typedef struct chiang_offset {
+    vf A[HB_CHIANG_TERMS][3], P[HB_CHIANG_TERMS], Phi[HB_CHIANG_ORDERS];
+} chiang_offset;
+
+/* cos theta_o and sin theta_o carry w_o; h in [-1, 1]. With eta' cos theta_o = sqrt(eta^2 - sin^2
+ * theta_o) = sqrt(eta^2 - 1 + cos^2 theta_o) (Bravais' index), sin gamma_t = h / eta'
+ * and the path 2 cos gamma_t / cos theta_t (the absorption of HHH22 sec. 3.1.2) need no division by cos theta_o, so w_o at a pole
+ * (cos theta_o = 0: gamma_t = 0) is finite. */
+HB_INLINE void chiang_offset_at(const hb_chiang *c, vf cos_theta_o, vf h, int with_pdf, chiang_offset *o)
+{
+    vf cos_o = vf_abs(cos_theta_o); /* |cos theta_o|, as pbrt takes it: the float pi/2 lies beyond the pole */
+    vf cos_gamma_o = vf_sqrt(vf_max(vf_mul(vf_sub(vf_set1(1.0f), h), vf_add(vf_set1(1.0f), h)), vf_set1(0.0f)));
+    vf F = fresnel_dielectric(vf_mul(cos_o, cos_gamma_o), &c->ior); /* dFH11 eq. 14 at cos theta_o cos gamma_o */
+    vf eta_cos_t = vf_sqrt(vf_fma(cos_o, cos_o, vf_set1(c->ior.eta2_minus_1))); /* eta' cos theta_o = eta cos theta_t */
+    vf inv_eta_cos_t = vf_div(vf_set1(1.0f), eta_cos_t);
+    vf sin_gamma_t = vf_mul(vf_mul(h, cos_o), inv_eta_cos_t);
+    vf sin2_gamma_t = vf_mul(sin_gamma_t, sin_gamma_t);
+    vf cos_gamma_t = vf_sqrt(vf_sub(vf_set1(1.0f), sin2_gamma_t));
+    vf path = vf_mul(vf_mul(vf_set1(2.0f * c->ior.eta), cos_gamma_t), inv_eta_cos_t); /* 2 cos gamma_t / cos theta_t */
+    vf one_minus_F = fresnel_dielectric_complement(vf_mul(cos_o, cos_gamma_o), &c->ior); /* exact to 0 at grazing */
+    vf mean[HB_CHIANG_TERMS] = { vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f) };
+    vf TF[3], den[3], residual_den = vf_set1(1.0f);
+    for (int ch = 0; ch < 3; ch++) {
+        vf t = vf_mul(vf_set1(c->sigma_a_log2e[ch]), path);
+        vf T = vf_min(vf_exp2_neg(t), vf_set1(1.0f)); /* T = e^(-sigma_a path); 2^-0 rounds above 1 */
+        TF[ch] = vf_mul(T, F);
+        o->A[0][ch] = F;                                          /* dFH11 eq. 13: p = 0 */
+        o->A[1][ch] = vf_mul(vf_mul(one_minus_F, one_minus_F), T); /* p = 1: (1 - F)^2 T */
+        o->A[2][ch] = vf_mul(o->A[1][ch], TF[ch]);                 /* p = 2: (1 - F)^2 T^2 F */
+        /* 1 - T F = (1 - F) + F (1 - T), both terms >= 0 and 1 - T without cancellation, so that
+         * (1 - F)^2 / (1 - T F) <= 1 - F however close T F is to 1 (a lossless fibre at grazing
+         * incidence); floored where both vanish, and then A_2 = 0 */
+        vf one_minus_TF = vf_fma(F, vf_one_minus_exp2_neg(t, T), one_minus_F);
+        den[ch] = vf_max(one_minus_TF, vf_set1(1e-12f));
+        residual_den = vf_mul(residual_den, den[ch]);
+    }
+    /* CBTB16's residual: the orders above TRT summed, A_2 T F / (1 - T F); one division for the three
+     * channels (each denominator is in [1e-12, 1], so their product stays normal) */
+    vf inv_residual_den = vf_div(vf_set1(1.0f), residual_den);
+    for (int ch = 0; ch < 3; ch++) {
+        vf others = vf_set1(1.0f);
+        for (int k = 0; k < 3; k++)
+            if (k != ch)
+                others = vf_mul(others, den[k]);
+        o->A[3][ch] = vf_mul(vf_mul(o->A[2][ch], TF[ch]), vf_mul(others, inv_residual_den));
+        for (int p = 0; p < HB_CHIANG_TERMS; p++) {
+            if (!hb_chiang_term_on(c, p))
+                o->A[p][ch] = vf_set1(0.0f);
+            mean[p] = vf_add(mean[p], o->A[p][ch]);
+        }
+    }
+    if (with_pdf) {
+        vf total = vf_add(vf_add(mean[0], mean[1]), vf_add(mean[2], mean[3]));
+        vf inv_total = vf_div(vf_set1(1.0f), vf_max(total, vf_set1(1e-30f)));
+        for (int p = 0; p < HB_CHIANG_TERMS; p++)
+            o->P[p] = vf_mul(mean[p], inv_total);
+    }
+    /* gamma_t by the narrow asin where eta >= 4/3 (|sin gamma_t| <= 1 / eta' <= 3/4) */
+    vf gamma_t = c->asin_narrow ? vf_asin_narrow(sin_gamma_t, sin2_gamma_t) : vf_asin(sin_gamma_t);
+    vf gamma_o = vf_asin(vf_clamp(h, -1.0f, 1.0f));
+    for (int p = 0; p < HB_CHIANG_ORDERS; p++) /* dFH11 eq. 8: Phi(p, h) = 2 p gamma_t - 2 gamma_o + p pi */
+        o->Phi[p] = vf_fma(vf_set1(2.0f * (float)p), gamma_t, vf_fnma(vf_set1(2.0f), gamma_o, vf_set1((float)p * HB_PI_F)));
+}
+
+/* The trimmed logistic N_p(phi) = logistic(phi - Phi_p, s) on [-pi, pi] (CBTB16) of the plan's
+ * explicit orders, each difference wrapped once (fixed work): norm e_p / (1 + e_p)^2 with
+ * e_p = 2^-(|x_p| log2(e) / s), the three denominators (each in [1, 4]) inverted by one division. */
+HB_INLINE void chiang_logistics(const hb_chiang *c, vf phi, const vf Phi[HB_CHIANG_ORDERS], vf N[HB_CHIANG_ORDERS])
+{
+    vf e[HB_CHIANG_ORDERS], den[HB_CHIANG_ORDERS], product = vf_set1(1.0f);
+    for (int p = 0; p < HB_CHIANG_ORDERS; p++) {
+        vf x = vf_abs(wrap_angle(vf_sub(phi, Phi[p])));
+        e[p] = vf_exp2_neg(vf_mul(x, vf_set1(c->inv_s_log2e)));
+        vf one_plus_e = vf_add(vf_set1(1.0f), e[p]);
+        den[p] = hb_chiang_term_on(c, p) ? vf_mul(one_plus_e, one_plus_e) : vf_set1(1.0f);
+        product = vf_mul(product, den[p]);
+    }
+    vf inv = vf_div(vf_set1(c->logistic_norm), product);
+    N[0] = vf_mul(vf_mul(e[0], vf_mul(den[1], den[2])), inv);
+    N[1] = vf_mul(vf_mul(e[1], vf_mul(den[0], den[2])), inv);
+    N[2] = vf_mul(vf_mul(e[2], vf_mul(den[0], den[1])), inv);
+}
+
+/* The four M_p at one direction pair from angles (the residual's is unshifted). On the float path
+ * every lobe's first stage runs before any second stage, so that the four dependent chains overlap
+ * (as dFH11's groups do, longitudinal.h). */
+HB_INLINE void chiang_longitudinal_angles(const hb_chiang *c, vf theta_i, vf theta_o, vf M[HB_CHIANG_TERMS])
+{
+    deon_inclinations in = deon_inclinations_of(theta_i, theta_o);
+    vf cone[HB_CHIANG_TERMS], x[HB_CHIANG_TERMS];
+    for (int p = 0; p < HB_CHIANG_TERMS; p++)
+        if (hb_chiang_term_on(c, p) && c->longitudinal[p].single)
+            longitudinal_cone_angles(&c->longitudinal[p], &in, &cone[p], &x[p]);
+    for (int p = 0; p < HB_CHIANG_TERMS; p++) {
+        const hb_longitudinal *l = &c->longitudinal[p];
+        M[p] = !hb_chiang_term_on(c, p) ? vf_set1(0.0f)
+             : l->single                ? longitudinal_deon_single(l, cone[p], x[p], HB_I0_ABRAMOWITZ)
+                                        : longitudinal_deon_inclinations(l, &in, HB_I0_ABRAMOWITZ);
+    }
+}
+
+HB_INLINE void chiang_longitudinal_vectors(const hb_chiang *c, const vf wi[3], const vf wo[3], vf M[HB_CHIANG_TERMS])
+{
+    for (int p = 0; p < HB_CHIANG_TERMS; p++)
+        M[p] = hb_chiang_term_on(c, p) ? longitudinal_deon_vectors(&c->longitudinal[p], wi, wo, HB_I0_ABRAMOWITZ)
+                                       : vf_set1(0.0f);
+}
+
+#define HB_INV_TWO_PI_F 0.159154943f
+
+/* Adds weight * sum_p M_p A_p N_p to f and weight * sum_p M_p P_p N_p to pdf, at phi = phi_o - phi_i;
+ * with `mirrored`, N_p is taken at phi and -phi (the offsets h and -h of the far field). */
+HB_INLINE void chiang_accumulate(const hb_chiang *c, const chiang_offset *o, const vf M[HB_CHIANG_TERMS], vf phi,
+                                 int mirrored, vf weight, vf f[3], vf *pdf)
+{
+    vf MN[HB_CHIANG_TERMS], N[HB_CHIANG_ORDERS], N_mirror[HB_CHIANG_ORDERS];
+    chiang_logistics(c, phi, o->Phi, N);
+    if (mirrored)
+        chiang_logistics(c, vf_neg(phi), o->Phi, N_mirror);
+    for (int p = 0; p < HB_CHIANG_ORDERS; p++)
+        MN[p] = vf_mul(vf_mul(M[p], mirrored ? vf_add(N[p], N_mirror[p]) : N[p]), weight);
+    /* the residual: N = 1 / (2 pi) (CBTB16), at h and -h alike */
+    MN[3] = vf_mul(vf_mul(M[3], vf_set1(mirrored ? 2.0f * HB_INV_TWO_PI_F : HB_INV_TWO_PI_F)), weight);
+    for (int p = 0; p < HB_CHIANG_TERMS; p++) {
+        if (!hb_chiang_term_on(c, p))
+            continue;
+        for (int ch = 0; ch < 3; ch++)
+            f[ch] = vf_fma(MN[p], o->A[p][ch], f[ch]);
+        if (pdf)
+            *pdf = vf_fma(MN[p], o->P[p], *pdf);
+    }
+}
+
+/* The near field at h: f, and the sampler's pdf when pdf is not NULL. */
+HB_INLINE void chiang_near(const hb_chiang *c, const vf M[HB_CHIANG_TERMS], vf cos_theta_o, vf phi, vf h, vf f[3],
+                           vf *pdf)
+{
+    chiang_offset o;
+    chiang_offset_at(c, cos_theta_o, h, pdf != NULL, &o);
+    f[0] = f[1] = f[2] = vf_set1(0.0f);
+    if (pdf)
+        *pdf = vf_set1(0.0f);
+    chiang_accumulate(c, &o, M, phi, 0, vf_set1(1.0f), f, pdf);
+}
+
+/* The far field: the mean over h in [-1, 1] by the plan's nodes, each pairing h and -h. */
+HB_INLINE void chiang_far(const hb_chiang *c, const vf M[HB_CHIANG_TERMS], vf cos_theta_o, vf phi, vf f[3], vf *pdf)
+{
+    f[0] = f[1] = f[2] = vf_set1(0.0f);
+    if (pdf)
+        *pdf = vf_set1(0.0f);
+    for (int j = 0; j < c->nodes; j++) {
+        chiang_offset o;
+        chiang_offset_at(c, cos_theta_o, vf_set1(c->h[j]), pdf != NULL, &o);
+        chiang_accumulate(c, &o, M, phi, 1, vf_set1(c->weight[j]), f, pdf);
+    }
+}
+
+#endif

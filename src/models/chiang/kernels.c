@@ -1,0 +1,125 @@
+/* CBTB16's batch kernels for one ISA: the Makefile compiles this file once per instruction set
+ * (-DHB_TARGET_<NAME> and that ISA's flags) into hb_<isa>_chiang_kernels. */
+#include "kernel/batch.h"
+#include "kernels.h"
+#include "sample.h"
+
+/* h in [-1, 1]; false for NaN. */
+HB_INLINE vm offset_valid(vf h) { return vf_le(vf_abs(h), vf_set1(1.0f)); }
+
+/* An angle batch with h as a fifth stream; invalid lanes get h = 0. */
+HB_INLINE vm load_near(hb_near_soa in, size_t i, size_t lanes, vf a[5])
+{
+    hb_angles_soa angles = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
+    vm valid = load_angles(angles, i, lanes, a);
+    const float *h = in.h;
+    load_block(&h, 1, i, lanes, 0.0f, a + 4);
+    valid = vm_and(valid, offset_valid(a[4]));
+    for (int k = 0; k < 4; k++)
+        a[k] = vf_keep(valid, a[k]);
+    a[4] = vf_keep(valid, a[4]);
+    return valid;
+}
+
+/* A near-field sampling batch: theta_o, phi_o, the uniform numbers, then h last. */
+HB_INLINE vm load_sample_near(hb_sample_near_in in, size_t i, size_t lanes, vf a[3 + HB_CHIANG_NEAR_DIMENSIONS])
+{
+    hb_sample_in far = { in.theta_o, in.phi_o, { 0 } };
+    for (int d = 0; d < HB_CHIANG_NEAR_DIMENSIONS; d++)
+        far.u[d] = in.u[d];
+    vm valid = load_sample(far, HB_CHIANG_NEAR_DIMENSIONS, i, lanes, a);
+    vf *h = a + 2 + HB_CHIANG_NEAR_DIMENSIONS;
+    load_block(&in.h, 1, i, lanes, 0.0f, h);
+    vm h_valid = offset_valid(*h);
+    for (int k = 0; k < 2 + HB_CHIANG_NEAR_DIMENSIONS; k++)
+        a[k] = vf_select(h_valid, a[k], vf_set1(k < 2 ? 0.0f : 0.5f));
+    *h = vf_keep(vm_and(valid, h_valid), *h);
+    return vm_and(valid, h_valid);
+}
+
+HB_INLINE vm load_sample_far(hb_sample_in in, size_t i, size_t lanes, vf *a)
+{
+    return load_sample(in, HB_CHIANG_NEAR_DIMENSIONS + 1, i, lanes, a);
+}
+
+HB_INLINE vf cos_theta_of(vf theta) { return cos_near_pole(theta, vf_set1(HB_PIO2_LO)); }
+
+static void angles_kernel(const hb_chiang *c, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    vf M[HB_CHIANG_TERMS], f[3];
+    HB_BATCH(load_angles, 4, in, n, invalid,
+             (chiang_longitudinal_angles(c, a[0], a[2], M),
+              chiang_far(c, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, NULL), store_rgb(out, i, lanes, valid, f)));
+}
+
+/* theta_o's cosine and phi = phi_o - phi_i from unit vectors: cos phi and sin phi are
+ * proportional to the planar parts' dot and cross products (docs/conventions.md's frame). */
+HB_INLINE void chiang_vectors_far(const hb_chiang *c, const vf wi[3], const vf wo[3], vf f[3])
+{
+    vf M[HB_CHIANG_TERMS], sin_o, cos_o;
+    chiang_longitudinal_vectors(c, wi, wo, M);
+    inclination(wo[0], wo[1], wo[2], &sin_o, &cos_o);
+    vf phi = vf_atan2(vf_sub(vf_mul(wo[0], wi[2]), vf_mul(wo[2], wi[0])), vf_fma(wo[0], wi[0], vf_mul(wo[2], wi[2])));
+    chiang_far(c, M, cos_o, phi, f, NULL);
+}
+
+static void vectors_kernel(const hb_chiang *c, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    vf f[3];
+    HB_BATCH(load_vectors, 6, in, n, invalid, (chiang_vectors_far(c, a, a + 3, f), store_rgb(out, i, lanes, valid, f)));
+}
+
+static void sample_kernel(const hb_chiang *c, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+{
+    vf theta_i, phi_i, pdf, weight[3];
+    HB_BATCH(load_sample_far, 3 + HB_CHIANG_NEAR_DIMENSIONS, in, n, invalid,
+             (chiang_sample_far(c, a[0], a[1], a + 2, &theta_i, &phi_i, &pdf, weight),
+              store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
+}
+
+static void pdf_kernel(const hb_chiang *c, size_t n, hb_angles_soa in, float *pdf, size_t *invalid)
+{
+    vf M[HB_CHIANG_TERMS], f[3], p;
+    HB_BATCH(load_angles, 4, in, n, invalid,
+             (chiang_longitudinal_angles(c, a[0], a[2], M),
+              chiang_far(c, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, &p),
+              store_block(pdf, i, lanes, vf_keep(valid, p))));
+}
+
+static void near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    vf M[HB_CHIANG_TERMS], f[3];
+    HB_BATCH(load_near, 5, in, n, invalid,
+             (chiang_longitudinal_angles(c, a[0], a[2], M),
+              chiang_near(c, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, NULL),
+              store_rgb(out, i, lanes, valid, f)));
+}
+
+static void sample_near_kernel(const hb_chiang *c, size_t n, hb_sample_near_in in, hb_sample_out out,
+                               size_t *invalid)
+{
+    vf theta_i, phi_i, pdf, weight[3];
+    HB_BATCH(load_sample_near, 3 + HB_CHIANG_NEAR_DIMENSIONS, in, n, invalid,
+             (chiang_sample_near(c, a[0], a[1], a[2 + HB_CHIANG_NEAR_DIMENSIONS], a + 2, &theta_i, &phi_i, &pdf,
+                                 weight),
+              store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
+}
+
+static void pdf_near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, float *pdf, size_t *invalid)
+{
+    vf M[HB_CHIANG_TERMS], f[3], p;
+    HB_BATCH(load_near, 5, in, n, invalid,
+             (chiang_longitudinal_angles(c, a[0], a[2], M),
+              chiang_near(c, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, &p),
+              store_block(pdf, i, lanes, vf_keep(valid, p))));
+}
+
+const hb_chiang_kernels HB_ISA_SYMBOL(chiang_kernels) = {
+    .angles = angles_kernel,
+    .vectors = vectors_kernel,
+    .sample = sample_kernel,
+    .pdf = pdf_kernel,
+    .near = near_kernel,
+    .sample_near = sample_near_kernel,
+    .pdf_near = pdf_near_kernel,
+};

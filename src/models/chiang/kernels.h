@@ -1,0 +1,22 @@
+/* CBTB16's kernels for one ISA: src/models/chiang/kernels.c, compiled once per ISA into
+ * hb_<isa>_chiang_kernels. */
+#ifndef HB_CHIANG_KERNELS_H
+#define HB_CHIANG_KERNELS_H
+
+#include <stddef.h>
+
+#include "constants.h"
+
+typedef struct hb_chiang_kernels {
+    /* far field (the mean over h) */
+    void (*angles)(const hb_chiang *c, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid);
+    void (*vectors)(const hb_chiang *c, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid);
+    void (*sample)(const hb_chiang *c, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid);
+    void (*pdf)(const hb_chiang *c, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
+    /* near field, at each sample's h */
+    void (*near)(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);
+    void (*sample_near)(const hb_chiang *c, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid);
+    void (*pdf_near)(const hb_chiang *c, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
+} hb_chiang_kernels;
+
+#endif

@@ -1,0 +1,127 @@
+/* CBTB16 behind the model interface (models/model.h): near-field kernels at each sample's h, the
+ * far field (the mean over h) through the angle and vector entry points, its sampler, description,
+ * furnace rule and named configurations. */
+#include <math.h>
+
+#include "chiang.h"
+
+static unsigned lobes(const hb_options *o) { return o->lobes == HB_LOBES_DEFAULT ? 7u | 1u << HB_LOBE_RESIDUAL : o->lobes; }
+
+static const hb_chiang_kernels *kernels_of(const hb_plan *plan) { return plan->kernels; }
+
+static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    kernels_of(plan)->angles(&plan->chiang, n, in, out, invalid);
+}
+
+static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    kernels_of(plan)->vectors(&plan->chiang, n, in, out, invalid);
+}
+
+/* The far-field sampler reads one number more than the near field's: h. */
+static int sample_dimensions(const hb_plan *plan)
+{
+    (void)plan;
+    return HB_CHIANG_NEAR_DIMENSIONS + 1;
+}
+
+static void sample(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+{
+    kernels_of(plan)->sample(&plan->chiang, n, in, out, invalid);
+}
+
+static void pdf(const hb_plan *plan, size_t n, hb_angles_soa in, float *out, size_t *invalid)
+{
+    kernels_of(plan)->pdf(&plan->chiang, n, in, out, invalid);
+}
+
+static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    kernels_of(plan)->near(&plan->chiang, n, in, out, invalid);
+}
+
+static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)
+{
+    kernels_of(plan)->sample_near(&plan->chiang, n, in, out, invalid);
+}
+
+static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, size_t *invalid)
+{
+    kernels_of(plan)->pdf_near(&plan->chiang, n, in, out, invalid);
+}
+
+static hb_status table(const hb_plan *plan, hb_table_view *view)
+{
+    (void)plan, (void)view;
+    return HB_ERR_UNSUPPORTED;
+}
+
+static void describe(hb_text *t, const hb_plan *plan)
+{
+    const hb_chiang *c = &plan->chiang;
+    hb_say(t, "model: Chiang et al. 2016 (CBTB16, pbrt-v4's HairBxDF), f = sum_p M_p A_p N_p near-field at h, RGB; "
+              "lobes: ");
+    hb_say_lobes(t, c->lobes);
+    hb_say(t, "\nM_p (dFH11 eq. 7, %s): v_R %.4g, v_TT %.4g, v_TRT and residual %.4g; N_p: trimmed logistic, "
+              "s %.4g\nfar field (hb_eval_angles): order-%d Gauss-Legendre rule in asin(h), %d nodes per sample "
+              "(h >= 0, paired with -h), quality %s\n",
+           c->longitudinal[0].single ? "float" : "double where it matters", plan->chiang_v[0], plan->chiang_v[1],
+           plan->chiang_v[2], plan->chiang_s, 2 * c->nodes, c->nodes, hb_quality_name(plan->options.quality));
+    if (plan->chiang_far_capped)
+        hb_say(t, "far field: the quality's rule asks for more nodes than %d (s below 0.012): its error is above "
+                  "the quality's target\n", HB_CHIANG_MAX_NODES);
+}
+
+/* The narrowest M_p (TT's, v_R / 4) and the periodic midpoint rule in phi at steps of s / 2 (the
+ * logistic's poles lie pi s off the real axis: the rule's error is about e^(-2 pi^2 s / step)). */
+static void furnace_rule(const hb_plan *plan, double *beta_m, int *azimuths, int *passes)
+{
+    *beta_m = HUGE_VAL;
+    for (int p = 0; p < HB_CHIANG_TERMS; p++)
+        if (hb_chiang_term_on(&plan->chiang, p))
+            *beta_m = fmin(*beta_m, sqrt(plan->chiang_v[p]));
+    *azimuths = (int)ceil(4.0 * M_PI / plan->chiang_s) + 8;
+    *passes = 1;
+}
+
+static const hb_preset presets[] = {
+    { "far/fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "far/balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+    { "far/high", HB_QUALITY_HIGH, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
+};
+
+static int any_preset(const hb_preset *p, const hb_material *m, const hb_options *o, unsigned lobe_mask)
+{
+    (void)p, (void)m, (void)o, (void)lobe_mask;
+    return 1;
+}
+
+static int preset_is(const hb_preset *p, const hb_material *m, const hb_options *o, unsigned lobe_mask)
+{
+    (void)m, (void)lobe_mask;
+    return p->quality == o->quality && o->quadrature_order == 0;
+}
+
+const hb_model_ops hb_chiang_model = {
+    .name = "chiang",
+    .lobes = lobes,
+    .validate = hb_chiang_validate,
+    .derive = hb_chiang_derive,
+    .eval_angles = eval_angles,
+    .eval_vectors = eval_vectors,
+    .sample_dimensions = sample_dimensions,
+    .sample = sample,
+    .pdf = pdf,
+    .table = table,
+    .eval_near = eval_near,
+    .sample_near = sample_near,
+    .pdf_near = pdf_near,
+    .describe = describe,
+    .furnace_rule = furnace_rule,
+    .presets = presets,
+    .preset_count = sizeof presets / sizeof presets[0],
+    .preset_applies = any_preset,
+    .preset_is = preset_is,
+    .drops_lobes = 1,
+};

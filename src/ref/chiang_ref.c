@@ -1,0 +1,141 @@
+/* CBTB16 in double precision (docs/chiang.md): near-field f at h, its sampler and pdf, and the
+ * far field as an adaptive integral over h. M_p is dFH11 eq. 7 with this reference's own Bessel
+ * function (deon_ref.c), exact to double precision at every argument (no switch between forms
+ * with different errors). */
+#include <math.h>
+
+#include "math/quadrature.h"
+#include "models/plan.h"
+#include "reference.h"
+
+/* theta_o - shift reflected across a pole into [-pi/2, pi/2] (eq. 7 is unchanged by theta -> pi - theta). */
+static double shifted(double theta_o, double shift)
+{
+    double t = theta_o - shift;
+    return t > M_PI_2 ? M_PI - t : t < -M_PI_2 ? -M_PI - t : t;
+}
+
+static const double shift_ratio[HB_CHIANG_TERMS] = { 2.0, -1.0, -4.0, 0.0 };
+
+/* A_p (RGB), the lobe probabilities P_p and Phi(p, h) at h for w_o (as eval.h, in double). */
+static void offset_terms(const hb_plan *plan, double theta_o, double h, double A[HB_CHIANG_TERMS][3],
+                         double P[HB_CHIANG_TERMS], double Phi[HB_CHIANG_ORDERS])
+{
+    double eta = plan->material.eta, cos_o = fabs(cos(theta_o)), sin_o = sin(theta_o); /* pbrt: sqrt(1 - sin^2) */
+    double gamma_o = asin(h), F = hb_ref_fresnel(eta, cos_o * cos(gamma_o));
+    double eta_prime = sqrt(eta * eta - sin_o * sin_o) / cos_o; /* Bravais */
+    double sin_gamma_t = h / eta_prime, cos_gamma_t = sqrt(1.0 - sin_gamma_t * sin_gamma_t);
+    double cos_theta_t = sqrt(1.0 - sin_o * sin_o / (eta * eta));
+    double mean[HB_CHIANG_TERMS] = { 0.0 }, total = 0.0;
+    for (int c = 0; c < 3; c++) {
+        double mu = plan->sigma_a[c] * 2.0 * cos_gamma_t / cos_theta_t, T = exp(-mu);
+        double one_minus_TF = (1.0 - F) - F * expm1(-mu); /* (1 - F) + F (1 - T), no cancellation */
+        A[0][c] = F;
+        A[1][c] = (1.0 - F) * (1.0 - F) * T;
+        A[2][c] = A[1][c] * T * F;
+        A[3][c] = one_minus_TF > 0.0 ? A[2][c] * T * F / one_minus_TF : 0.0;
+        for (int p = 0; p < HB_CHIANG_TERMS; p++) {
+            if (!hb_chiang_term_on(&plan->chiang, p))
+                A[p][c] = 0.0;
+            mean[p] += A[p][c];
+        }
+    }
+    for (int p = 0; p < HB_CHIANG_TERMS; p++)
+        total += mean[p];
+    for (int p = 0; p < HB_CHIANG_TERMS; p++)
+        P[p] = total > 0.0 ? mean[p] / total : 0.0;
+    for (int p = 0; p < HB_CHIANG_ORDERS; p++)
+        Phi[p] = 2.0 * p * asin(sin_gamma_t) - 2.0 * gamma_o + p * M_PI;
+}
+
+/* The trimmed logistic at phi - Phi, wrapped into [-pi, pi]. */
+static double logistic(double s, double x)
+{
+    x = fabs(remainder(x, 2.0 * M_PI));
+    double e = exp(-x / s);
+    return e / (s * (1.0 + e) * (1.0 + e)) / tanh(M_PI / (2.0 * s));
+}
+
+static void longitudinal(const hb_plan *plan, double theta_i, double theta_o, double M[HB_CHIANG_TERMS])
+{
+    for (int p = 0; p < HB_CHIANG_TERMS; p++)
+        M[p] = hb_ref_deon_longitudinal(plan->chiang_v[p], theta_i,
+                                        shifted(theta_o, shift_ratio[p] * plan->material.alpha), HB_I0_ABRAMOWITZ);
+}
+
+/* f at h (three channels) and the sampler's pdf there. */
+static void near_terms(const hb_plan *plan, const double M[HB_CHIANG_TERMS], double theta_o, double phi, double h,
+                       double f[3], double *pdf)
+{
+    double A[HB_CHIANG_TERMS][3], P[HB_CHIANG_TERMS], Phi[HB_CHIANG_ORDERS], MN[HB_CHIANG_TERMS];
+    offset_terms(plan, theta_o, h, A, P, Phi);
+    for (int p = 0; p < HB_CHIANG_ORDERS; p++)
+        MN[p] = M[p] * logistic(plan->chiang_s, phi - Phi[p]);
+    MN[3] = M[3] / (2.0 * M_PI);
+    f[0] = f[1] = f[2] = *pdf = 0.0;
+    for (int p = 0; p < HB_CHIANG_TERMS; p++) {
+        for (int c = 0; c < 3; c++)
+            f[c] += MN[p] * A[p][c];
+        *pdf += MN[p] * P[p];
+    }
+}
+
+void hb_ref_chiang_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                        double f[3], double *pdf)
+{
+    double M[HB_CHIANG_TERMS], p;
+    longitudinal(plan, theta_i, theta_o, M);
+    near_terms(plan, M, theta_o, phi_o - phi_i, h, f, pdf ? pdf : &p);
+}
+
+/* The far field, (1/2) integral of f over h, as an integral over gamma = asin(h) (the integrand's
+ * square-root ends at h = +-1 become smooth) by 8-point Gauss-Legendre panels no wider than s / 4,
+ * where the narrowest N_p moves at most twice as fast as gamma: converged to 1e-10 (tests). */
+void hb_ref_chiang_far(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                       double f[3], double *pdf)
+{
+    double M[HB_CHIANG_TERMS], x[8], w[8], sum_pdf = 0.0;
+    longitudinal(plan, theta_i, theta_o, M);
+    hb_gauss_legendre(8, 0.0, 1.0, x, w);
+    int panels = (int)ceil(M_PI / (0.25 * plan->chiang_s));
+    double width = M_PI / panels;
+    f[0] = f[1] = f[2] = 0.0;
+    for (int k = 0; k < panels; k++)
+        for (int j = 0; j < 8; j++) {
+            double gamma = -M_PI_2 + (k + x[j]) * width, g[3], q;
+            near_terms(plan, M, theta_o, phi_o - phi_i, sin(gamma), g, &q);
+            double weight = 0.5 * w[j] * width * cos(gamma);
+            for (int c = 0; c < 3; c++)
+                f[c] += weight * g[c];
+            sum_pdf += weight * q;
+        }
+    if (pdf)
+        *pdf = sum_pdf;
+}
+
+/* The kernels' sampling procedure (sample.h) in double, near-field at h from u[0..3]. */
+void hb_ref_chiang_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double u[4],
+                               double *theta_i, double *phi_i)
+{
+    double A[HB_CHIANG_TERMS][3], P[HB_CHIANG_TERMS], Phi[HB_CHIANG_ORDERS], cumulative = 0.0;
+    offset_terms(plan, theta_o, h, A, P, Phi);
+    int chosen = 0;
+    for (int p = 0; p < HB_CHIANG_TERMS; p++) {
+        if (u[0] >= cumulative && P[p] > 0.0)
+            chosen = p;
+        cumulative += P[p];
+    }
+    double v = plan->chiang_v[chosen], t = shifted(theta_o, shift_ratio[chosen] * plan->material.alpha);
+    double one_minus_cos_psi = fmin(-v * log(u[1] + (1.0 - u[1]) * exp(-2.0 / v)), 2.0);
+    double sin_psi = sqrt(fmax(one_minus_cos_psi * (2.0 - one_minus_cos_psi), 0.0));
+    double sin_i = sin_psi * cos(2.0 * M_PI * u[2]) * cos(t) + (one_minus_cos_psi - 1.0) * sin(t);
+    *theta_i = asin(fmax(-1.0, fmin(1.0, sin_i)));
+    double s = plan->chiang_s, phi;
+    if (chosen == HB_CHIANG_ORDERS) {
+        phi = (2.0 * u[3] - 1.0) * M_PI;
+    } else {
+        double q = fmax(-0.99999994, fmin(0.99999994, tanh(M_PI / (2.0 * s)) * (2.0 * u[3] - 1.0))); /* as the kernels */
+        phi = Phi[chosen] + fmax(-M_PI, fmin(M_PI, s * (log1p(q) - log1p(-q))));
+    }
+    *phi_i = remainder(phi_o - phi, 2.0 * M_PI);
+}
