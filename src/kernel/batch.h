@@ -57,7 +57,7 @@ HB_INLINE void store_block(float *dst, size_t i, size_t lanes, vf value)
 HB_INLINE size_t count_invalid(vm valid, size_t lanes)
 {
     unsigned live = lanes >= 32 ? ~0u : (1u << lanes) - 1u;
-    return (size_t)__builtin_popcount(~vm_bits(valid) & live);
+    return (size_t)hb_popcount32(~vm_bits(valid) & live);
 }
 
 /* theta in [-pi/2, pi/2] (as floats), |phi| <= HB_PHI_LIMIT; false for NaN and Inf. */

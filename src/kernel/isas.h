@@ -6,11 +6,12 @@
 #define HB_KERNEL_ISAS_H
 
 #include "hairbsdf.h"
+#include "simd/compiler.h"
 
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(HB_ARCH_X86)
 #define HB_FOR_EACH_ISA(X, a, b) \
     X(scalar, HB_ISA_SCALAR, a, b) X(sse41, HB_ISA_SSE41, a, b) X(avx2, HB_ISA_AVX2, a, b) X(avx512, HB_ISA_AVX512, a, b)
-#elif defined(__aarch64__)
+#elif defined(HB_ARCH_ARM64)
 #define HB_FOR_EACH_ISA(X, a, b) X(scalar, HB_ISA_SCALAR, a, b) X(neon, HB_ISA_NEON, a, b)
 #else
 #define HB_FOR_EACH_ISA(X, a, b) X(scalar, HB_ISA_SCALAR, a, b)

@@ -7,6 +7,8 @@
 #ifndef HB_VMATH_H
 #define HB_VMATH_H
 
+#include <math.h>
+
 #include "simd/simd.h"
 
 /* pi/2 as float plus the float closest to the rest, for reductions and reflections. */
@@ -146,9 +148,9 @@ HB_INLINE vf vf_log(vf x)
     y = vf_fma(e, vf_set1(-2.12194440e-4f), y);
     y = vf_fnma(vf_set1(0.5f), z, y);
     vf r = vf_fma(e, vf_set1(0.693359375f), vf_add(f, y));
-    r = vf_select(vf_eq(x, vf_set1(0.0f)), vf_set1(-__builtin_inff()), r);
-    r = vf_select(vf_eq(x, vf_set1(__builtin_inff())), x, r);
-    return vf_select(vf_lt(x, vf_set1(0.0f)), vf_set1(__builtin_nanf("")), r);
+    r = vf_select(vf_eq(x, vf_set1(0.0f)), vf_set1(-INFINITY), r);
+    r = vf_select(vf_eq(x, vf_set1(INFINITY)), x, r);
+    return vf_select(vf_lt(x, vf_set1(0.0f)), vf_set1(NAN), r);
 }
 
 /* log(1 + u) for u >= -1, exact near u = 0: w = 1 + u is rounded, and the

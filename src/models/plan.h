@@ -9,6 +9,7 @@
 #include "models/deon/constants.h"
 #include "models/huang/constants.h"
 #include "models/marschner/constants.h"
+#include "simd/compiler.h"
 
 /* What a tolerance or budget plan chose and why (src/plan/select.c), for hb_plan_describe. */
 typedef struct hb_selection {
@@ -56,6 +57,6 @@ struct hb_plan {
 };
 
 /* Fills error (if not NULL) with status and the formatted message; returns status (src/models/fail.c). */
-hb_status hb_plan_fail(hb_error *error, hb_status status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+hb_status hb_plan_fail(hb_error *error, hb_status status, const char *fmt, ...) HB_PRINTF_FORMAT(3, 4);
 
 #endif

@@ -5,12 +5,14 @@
 
 #include <stddef.h>
 
+#include "simd/compiler.h"
+
 typedef struct hb_text {
     char *out;
     size_t size, length;
 } hb_text;
 
-void hb_say(hb_text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void hb_say(hb_text *t, const char *fmt, ...) HB_PRINTF_FORMAT(2, 3);
 
 /* "R, TT, TRT" for a lobe mask, "none" for 0. */
 void hb_say_lobes(hb_text *t, unsigned lobes);

@@ -27,6 +27,8 @@
 #ifndef HB_SIMD_H
 #define HB_SIMD_H
 
+#include "compiler.h"
+
 /* Everything in the vocabulary and the math built on it is forced inline: a kernel
  * is one straight-line body per vector of samples, never a call per operation. Sanitizer builds
  * (HB_SANITIZED) leave inlining to the compiler: the same operations in smaller functions, which
@@ -34,13 +36,13 @@
 #ifdef HB_SANITIZED
 #define HB_INLINE static inline
 #else
-#define HB_INLINE static inline __attribute__((always_inline))
+#define HB_INLINE static HB_ALWAYS_INLINE
 #endif
 /* A stage that several kernels of one translation unit share (f from the geometry and M_p, the
  * internal paths of a fibre): one out-of-line copy per unit instead of one inlined into every
  * kernel and I0 variant, which is what bounds each unit's compile time and memory. Its vectors
  * cross the call through memory: a few loads and stores per block against hundreds of operations. */
-#define HB_STAGE static __attribute__((noinline, unused))
+#define HB_STAGE static HB_NOINLINE
 /* Unrolls the loop that follows (over lobes, channels, streams) so its arrays of vectors can live
  * in registers; GCC at -O2 keeps a loop with a large body rolled. Clang reads the same pragma.
  * Sanitizer builds (HB_SANITIZED) drop the hint: GCC cannot unroll some instrumented loops and
@@ -48,7 +50,7 @@
 #ifdef HB_SANITIZED
 #define HB_UNROLL
 #else
-#define HB_UNROLL _Pragma("GCC unroll 8")
+#define HB_UNROLL HB_PRAGMA_UNROLL
 #endif
 
 /* Besides element-wise arithmetic, each vocabulary loads table texels two ways: vf_gather(base, idx),
@@ -73,7 +75,7 @@
  * DAZ, AArch64 FPCR.FZ), and restore the caller's mode on return: a product that underflows, such as
  * a far-off lobe's M_p times a detector's tail, would otherwise cost a microcode assist each time
  * on x86 (3x the dFH11 kernel's time on the bench's directions). Values below FLT_MIN become 0. */
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(HB_ARCH_X86)
 #include <xmmintrin.h>
 typedef unsigned hb_fp_mode;
 HB_INLINE hb_fp_mode hb_flush_subnormals(void)
@@ -83,7 +85,7 @@ HB_INLINE hb_fp_mode hb_flush_subnormals(void)
     return mode;
 }
 HB_INLINE void hb_fp_restore(hb_fp_mode mode) { _mm_setcsr(mode); }
-#elif defined(__aarch64__)
+#elif defined(HB_ARCH_ARM64) && !defined(_MSC_VER)
 typedef uint64_t hb_fp_mode;
 HB_INLINE hb_fp_mode hb_flush_subnormals(void)
 {

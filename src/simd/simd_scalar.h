@@ -4,6 +4,7 @@
 #ifndef HB_SIMD_SCALAR_H
 #define HB_SIMD_SCALAR_H
 
+#include <math.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -26,7 +27,7 @@ HB_INLINE vf vf_fma(vf a, vf b, vf c) { return a * b + c; }
 HB_INLINE vf vf_fnma(vf a, vf b, vf c) { return c - a * b; }
 HB_INLINE vf vf_min(vf a, vf b) { return a < b ? a : b; }
 HB_INLINE vf vf_max(vf a, vf b) { return a > b ? a : b; }
-HB_INLINE vf vf_sqrt(vf a) { return __builtin_sqrtf(a); }
+HB_INLINE vf vf_sqrt(vf a) { return sqrtf(a); }
 HB_INLINE vf vf_select(vm m, vf a, vf b) { return m ? a : b; }
 HB_INLINE vf vf_keep(vm m, vf a) { return m ? a : 0.0f; }
 
@@ -80,7 +81,7 @@ HB_INLINE vdw vdw_add(vdw a, vdw b) { return a + b; }
 HB_INLINE vdw vdw_sub(vdw a, vdw b) { return a - b; }
 HB_INLINE vdw vdw_mul(vdw a, vdw b) { return a * b; }
 HB_INLINE vdw vdw_div(vdw a, vdw b) { return a / b; }
-HB_INLINE vdw vdw_sqrt(vdw a) { return __builtin_sqrt(a); }
+HB_INLINE vdw vdw_sqrt(vdw a) { return sqrt(a); }
 HB_INLINE vdw vdw_fma(vdw a, vdw b, vdw c) { return a * b + c; }
 HB_INLINE vdw vdw_min(vdw a, vdw b) { return a < b ? a : b; }
 HB_INLINE vdw vdw_max(vdw a, vdw b) { return a > b ? a : b; }
