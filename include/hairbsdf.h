@@ -35,7 +35,7 @@ extern "C" {
 #else
 #define HB_API __declspec(dllimport)
 #endif
-#elif defined(__GNUC__)
+#elif defined(__GNUC__) && !defined(_WIN32)
 #define HB_API __attribute__((visibility("default")))
 #else
 #define HB_API

@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "hairbsdf.h"
+#include "simd/compiler.h"
 #include "kernel_hooks.h"
 
 typedef struct hb_test_ctx {
@@ -20,6 +21,7 @@ typedef struct hb_test_ctx {
     unsigned failures;
     int quick;    /* the quick tier (make test): heavy tests run a subset of their cases; 0: the long tier */
     int emulated; /* running under qemu ($HB_TEST_EMULATED): nothing that needs the native machine (valgrind) */
+    int skipped;  /* set by hb_test_tool: the test could not run here and is counted as skipped */
 } hb_test_ctx;
 
 typedef struct hb_test {
@@ -28,15 +30,18 @@ typedef struct hb_test {
     int per_isa;
 } hb_test;
 
-void hb_test_fail(hb_test_ctx *t, const char *file, int line, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-void hb_test_note(hb_test_ctx *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void hb_test_fail(hb_test_ctx *t, const char *file, int line, const char *fmt, ...) HB_PRINTF_FORMAT(4, 5);
+void hb_test_note(hb_test_ctx *t, const char *fmt, ...) HB_PRINTF_FORMAT(2, 3);
 
 #define CHECK(t, cond, ...)                                         \
     do {                                                            \
         if (!(cond))                                                \
             hb_test_fail((t), __FILE__, __LINE__, __VA_ARGS__);     \
     } while (0)
+
+/* The hairbsdf tool the tests drive through a POSIX shell ($HB_TOOL, which make test sets). On
+ * Windows, where it is not set, the test is skipped; elsewhere a missing HB_TOOL fails it. */
+const char *hb_test_tool(hb_test_ctx *t);
 
 /* A whole file, NUL-terminated (its size without the NUL in *size, which may be NULL); malloc'd,
  * NULL when it cannot be read. */

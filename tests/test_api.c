@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "portable.h"
 #include "test.h"
 
 static hb_status create(hb_material *m, hb_options *o, hb_error *err)

@@ -4,8 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
+#include "portable.h"
 #include "test.h"
 
 typedef struct run_result {
@@ -25,11 +25,9 @@ static void slurp(const char *path, char *buf, size_t cap)
 /* Runs "$HB_TOOL args" with `size` bytes of input on stdin. Returns 0 when HB_TOOL is not set. */
 static int run_tool_bytes(hb_test_ctx *t, const char *args, const char *input, size_t size, run_result *r)
 {
-    const char *tool = getenv("HB_TOOL");
-    if (!tool || !*tool) {
-        CHECK(t, 0, "HB_TOOL is not set (make test sets it)");
+    const char *tool = hb_test_tool(t);
+    if (!tool)
         return 0;
-    }
     char dir[] = "/tmp/hb_cli_XXXXXX";
     if (!mkdtemp(dir)) {
         CHECK(t, 0, "mkdtemp failed");

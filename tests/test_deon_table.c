@@ -4,8 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
+#include "portable.h"
 #include "test.h"
 #include "image.h"
 
@@ -106,11 +106,9 @@ static uint32_t le32(const unsigned char *p) { return p[0] | (uint32_t)p[1] << 8
  * the EXR holds the same floats, slots stacked. */
 static void test_bake_files(hb_test_ctx *t)
 {
-    const char *tool = getenv("HB_TOOL");
-    if (!tool || !*tool) {
-        CHECK(t, 0, "HB_TOOL is not set");
+    const char *tool = hb_test_tool(t);
+    if (!tool)
         return;
-    }
     static const char *const models[] = { "--model deon --eumelanin 0.3 --table-tolerance 1e-2",
                                           "--model huang --quality fast --roughness 0.3" };
     for (int which = 0; which < 2; which++) {

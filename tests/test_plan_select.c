@@ -5,8 +5,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
+#include "portable.h"
 #include "test.h"
 
 /* valgrind cannot run a sanitized tool (ASan's shadow memory) */

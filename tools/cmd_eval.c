@@ -130,8 +130,8 @@ int cmd_eval(int argc, char **argv, int pdf)
     size_t cap = 0, invalid = 0;
     long lineno = 0, first_invalid = 0;
     int seen_content = 0, status = 0;
-    ssize_t length;
-    while ((length = getline(&line, &cap, in)) >= 0) {
+    long length;
+    while ((length = csv_read_line(&line, &cap, in)) >= 0) {
         lineno++;
         int nul = memchr(line, '\0', (size_t)length) != NULL; /* a byte C strings would stop at */
         char *s = csv_trim(lineno == 1 ? csv_skip_bom(line) : line);

@@ -204,29 +204,28 @@ int cmd_furnace(int argc, char **argv)
     if (!svg)
         return furnace_rows(stdout, &q);
     /* --svg: the same table, printed and plotted */
-    char *table = NULL;
-    size_t size = 0;
-    FILE *out = open_memstream(&table, &size);
-    int st = out ? furnace_rows(out, &q) : 1;
-    if (out)
-        fclose(out);
+    FILE *in = tmpfile(); /* the table, written and read back */
+    int st = in ? furnace_rows(in, &q) : 1;
     if (st == 0) {
-        fputs(table, stdout);
-        FILE *in = fmemopen(table, size, "r");
+        rewind(in);
+        for (int c; (c = getc(in)) != EOF;)
+            putchar(c);
+        rewind(in);
         char title[160];
         snprintf(title, sizeof title, "hairbsdf furnace: %s",
                  q.by_order ? "share of the energy beyond TRT (HHH22 Fig. 16)" : q.by_lobe ? "energy by lobe" : "white furnace energy");
         const char *y_label = q.by_order ? "share of the energy beyond TRT"
                               : q.by_lobe ? "energy per lobe (fraction of the incident light)"
                                           : "white-furnace energy E (fraction of the incident light)";
-        if (!in || plot_csv(in, svg, title, NULL, q.by_order ? "share_beyond" : NULL, "theta_o (radians)", y_label, err,
-                            sizeof err) != 0) {
-            fprintf(stderr, "hairbsdf furnace: --svg: %s\n", in ? err : "cannot read the table back");
+        if (plot_csv(in, svg, title, NULL, q.by_order ? "share_beyond" : NULL, "theta_o (radians)", y_label, err,
+                     sizeof err) != 0) {
+            fprintf(stderr, "hairbsdf furnace: --svg: %s\n", err);
             st = 1;
         }
-        if (in)
-            fclose(in);
+    } else if (!in) {
+        fprintf(stderr, "hairbsdf furnace: --svg: cannot open a temporary file for the table\n");
     }
-    free(table);
+    if (in)
+        fclose(in);
     return st;
 }

@@ -17,6 +17,28 @@ char *csv_trim(char *s)
 }
 
 /* Four comma-separated numbers (nan and inf parse, and become invalid samples). */
+long csv_read_line(char **line, size_t *cap, FILE *in)
+{
+    size_t length = 0;
+    int c;
+    while ((c = getc(in)) != EOF) {
+        if (length + 2 > *cap) {
+            size_t grown = *cap ? 2 * *cap : 256;
+            char *bigger = realloc(*line, grown);
+            if (!bigger)
+                return -1;
+            *line = bigger, *cap = grown;
+        }
+        (*line)[length++] = (char)c;
+        if (c == '\n')
+            break;
+    }
+    if (length == 0)
+        return -1;
+    (*line)[length] = '\0';
+    return (long)length;
+}
+
 int csv_parse_row(char *line, float *row, int columns)
 {
     char *field = line;

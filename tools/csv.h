@@ -2,6 +2,12 @@
 #ifndef HB_CSV_H
 #define HB_CSV_H
 
+#include <stdio.h>
+
+/* The next line of in, its newline kept, into *line (grown as needed, *cap bytes; free it after
+ * the last): POSIX getline in C11. Returns its length (a NUL inside counts), -1 at the end. */
+long csv_read_line(char **line, size_t *cap, FILE *in);
+
 /* Strips leading and trailing white space in place. */
 char *csv_trim(char *s);
 
