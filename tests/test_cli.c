@@ -356,9 +356,18 @@ static void test_sample_commands(hb_test_ctx *t)
         CHECK(t, count == 20000 && fabs(mean[c] - e[c]) <= 4.0 * se[c] + 1e-4, "channel %d: mean weight %.5f +- %.1e, E %.5f",
               c, mean[c], se[c], e[c]);
 
+    /* CBTB16 at one offset: a lossless fibre's weights are its albedo, 1, each (docs/chiang.md) */
+    if (!run_tool(t, "sample --model chiang --theta-o 0.3 --h 0.5 --count 4096 --summary", "", &r))
+        return;
+    line = strchr(r.out, '\n');
+    CHECK(t, line && sscanf(line + 1, "%llu,%lf,%lf,%lf,%lf,%lf,%lf", &count, &mean[0], &mean[1], &mean[2], &se[0], &se[1],
+                            &se[2]) == 7 && count == 4096 && fabs(mean[0] - 1.0) <= 1e-3 && se[0] <= 1e-3,
+          "chiang at h 0.5: '%s'", r.out);
+
     static const char *const refused[] = { "sample --model marschner --theta-o 0.1", "sample --count 10",
                                            "sample --theta-o 2", "sample --theta-o 0.1 --count 0",
-                                           "sample --theta-o 0.1 --seed -3", "pdf --model marschner" };
+                                           "sample --theta-o 0.1 --seed -3", "pdf --model marschner",
+                                           "sample --theta-o 0.1 --h 0.5", "sample --model chiang --theta-o 0.1 --h 2" };
     for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
         if (!run_tool(t, refused[k], "0,0,0,0\n", &r))
             return;
