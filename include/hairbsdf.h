@@ -23,9 +23,9 @@ extern "C" {
  * appends fields to hb_material and hb_options: a program built against an older header passes its
  * smaller struct_size and the fields it lacks take their defaults. */
 #define HB_VERSION_MAJOR 0
-#define HB_VERSION_MINOR 2
+#define HB_VERSION_MINOR 3
 #define HB_VERSION_PATCH 0
-#define HB_VERSION_STRING "0.2.0"
+#define HB_VERSION_STRING "0.3.0"
 
 /* HB_API marks what the library exports; the shared library exports nothing else. Define
  * HB_STATIC when linking the static library on Windows. */
@@ -117,6 +117,14 @@ HB_API void hb_material_absorption(const hb_material *material, double sigma_a_r
  * the multiply-scattered colour rgb (each channel in (0, 1]): CBTB16 eq. 9's fit, as pbrt-v4's
  * SigmaAFromReflectance. Returns HB_ERR_PARAM (naming the channel) outside those ranges. */
 HB_API hb_status hb_absorption_from_colour(const double rgb[3], double beta_n, double sigma_a_rgb[3], hb_error *error);
+
+/* Eumelanin and pheomelanin concentrations (both >= 0) whose absorption (dFH11 sec. 6.1) comes
+ * closest to hb_absorption_from_colour's for rgb and beta_n, closest in log colour (least squares
+ * with each channel weighted by 1 / sqrt(sigma_a): d log C = -d sqrt(sigma_a) / (2 sigma_a) under
+ * CBTB16's fit). Melanins make browns, reds and blacks: a colour outside that range (a blue, a
+ * grey) gets the nearest such hair (docs/conventions.md gives the error). */
+HB_API hb_status hb_melanin_from_colour(const double rgb[3], double beta_n, double *eumelanin, double *pheomelanin,
+                                        hb_error *error);
 
 /* Speed/accuracy levels: error targets of about 1e-2, 1e-3 and 1e-4 relative to the
  * double reference for N_p (dFH11: the node count follows from beta_n). dFH11's M_p is
@@ -344,6 +352,46 @@ HB_API int hb_plan_sample_dimensions(const hb_plan *plan); /* 0 when the plan ca
 HB_API hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out,
                            hb_eval_report *report);
 HB_API hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, hb_eval_report *report);
+
+/* The same with fibre-frame unit vectors (as hb_eval_vectors; a vector is valid as there): w_o
+ * given, w_i returned as a unit vector ((0, 0, 0) for an invalid sample). Sample index k keys the
+ * same numbers as in hb_sample_angles, so the two give the same samples up to the vectors' rounding. */
+typedef struct hb_sample_vectors_in {
+    const float *wo_x, *wo_y, *wo_z;
+    const float *u[HB_SAMPLE_DIMENSIONS];
+} hb_sample_vectors_in;
+
+typedef struct hb_sample_vectors_out {
+    float *wi_x, *wi_y, *wi_z;
+    float *pdf;
+    hb_rgb_soa weight;
+} hb_sample_vectors_out;
+
+HB_API hb_status hb_sample_vectors(const hb_plan *plan, size_t n, hb_sample_vectors_in in, hb_sample_vectors_out out,
+                                   hb_eval_report *report);
+HB_API hb_status hb_pdf_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, float *pdf, hb_eval_report *report);
+
+/* f and the pdf of the same directions in one call, for multiple importance sampling: f as
+ * hb_eval_angles (hb_eval_vectors) returns it, pdf as hb_pdf_angles (hb_pdf_vectors) does. dFH11
+ * quadrature plans and CBTB16 form both in one pass over the batch (the pdf then costs a few
+ * operations more than f alone; docs/sampling.md); HHH22 and dFH11 table plans make two passes.
+ * Plans that cannot sample return HB_ERR_UNSUPPORTED. */
+HB_API hb_status hb_eval_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa f, float *pdf,
+                                    hb_eval_report *report);
+HB_API hb_status hb_eval_pdf_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa f, float *pdf,
+                                     hb_eval_report *report);
+
+/* From a renderer's world space to the fibre frame (docs/conventions.md): y along the tangent (root
+ * to tip), z along the part of `normal` perpendicular to it, x = y cross z. normal may be NULL (any
+ * perpendicular z: a circular fibre's f depends on phi_o - phi_i alone; for an elliptical fibre
+ * give the direction of its minor axis). HB_ERR_PARAM when the tangent is zero or not finite; a
+ * normal parallel to the tangent, zero or not finite is treated as NULL. */
+typedef struct hb_frame {
+    float x[3], y[3], z[3]; /* orthonormal, right-handed, in world coordinates */
+} hb_frame;
+HB_API hb_status hb_frame_from_tangent(const float tangent[3], const float *normal, hb_frame *frame);
+HB_API void hb_frame_to_local(const hb_frame *frame, const float world[3], float local[3]);
+HB_API void hb_frame_to_world(const hb_frame *frame, const float local[3], float world[3]);
 
 /* Near-field sampling and pdf (CBTB16): as hb_sample_angles and hb_pdf_angles at each sample's
  * offset h (hb_eval_near); HB_ERR_UNSUPPORTED for plans without a near field. The far-field calls

@@ -84,6 +84,8 @@ extern const hb_test hb_tests_huang_internal[];
 extern const hb_test hb_tests_huang_table[];
 extern const hb_test hb_tests_threads[];
 extern const hb_test hb_tests_chiang[];
+extern const hb_test hb_tests_renderer_calls[];
+extern const hb_test hb_tests_colour[];
 extern const hb_test hb_tests_docs[];
 
 #endif

@@ -526,7 +526,59 @@ static void test_input_edges(hb_test_ctx *t)
     }
 }
 
+/* --colour and --melanin-colour give the material hb_absorption_from_colour and
+ * hb_melanin_from_colour give (CBTB16's beta_n for chiang; for deon the b of the same azimuthal
+ * standard deviation, 0.3 radians -> about 0.375): the same f as the resolved numbers, bit for bit. */
+static void test_colour_options(hb_test_ctx *t)
+{
+    const char *input = "theta_i,phi_i,theta_o,phi_o\n0.3,0,-0.3,2.5\n-0.2,1,0.4,0.3\n";
+    const double colour[3] = { 0.3, 0.18, 0.1 };
+    static const struct { const char *model; double b_fit; int melanin; } cases[] = {
+        { "chiang", 0.3, 0 }, { "deon", -1.0, 0 }, { "deon", -1.0, 1 } };
+    for (int k = 0; k < 3; k++) {
+        double b = cases[k].b_fit;
+        if (b < 0.0) { /* the b whose logistic's standard deviation is 0.3 */
+            double lo = 0.0, hi = 1.0;
+            for (int i = 0; i < 60; i++) {
+                double mid = 0.5 * (lo + hi);
+                double s = sqrt(M_PI / 8.0) * (0.265 * mid + 1.194 * mid * mid + 5.372 * pow(mid, 22));
+                *(s * M_PI / sqrt(3.0) < 0.3 ? &lo : &hi) = mid;
+            }
+            b = 0.5 * (lo + hi);
+            CHECK(t, fabs(b - 0.375) < 0.01, "deon beta_n 0.3 maps to CBTB16's %g", b);
+        }
+        char resolved[160], args[256], near[64] = "";
+        if (strcmp(cases[k].model, "chiang") == 0)
+            snprintf(near, sizeof near, " --far");
+        if (cases[k].melanin) {
+            double eu, pheo;
+            CHECK(t, hb_melanin_from_colour(colour, b, &eu, &pheo, NULL) == HB_OK, "melanin");
+            snprintf(resolved, sizeof resolved, "--eumelanin %.17g --pheomelanin %.17g", eu, pheo);
+        } else {
+            double sigma[3];
+            CHECK(t, hb_absorption_from_colour(colour, b, sigma, NULL) == HB_OK, "sigma_a");
+            snprintf(resolved, sizeof resolved, "--sigma-a %.17g,%.17g,%.17g", sigma[0], sigma[1], sigma[2]);
+        }
+        run_result from_colour, from_numbers;
+        snprintf(args, sizeof args, "eval --model %s%s --beta-n 0.3 --%scolour 0.3,0.18,0.1", cases[k].model, near,
+                 cases[k].melanin ? "melanin-" : "");
+        if (!run_tool(t, args, input, &from_colour))
+            return;
+        snprintf(args, sizeof args, "eval --model %s%s --beta-n 0.3 %s", cases[k].model, near, resolved);
+        run_tool(t, args, input, &from_numbers);
+        CHECK(t, from_colour.status == 0 && from_numbers.status == 0 && strcmp(from_colour.out, from_numbers.out) == 0,
+              "case %d: '%s' (%s) against '%s' (%s)", k, from_colour.out, from_colour.err, from_numbers.out,
+              from_numbers.err);
+    }
+    run_result r;
+    run_tool(t, "eval --colour 0.3,0,0.1", input, &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "rgb.g = 0"), "a zero channel: %d '%s'", r.status, r.err);
+    run_tool(t, "eval --colour 0.3,0.2", input, &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--colour"), "two numbers: %d '%s'", r.status, r.err);
+}
+
 const hb_test hb_tests_cli[] = {
+    { "cli_colour_options", test_colour_options, 0 },
     { "cli_deon_commands", test_deon_commands, 0 },
     { "cli_marschner_commands", test_marschner_commands, 0 },
     { "cli_eval_matches_library", test_eval_matches_library, 0 },

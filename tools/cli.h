@@ -9,9 +9,19 @@
 typedef struct cli_model_args {
     hb_material material;
     hb_options options;
+    /* --colour (CLI_COLOUR_SIGMA_A: sigma_a by CBTB16's fit) or --melanin-colour (CLI_COLOUR_MELANIN:
+     * the concentrations), resolved when the plan is created, when beta_n and the model are known */
+    enum { CLI_COLOUR_NONE, CLI_COLOUR_SIGMA_A, CLI_COLOUR_MELANIN } colour_to;
+    double colour[3];
 } cli_model_args;
 
 void cli_model_args_default(cli_model_args *args);
+
+/* The material the options describe: args->material with a colour option resolved. */
+hb_status cli_material(const cli_model_args *args, hb_material *material, hb_error *error);
+
+/* hb_plan_create of cli_material(args) and options. */
+hb_status cli_plan_create(const cli_model_args *args, const hb_options *options, hb_plan **plan, hb_error *error);
 
 /* Parses argv[*i] (and its value) if it is a model or material option. Returns 1 when
  * consumed (advancing *i past a separate value), 0 when it is not such an option,

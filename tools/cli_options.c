@@ -40,6 +40,8 @@ const char cli_model_options_help[] =
     "  --eta X                        index of refraction (1.55; (1, 10])\n"
     "  --sigma-a R,G,B                absorption per unit fibre radius (0,0,0; finite, >= 0)\n"
     "  --eumelanin X  --pheomelanin X pigment concentrations, added to sigma-a (0; finite, >= 0)\n"
+    "  --colour R,G,B                 sigma-a for this hair colour (each in (0, 1]; CBTB16's fit at beta-n)\n"
+    "  --melanin-colour R,G,B         eumelanin and pheomelanin for the nearest melanin hair to this colour\n"
     "  --beta-m X                     longitudinal roughness (0.1; [0.01, 3.162])\n"
     "  --beta-n X                     azimuthal roughness, dFH11 (0.3; [0.02, 3])\n"
     "  --alpha X                      cuticle tilt (0.035; [-0.2, 0.2])\n"
@@ -52,6 +54,45 @@ void cli_model_args_default(cli_model_args *args)
 {
     hb_material_default(&args->material);
     hb_options_default(&args->options);
+    args->colour_to = CLI_COLOUR_NONE;
+}
+
+/* CBTB16's azimuthal roughness b in [0, 1] for the colour fit: the material's beta_n for CBTB16;
+ * for the other models, whose beta_n is a Gaussian's standard deviation in radians, the b whose
+ * logistic has that standard deviation, s(b) pi / sqrt(3) (s(b): CBTB16 eq. 8's fit), by bisection. */
+static double colour_fit_beta_n(const cli_model_args *args)
+{
+    double beta_n = args->material.beta_n;
+    if (args->options.model == HB_MODEL_CHIANG)
+        return beta_n;
+    double lo = 0.0, hi = 1.0;
+    for (int k = 0; k < 60; k++) {
+        double b = 0.5 * (lo + hi);
+        double s = 0.626657069 * (0.265 * b + 1.194 * b * b + 5.372 * pow(b, 22)); /* sqrt(pi / 8) (...) */
+        if (s * 1.813799364 < beta_n) /* pi / sqrt(3) */
+            lo = b;
+        else
+            hi = b;
+    }
+    return 0.5 * (lo + hi);
+}
+
+hb_status cli_material(const cli_model_args *args, hb_material *material, hb_error *error)
+{
+    *material = args->material;
+    double b = colour_fit_beta_n(args);
+    if (args->colour_to == CLI_COLOUR_SIGMA_A)
+        return hb_absorption_from_colour(args->colour, b, material->sigma_a, error);
+    if (args->colour_to == CLI_COLOUR_MELANIN)
+        return hb_melanin_from_colour(args->colour, b, &material->eumelanin, &material->pheomelanin, error);
+    return HB_OK;
+}
+
+hb_status cli_plan_create(const cli_model_args *args, const hb_options *options, hb_plan **plan, hb_error *error)
+{
+    hb_material material;
+    hb_status st = cli_material(args, &material, error);
+    return st != HB_OK ? st : hb_plan_create(&material, options, plan, error);
 }
 
 /* A whole field as a finite number. strtod's ERANGE also flags a subnormal result, which is a
@@ -156,7 +197,8 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     static const char *const with_value[] = { "--model", "--term", "--lobes", "--quality", "--isa", "--i0",
                                               "--ndf", "--sigma-a", "--pmax", "--quadrature", "--absorption",
                                               "--r-fresnel", "--r-integration", "--r-panels", "--tt-trt",
-                                              "--tt-panels", "--seed", "--calibration", "--azimuthal", NULL };
+                                              "--tt-panels", "--seed", "--calibration", "--azimuthal", "--colour",
+                                              "--melanin-colour", NULL };
     static const char *const per_lobe[] = { "--lobe-beta-m", "--lobe-beta-n", "--lobe-alpha", NULL };
     static const char *const absorptions[] = { "corrected", "paper", NULL };
     static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
@@ -275,6 +317,9 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         if ((k = pick(value, azimuthals)) >= 0) o->azimuthal = (hb_azimuthal)k; else expected = "quadrature or table";
     } else if (strcmp(name, "--sigma-a") == 0) {
         if (!parse_triple(value, m->sigma_a)) expected = "three finite numbers R,G,B";
+    } else if (strcmp(name, "--colour") == 0 || strcmp(name, "--melanin-colour") == 0) {
+        args->colour_to = name[2] == 'c' ? CLI_COLOUR_SIGMA_A : CLI_COLOUR_MELANIN;
+        if (!parse_triple(value, args->colour)) expected = "three numbers R,G,B in (0, 1]";
     }
     if (expected) {
         snprintf(err, err_size, "%s: '%s' is not %s", name, value, expected);

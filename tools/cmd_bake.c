@@ -126,7 +126,7 @@ int cmd_bake(int argc, char **argv)
     }
     hb_plan *plan;
     hb_error error;
-    if (hb_plan_create(&args.material, o, &plan, &error) != HB_OK) {
+    if (cli_plan_create(&args, o, &plan, &error) != HB_OK) {
         fprintf(stderr, "hairbsdf bake: %s\n", error.message);
         return 2;
     }

@@ -26,11 +26,15 @@ static void dump_usage(FILE *to)
 /* A panel's title: the model's short name, its quality and its pigment or absorption. */
 static void describe(const cli_model_args *args, char *out, size_t size)
 {
-    static const char *const models[] = { [HB_MODEL_DEON] = "dFH11", [HB_MODEL_MARSCHNER] = "MJC03", [HB_MODEL_HUANG] = "HHH22" };
+    static const char *const models[] = { [HB_MODEL_DEON] = "dFH11", [HB_MODEL_MARSCHNER] = "MJC03",
+                                          [HB_MODEL_HUANG] = "HHH22", [HB_MODEL_CHIANG] = "CBTB16" };
     static const char *const qualities[] = { "fast", "balanced", "high", "reference" };
-    const hb_material *m = &args->material;
+    hb_material material;
+    if (cli_material(args, &material, NULL) != HB_OK) /* the plan reports it */
+        material = args->material;
+    const hb_material *m = &material;
     const hb_options *o = &args->options;
-    int n = snprintf(out, size, "%s %s", (unsigned)o->model <= HB_MODEL_HUANG ? models[o->model] : "?",
+    int n = snprintf(out, size, "%s %s", (unsigned)o->model <= HB_MODEL_CHIANG ? models[o->model] : "?",
                      (unsigned)o->quality <= HB_QUALITY_REFERENCE ? qualities[o->quality] : "?");
     if (n > 0 && (size_t)n < size && (m->eumelanin > 0.0 || m->pheomelanin > 0.0))
         snprintf(out + n, size - (size_t)n, ", eumelanin %g, pheomelanin %g", m->eumelanin, m->pheomelanin);
@@ -74,7 +78,7 @@ static int render_panel(const cli_model_args *args, double theta_i, double phi_i
 {
     hb_plan *plan;
     hb_error error;
-    if (hb_plan_create(&args->material, &args->options, &plan, &error) != HB_OK) {
+    if (cli_plan_create(args, &args->options, &plan, &error) != HB_OK) {
         fprintf(stderr, "hairbsdf dump: %s\n", error.message);
         return 2;
     }

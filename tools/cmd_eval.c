@@ -103,7 +103,7 @@ int cmd_eval(int argc, char **argv, int pdf)
     }
     hb_plan *plan = NULL;
     hb_error error;
-    if (hb_plan_create(&args.material, &args.options, &plan, &error) != HB_OK) {
+    if (cli_plan_create(&args, &args.options, &plan, &error) != HB_OK) {
         fprintf(stderr, "%s: %s\n", name, error.message);
         return 2;
     }

@@ -30,7 +30,7 @@ static int energy(const cli_model_args *args, unsigned lobes, double theta_o, do
     o.lobes = lobes;
     hb_plan *plan;
     hb_error err;
-    if (hb_plan_create(&args->material, &o, &plan, &err) != HB_OK) {
+    if (cli_plan_create(args, &o, &plan, &err) != HB_OK) {
         fprintf(stderr, "hairbsdf furnace: %s\n", err.message);
         return 0;
     }
@@ -48,7 +48,7 @@ static int orders(FILE *out, const cli_model_args *args, const char *fibre, cons
 {
     hb_plan *plan;
     hb_error err;
-    if (hb_plan_create(&args->material, &args->options, &plan, &err) != HB_OK) {
+    if (cli_plan_create(args, &args->options, &plan, &err) != HB_OK) {
         fprintf(stderr, "hairbsdf furnace: %s\n", err.message);
         return 0;
     }
@@ -96,6 +96,7 @@ static int furnace_rows(FILE *out, const furnace_request *q)
             { "lossless", 0.0 }, { "blond", 0.06 }, { "brown", 0.6 }, { "black", 1.8 } };
         for (int f = 0; f < 4; f++) {
             cli_model_args fig = args;
+            fig.colour_to = CLI_COLOUR_NONE;
             fig.options.model = HB_MODEL_HUANG;
             fig.material.alpha = 2.0 * M_PI / 180.0;
             fig.material.ndf = HB_NDF_BECKMANN;

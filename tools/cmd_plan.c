@@ -24,7 +24,7 @@ int cmd_plan(int argc, char **argv)
     }
     hb_plan *plan;
     hb_error error;
-    if (hb_plan_create(&args.material, &args.options, &plan, &error) != HB_OK) {
+    if (cli_plan_create(&args, &args.options, &plan, &error) != HB_OK) {
         fprintf(stderr, "hairbsdf plan: %s\n", error.message);
         return 2;
     }

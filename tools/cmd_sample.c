@@ -83,7 +83,7 @@ int cmd_sample(int argc, char **argv)
     }
     hb_plan *plan = NULL;
     hb_error error;
-    if (hb_plan_create(&args.material, &args.options, &plan, &error) != HB_OK) {
+    if (cli_plan_create(&args, &args.options, &plan, &error) != HB_OK) {
         fprintf(stderr, "hairbsdf sample: %s\n", error.message);
         return 2;
     }

@@ -1,5 +1,6 @@
-/* Public sampling entry points (docs/sampling.md): argument checks, then the plan's kernel
- * or, for HB_QUALITY_REFERENCE, the double-precision procedure. No allocation. */
+/* Public sampling, pdf and fused entry points (docs/sampling.md): argument checks, then the plan's
+ * kernels or, for HB_QUALITY_REFERENCE, the double-precision procedure. Directions come as angles
+ * or as fibre-frame unit vectors (kernel/streams.h). No allocation. */
 #include <math.h>
 
 #include "math/hash.h"
@@ -13,64 +14,19 @@ int hb_plan_sample_dimensions(const hb_plan *plan)
     return hb_model_ops_of(plan->options.model)->sample_dimensions(plan);
 }
 
-static int angles_valid(float theta, float phi)
+static int angles_valid(double theta, double phi)
 {
-    return fabsf(theta) <= 1.57079637f && fabsf(phi) <= HB_PHI_LIMIT; /* false for NaN */
+    return fabs(theta) <= 1.57079637f && fabs(phi) <= HB_PHI_LIMIT; /* false for NaN */
 }
 
-/* The reference path, one sample at a time; h: each sample's offset (near field), or NULL. */
-static size_t sample_ref(const hb_plan *plan, int dims, size_t n, const float *theta_o, const float *phi_o,
-                         const float *h, const float *const *uniforms, hb_sample_out out)
+/* Direction k of three streams (unit vectors, x, y, z) or two (theta, phi) as angles; 0 if invalid. */
+static int direction_at(const float *const *s, int vectors, size_t k, double *theta, double *phi)
 {
-    size_t invalid = 0;
-    for (size_t k = 0; k < n; k++) {
-        double u[HB_SAMPLE_DIMENSIONS], theta_i = 0.0, phi_i = 0.0, f[3] = { 0.0, 0.0, 0.0 }, pdf = 0.0;
-        int ok = angles_valid(theta_o[k], phi_o[k]) && (!h || fabsf(h[k]) <= 1.0f);
-        for (int d = 0; d < dims; d++) {
-            u[d] = uniforms[d][k];
-            ok = ok && u[d] >= 0.0 && u[d] <= 1.0;
-        }
-        if (ok) {
-            if (h)
-                hb_ref_sample_near(plan, theta_o[k], phi_o[k], h[k], u, &theta_i, &phi_i);
-            else
-                hb_ref_sample(plan, theta_o[k], phi_o[k], u, &theta_i, &phi_i);
-            float ti = (float)theta_i, pi = (float)phi_i; /* f and pdf where the caller will see the sample */
-            theta_i = ti;
-            phi_i = pi;
-            if (h) {
-                pdf = hb_ref_pdf_near(plan, theta_i, phi_i, theta_o[k], phi_o[k], h[k]);
-                hb_ref_eval_near_pair(plan, theta_i, phi_i, theta_o[k], phi_o[k], h[k], f);
-            } else {
-                pdf = hb_ref_pdf(plan, theta_i, phi_i, theta_o[k], phi_o[k]);
-                hb_ref_eval_pair(plan, theta_i, phi_i, theta_o[k], phi_o[k], f);
-            }
-        } else {
-            invalid++;
-        }
-        out.theta_i[k] = (float)theta_i;
-        out.phi_i[k] = (float)phi_i;
-        out.pdf[k] = (float)pdf;
-        float *weight[3] = { out.weight.r, out.weight.g, out.weight.b };
-        for (int c = 0; c < 3; c++)
-            weight[c][k] = pdf > 0.0 ? (float)(f[c] / pdf) : 0.0f;
-    }
-    return invalid;
-}
-
-/* The pointers a sampling call of n > 0 samples reads and writes (h: the near field's, or NULL). */
-static hb_status sample_arguments(size_t n, const float *theta_o, const float *phi_o, int near, const float *h,
-                                  const float *const *u, int dims, hb_sample_out out)
-{
-    if (!n)
-        return HB_OK;
-    if (!theta_o || !phi_o || (near && !h) || !out.theta_i || !out.phi_i || !out.pdf || !out.weight.r ||
-        !out.weight.g || !out.weight.b)
-        return HB_ERR_NULL;
-    for (int d = 0; d < dims; d++)
-        if (!u[d])
-            return HB_ERR_NULL;
-    return HB_OK;
+    if (vectors)
+        return hb_ref_direction(s[0][k], s[1][k], s[2][k], theta, phi);
+    *theta = s[0][k];
+    *phi = s[1][k];
+    return angles_valid(*theta, *phi);
 }
 
 static void report_invalid(hb_eval_report *report, size_t invalid)
@@ -79,56 +35,195 @@ static void report_invalid(hb_eval_report *report, size_t invalid)
         report->invalid = invalid;
 }
 
-/* The reference pdf, one sample at a time; h: each sample's offset (near field), or NULL. */
-static size_t pdf_ref(const hb_plan *plan, size_t n, const float *theta_i, const float *phi_i, const float *theta_o,
-                      const float *phi_o, const float *h, float *pdf)
+/* The reference sampler, one sample at a time; h: each sample's offset (near field), or NULL. */
+static size_t sample_ref(const hb_plan *plan, int dims, size_t n, const hb_sample_batch *b, const float *h)
 {
+    const float *wo[3] = { b->in.theta_o, b->in.phi_o, NULL };
+    int vectors = b->wo[0] != NULL;
+    if (vectors)
+        wo[0] = b->wo[0], wo[1] = b->wo[1], wo[2] = b->wo[2];
     size_t invalid = 0;
     for (size_t k = 0; k < n; k++) {
-        int ok = angles_valid(theta_i[k], phi_i[k]) && angles_valid(theta_o[k], phi_o[k]) && (!h || fabsf(h[k]) <= 1.0f);
-        double p = !ok ? 0.0
-                 : h   ? hb_ref_pdf_near(plan, theta_i[k], phi_i[k], theta_o[k], phi_o[k], h[k])
-                       : hb_ref_pdf(plan, theta_i[k], phi_i[k], theta_o[k], phi_o[k]);
-        pdf[k] = (float)p;
-        invalid += !ok;
+        double u[HB_SAMPLE_DIMENSIONS], theta_o = 0.0, phi_o = 0.0, theta_i = 0.0, phi_i = 0.0, pdf = 0.0;
+        double f[3] = { 0.0, 0.0, 0.0 };
+        int ok = direction_at(wo, vectors, k, &theta_o, &phi_o) && (!h || fabsf(h[k]) <= 1.0f);
+        for (int d = 0; d < dims; d++) {
+            u[d] = b->in.u[d][k];
+            ok = ok && u[d] >= 0.0 && u[d] <= 1.0;
+        }
+        if (ok) {
+            if (h)
+                hb_ref_sample_near(plan, theta_o, phi_o, h[k], u, &theta_i, &phi_i);
+            else
+                hb_ref_sample(plan, theta_o, phi_o, u, &theta_i, &phi_i);
+            theta_i = (float)theta_i; /* f and pdf where the caller will see the sample */
+            phi_i = (float)phi_i;
+            if (h) {
+                pdf = hb_ref_pdf_near(plan, theta_i, phi_i, theta_o, phi_o, h[k]);
+                hb_ref_eval_near_pair(plan, theta_i, phi_i, theta_o, phi_o, h[k], f);
+            } else {
+                pdf = hb_ref_pdf(plan, theta_i, phi_i, theta_o, phi_o);
+                hb_ref_eval_pair(plan, theta_i, phi_i, theta_o, phi_o, f);
+            }
+        } else {
+            invalid++;
+        }
+        if (b->wi[0]) {
+            double c = ok ? cos(theta_i) : 0.0;
+            b->wi[0][k] = (float)(sin(phi_i) * c);
+            b->wi[1][k] = ok ? (float)sin(theta_i) : 0.0f;
+            b->wi[2][k] = (float)(cos(phi_i) * c);
+        } else {
+            b->out.theta_i[k] = (float)theta_i;
+            b->out.phi_i[k] = (float)phi_i;
+        }
+        b->out.pdf[k] = (float)pdf;
+        float *weight[3] = { b->out.weight.r, b->out.weight.g, b->out.weight.b };
+        for (int c = 0; c < 3; c++)
+            weight[c][k] = pdf > 0.0 ? (float)(f[c] / pdf) : 0.0f;
     }
     return invalid;
 }
 
-hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, hb_eval_report *report)
+/* Whether a sampling batch of n > 0 samples has every pointer it reads and writes. */
+static int sample_pointers(size_t n, const hb_sample_batch *b, int dims, const float *h, int near)
+{
+    if (!n)
+        return 1;
+    int in = b->wo[0] ? b->wo[1] && b->wo[2] : b->in.theta_o && b->in.phi_o;
+    int out = b->wi[0] ? b->wi[1] && b->wi[2] : b->out.theta_i && b->out.phi_i;
+    if (!in || !out || (near && !h) || !b->out.pdf || !b->out.weight.r || !b->out.weight.g || !b->out.weight.b)
+        return 0;
+    for (int d = 0; d < dims; d++)
+        if (!b->in.u[d])
+            return 0;
+    return 1;
+}
+
+static hb_status sample_batch(const hb_plan *plan, size_t n, const hb_sample_batch *b, hb_eval_report *report)
 {
     if (!plan)
         return HB_ERR_NULL;
     int dims = hb_plan_sample_dimensions(plan);
     if (dims == 0)
         return HB_ERR_UNSUPPORTED;
-    hb_status st = sample_arguments(n, in.theta_o, in.phi_o, 0, NULL, in.u, dims, out);
-    if (st != HB_OK)
-        return st;
+    if (!sample_pointers(n, b, dims, NULL, 0))
+        return HB_ERR_NULL;
     size_t invalid = 0;
     if (!plan->kernels)
-        invalid = sample_ref(plan, dims, n, in.theta_o, in.phi_o, NULL, in.u, out);
+        invalid = sample_ref(plan, dims, n, b, NULL);
     else
-        hb_model_ops_of(plan->options.model)->sample(plan, n, in, out, &invalid);
+        hb_model_ops_of(plan->options.model)->sample(plan, n, b, &invalid);
+    report_invalid(report, invalid);
+    return HB_OK;
+}
+
+hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, hb_eval_report *report)
+{
+    hb_sample_batch b = { .in = in, .out = out };
+    return sample_batch(plan, n, &b, report);
+}
+
+hb_status hb_sample_vectors(const hb_plan *plan, size_t n, hb_sample_vectors_in in, hb_sample_vectors_out out,
+                            hb_eval_report *report)
+{
+    hb_sample_batch b = { .wo = { in.wo_x, in.wo_y, in.wo_z }, .wi = { out.wi_x, out.wi_y, out.wi_z } };
+    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+        b.in.u[d] = in.u[d];
+    b.out.pdf = out.pdf;
+    b.out.weight = out.weight;
+    if (n && (!in.wo_x || !out.wi_x)) /* a batch without wo[0] or wi[0] would read or write angles */
+        return HB_ERR_NULL;
+    return sample_batch(plan, n, &b, report);
+}
+
+/* The reference pdf (and f where f is not NULL), one sample at a time; h: offsets, or NULL. */
+static size_t pdf_ref(const hb_plan *plan, size_t n, const hb_pair_batch *in, const float *h, float *pdf,
+                      const hb_rgb_soa *f)
+{
+    int vectors = in->vectors.wi_x != NULL;
+    const float *wi[3] = { in->angles.theta_i, in->angles.phi_i, NULL };
+    const float *wo[3] = { in->angles.theta_o, in->angles.phi_o, NULL };
+    if (vectors) {
+        const hb_vectors_soa *v = &in->vectors;
+        wi[0] = v->wi_x, wi[1] = v->wi_y, wi[2] = v->wi_z, wo[0] = v->wo_x, wo[1] = v->wo_y, wo[2] = v->wo_z;
+    }
+    size_t invalid = 0;
+    for (size_t k = 0; k < n; k++) {
+        double ti, pi, to, po, p = 0.0, value[3] = { 0.0, 0.0, 0.0 };
+        int ok = direction_at(wi, vectors, k, &ti, &pi) && direction_at(wo, vectors, k, &to, &po) &&
+                 (!h || fabsf(h[k]) <= 1.0f);
+        if (ok && h)
+            p = hb_ref_pdf_near(plan, ti, pi, to, po, h[k]);
+        else if (ok)
+            p = hb_ref_pdf(plan, ti, pi, to, po);
+        if (ok && f)
+            hb_ref_eval_pair(plan, ti, pi, to, po, value);
+        pdf[k] = (float)p;
+        if (f)
+            f->r[k] = (float)value[0], f->g[k] = (float)value[1], f->b[k] = (float)value[2];
+        invalid += !ok;
+    }
+    return invalid;
+}
+
+static int pairs_present(const hb_pair_batch *in)
+{
+    if (in->vectors.wi_x)
+        return in->vectors.wi_y && in->vectors.wi_z && in->vectors.wo_x && in->vectors.wo_y && in->vectors.wo_z;
+    return in->angles.theta_i && in->angles.phi_i && in->angles.theta_o && in->angles.phi_o;
+}
+
+/* pdf, and f where f is not NULL, of direction pairs. */
+static hb_status pdf_batch(const hb_plan *plan, size_t n, const hb_pair_batch *in, const hb_rgb_soa *f, float *pdf,
+                           hb_eval_report *report)
+{
+    if (!plan)
+        return HB_ERR_NULL;
+    if (hb_plan_sample_dimensions(plan) == 0)
+        return HB_ERR_UNSUPPORTED;
+    if (n && (!pairs_present(in) || !pdf || (f && (!f->r || !f->g || !f->b))))
+        return HB_ERR_NULL;
+    size_t invalid = 0;
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    if (!plan->kernels)
+        invalid = pdf_ref(plan, n, in, NULL, pdf, f);
+    else if (f)
+        ops->eval_pdf(plan, n, in, *f, pdf, &invalid);
+    else
+        ops->pdf(plan, n, in, pdf, &invalid);
     report_invalid(report, invalid);
     return HB_OK;
 }
 
 hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, hb_eval_report *report)
 {
-    if (!plan)
+    hb_pair_batch pairs = { .angles = in };
+    return pdf_batch(plan, n, &pairs, NULL, pdf, report);
+}
+
+hb_status hb_pdf_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, float *pdf, hb_eval_report *report)
+{
+    if (n && !in.wi_x)
         return HB_ERR_NULL;
-    if (hb_plan_sample_dimensions(plan) == 0)
-        return HB_ERR_UNSUPPORTED;
-    if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o || !pdf))
+    hb_pair_batch pairs = { .vectors = in };
+    return pdf_batch(plan, n, &pairs, NULL, pdf, report);
+}
+
+hb_status hb_eval_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa f, float *pdf,
+                             hb_eval_report *report)
+{
+    hb_pair_batch pairs = { .angles = in };
+    return pdf_batch(plan, n, &pairs, &f, pdf, report);
+}
+
+hb_status hb_eval_pdf_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa f, float *pdf,
+                              hb_eval_report *report)
+{
+    if (n && !in.wi_x)
         return HB_ERR_NULL;
-    size_t invalid = 0;
-    if (!plan->kernels)
-        invalid = pdf_ref(plan, n, in.theta_i, in.phi_i, in.theta_o, in.phi_o, NULL, pdf);
-    else
-        hb_model_ops_of(plan->options.model)->pdf(plan, n, in, pdf, &invalid);
-    report_invalid(report, invalid);
-    return HB_OK;
+    hb_pair_batch pairs = { .vectors = in };
+    return pdf_batch(plan, n, &pairs, &f, pdf, report);
 }
 
 /* The near field's number count: the far-field sampler's less the one it turns into h. */
@@ -145,12 +240,14 @@ hb_status hb_sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb
     int dims = near_dimensions(plan);
     if (dims <= 0)
         return HB_ERR_UNSUPPORTED;
-    hb_status st = sample_arguments(n, in.theta_o, in.phi_o, 1, in.h, in.u, dims, out);
-    if (st != HB_OK)
-        return st;
+    hb_sample_batch b = { .in = { in.theta_o, in.phi_o, { 0 } }, .out = out };
+    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+        b.in.u[d] = in.u[d];
+    if (!sample_pointers(n, &b, dims, in.h, 1))
+        return HB_ERR_NULL;
     size_t invalid = 0;
     if (!plan->kernels)
-        invalid = sample_ref(plan, dims, n, in.theta_o, in.phi_o, in.h, in.u, out);
+        invalid = sample_ref(plan, dims, n, &b, in.h);
     else
         hb_model_ops_of(plan->options.model)->sample_near(plan, n, in, out, &invalid);
     report_invalid(report, invalid);
@@ -166,10 +263,12 @@ hb_status hb_pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *pdf,
     if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o || !in.h || !pdf))
         return HB_ERR_NULL;
     size_t invalid = 0;
-    if (!plan->kernels)
-        invalid = pdf_ref(plan, n, in.theta_i, in.phi_i, in.theta_o, in.phi_o, in.h, pdf);
-    else
+    if (!plan->kernels) {
+        hb_pair_batch pairs = { .angles = { in.theta_i, in.phi_i, in.theta_o, in.phi_o } };
+        invalid = pdf_ref(plan, n, &pairs, in.h, pdf, NULL);
+    } else {
         hb_model_ops_of(plan->options.model)->pdf_near(plan, n, in, pdf, &invalid);
+    }
     report_invalid(report, invalid);
     return HB_OK;
 }

@@ -9,7 +9,7 @@
 
 #include "simd/simd.h"
 #include "math/vmath.h"
-#include "hairbsdf.h"
+#include "streams.h"
 
 /* hb_<isa>_<name>: the per-ISA name of a model's table (internal to the library). */
 #if defined(HB_TARGET_SCALAR)
@@ -33,7 +33,7 @@
  * stream either way (from the stream, or from the padded copy), so the vectors stay in registers. */
 HB_INLINE void load_block(const float *const *src, int streams, size_t i, size_t lanes, float pad, vf *dst)
 {
-    float padded[2 + HB_SAMPLE_DIMENSIONS][HB_W]; /* the most streams a kernel loads */
+    float padded[3 + HB_SAMPLE_DIMENSIONS][HB_W]; /* the most streams a kernel loads */
     if (lanes != HB_W)
         for (int s = 0; s < streams; s++)
             for (size_t k = 0; k < HB_W; k++)
@@ -97,17 +97,54 @@ HB_INLINE vm load_vectors(hb_vectors_soa in, size_t i, size_t lanes, vf a[6])
     return valid;
 }
 
-/* Loads lane block i of a sampling batch: theta_o, phi_o, then `dims` uniform numbers. Valid
- * lanes have a valid direction and every u in [0, 1]; the others get (0, 0) and u = 1/2. */
-HB_INLINE vm load_sample(hb_sample_in in, int dims, size_t i, size_t lanes, vf *a)
+/* theta and phi of unit vectors w (docs/conventions.md): theta = atan2(y, |(x, z)|), phi = atan2(x, z). */
+HB_INLINE void direction_angles(const vf w[3], vf *theta, vf *phi)
 {
-    const float *src[2 + HB_SAMPLE_DIMENSIONS] = { in.theta_o, in.phi_o };
+    *theta = vf_atan2(w[1], vf_sqrt(vf_fma(w[0], w[0], vf_mul(w[2], w[2]))));
+    *phi = vf_atan2(w[0], w[2]);
+}
+
+/* Loads lane block i of direction pairs as angles (theta_i, phi_i, theta_o, phi_o), vectors
+ * validated as hb_eval_vectors does and converted. */
+HB_INLINE vm load_pairs(const hb_pair_batch *in, size_t i, size_t lanes, vf a[4])
+{
+    if (!in->vectors.wi_x)
+        return load_angles(in->angles, i, lanes, a);
+    vf w[6];
+    vm valid = load_vectors(in->vectors, i, lanes, w);
+    direction_angles(w, &a[0], &a[1]);
+    direction_angles(w + 3, &a[2], &a[3]);
+    return valid;
+}
+
+/* Loads lane block i of a sampling batch: theta_o, phi_o (from w_o's vector where the batch gives
+ * one), then `dims` uniform numbers. Valid lanes have a valid direction and every u in [0, 1]; the
+ * others get (0, 0) and u = 1/2. */
+HB_INLINE vm load_sample(const hb_sample_batch *b, int dims, size_t i, size_t lanes, vf *a)
+{
+    int vectors = b->wo[0] != NULL, first = vectors ? 3 : 2;
+    const float *src[3 + HB_SAMPLE_DIMENSIONS] = { b->in.theta_o, b->in.phi_o };
+    if (vectors)
+        for (int k = 0; k < 3; k++)
+            src[k] = b->wo[k];
     for (int k = 0; k < dims; k++)
-        src[2 + k] = in.u[k];
-    load_block(src, 2 + dims, i, lanes, 0.0f, a);
-    vm valid = angle_pair_valid(a[0], a[1]);
-    for (int k = 2; k < 2 + dims; k++)
-        valid = vm_and(valid, vm_and(vf_ge(a[k], vf_set1(0.0f)), vf_le(a[k], vf_set1(1.0f))));
+        src[first + k] = b->in.u[k];
+    vf raw[3 + HB_SAMPLE_DIMENSIONS];
+    load_block(src, first + dims, i, lanes, 0.0f, raw);
+    vm valid;
+    if (vectors) {
+        valid = unit_vector_valid(raw);
+        for (int k = 0; k < 3; k++)
+            raw[k] = vf_select(valid, raw[k], vf_set1(k == 2 ? 1.0f : 0.0f));
+        direction_angles(raw, &a[0], &a[1]);
+    } else {
+        valid = angle_pair_valid(raw[0], raw[1]);
+        a[0] = raw[0], a[1] = raw[1];
+    }
+    for (int k = 0; k < dims; k++) {
+        a[2 + k] = raw[first + k];
+        valid = vm_and(valid, vm_and(vf_ge(a[2 + k], vf_set1(0.0f)), vf_le(a[2 + k], vf_set1(1.0f))));
+    }
     for (int k = 0; k < 2 + dims; k++)
         a[k] = vf_select(valid, a[k], vf_set1(k < 2 ? 0.0f : 0.5f));
     a[1] = reduce_angle(a[1]);
@@ -130,6 +167,24 @@ HB_INLINE void store_sample(hb_sample_out out, size_t i, size_t lanes, vm valid,
     store_block(out.phi_i, i, lanes, vf_keep(valid, phi_i));
     store_block(out.pdf, i, lanes, vf_keep(valid, pdf));
     store_rgb(out.weight, i, lanes, valid, weight);
+}
+
+/* The same into a sampling batch, w_i as a unit vector where the batch asks for one. */
+HB_INLINE void store_sampled(const hb_sample_batch *b, size_t i, size_t lanes, vm valid, vf theta_i, vf phi_i,
+                             vf pdf, const vf weight[3])
+{
+    if (!b->wi[0]) {
+        store_sample(b->out, i, lanes, valid, theta_i, phi_i, pdf, weight);
+        return;
+    }
+    vf sin_t, cos_t, sin_p, cos_p;
+    vf_sincos(theta_i, &sin_t, &cos_t);
+    vf_sincos(phi_i, &sin_p, &cos_p);
+    vf w[3] = { vf_mul(sin_p, cos_t), sin_t, vf_mul(cos_p, cos_t) };
+    for (int k = 0; k < 3; k++)
+        store_block(b->wi[k], i, lanes, vf_keep(valid, w[k]));
+    store_block(b->out.pdf, i, lanes, vf_keep(valid, pdf));
+    store_rgb(b->out.weight, i, lanes, valid, weight);
 }
 
 /* The loop every entry point shares: blocks of W lanes (a padded tail last), `compute`

@@ -8,6 +8,7 @@
 
 #include <string.h>
 
+#include "kernel/streams.h"
 #include "plan.h"
 #include "text.h"
 
@@ -35,8 +36,12 @@ typedef struct hb_model_ops {
     void (*eval_angles)(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid);
     void (*eval_vectors)(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid);
     int (*sample_dimensions)(const hb_plan *plan); /* 0: the plan cannot sample */
-    void (*sample)(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid);
-    void (*pdf)(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
+    void (*sample)(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid);
+    void (*pdf)(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *pdf, size_t *invalid);
+    /* f as eval_angles or eval_vectors gives it and the pdf, in one pass where the model's kernels
+     * form both together, else in two (hb_eval_then_pdf). */
+    void (*eval_pdf)(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf,
+                     size_t *invalid);
     hb_status (*table)(const hb_plan *plan, hb_table_view *view); /* HB_ERR_UNSUPPORTED: no table */
     /* Near-field models: the same at each sample's offset h (plan->kernels != NULL); NULL when the
      * model has no near field. */
@@ -72,5 +77,17 @@ static inline void hb_spread_channels(size_t n, hb_rgb_soa out)
 
 /* The model of an hb_model value; NULL if there is none (src/models/models.c). */
 const hb_model_ops *hb_model_ops_of(hb_model model);
+
+/* eval_pdf in two passes over the batch: eval (as the batch's form asks), then pdf. */
+static inline void hb_eval_then_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf,
+                                    size_t *invalid)
+{
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    if (in->vectors.wi_x)
+        ops->eval_vectors(plan, n, in->vectors, out, invalid);
+    else
+        ops->eval_angles(plan, n, in->angles, out, invalid);
+    ops->pdf(plan, n, in, pdf, invalid);
+}
 
 #endif

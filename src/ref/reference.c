@@ -59,7 +59,7 @@ size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rg
 }
 
 /* Inclination and azimuth of a unit-length-within-tolerance vector; 0 when it is not one. */
-static int direction(float x, float y, float z, double *theta, double *phi)
+int hb_ref_direction(float x, float y, float z, double *theta, double *phi)
 {
     double norm2 = (double)x * x + (double)y * y + (double)z * z;
     if (!(fabs(norm2 - 1.0) <= HB_UNIT_TOLERANCE))
@@ -74,8 +74,8 @@ size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_
     size_t invalid = 0;
     for (size_t k = 0; k < n; k++) {
         double f[3] = { 0.0, 0.0, 0.0 }, ti, pi, to, po;
-        if (direction(in.wi_x[k], in.wi_y[k], in.wi_z[k], &ti, &pi) &&
-            direction(in.wo_x[k], in.wo_y[k], in.wo_z[k], &to, &po))
+        if (hb_ref_direction(in.wi_x[k], in.wi_y[k], in.wi_z[k], &ti, &pi) &&
+            hb_ref_direction(in.wo_x[k], in.wo_y[k], in.wo_z[k], &to, &po))
             hb_ref_eval_pair(plan, ti, pi, to, po, f);
         else
             invalid++;

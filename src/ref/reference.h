@@ -118,6 +118,10 @@ void hb_ref_chiang_far(const hb_plan *plan, double theta_i, double phi_i, double
 void hb_ref_chiang_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double u[4],
                                double *theta_i, double *phi_i);
 
+/* theta and phi of a fibre-frame vector (atan2 of its parts, in double); 0 when it is not a unit
+ * vector within HB_UNIT_TOLERANCE or not finite. */
+int hb_ref_direction(float x, float y, float z, double *theta, double *phi);
+
 /* The plan's term at one direction pair, in double (three channels; src/ref/reference.c). */
 void hb_ref_eval_pair(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
 

@@ -121,6 +121,27 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         for (size_t k = 0; k < n; k++)
             if (!(isfinite(pdf[k]) && pdf[k] >= 0.0f))
                 abort();
+        /* the vector forms, on the same numbers as vectors (most not unit length: counted) */
+        float wi[3][MAX_SAMPLES];
+        hb_sample_vectors_in vin = { a[1], a[2], a[3], { u[0], u[1], u[2], a[0], a[1], u[1], u[2], u[0] } };
+        if (hb_sample_vectors(plan, n, vin, (hb_sample_vectors_out){ wi[0], wi[1], wi[2], pdf, { f[0], f[1], f[2] } },
+                              &rep) != HB_OK || rep.invalid > n)
+            abort();
+        for (size_t k = 0; k < n; k++)
+            if (!(isfinite(pdf[k]) && pdf[k] >= 0.0f && fabsf(wi[0][k]) <= 1.0f && fabsf(wi[1][k]) <= 1.0f &&
+                  fabsf(wi[2][k]) <= 1.0f))
+                abort();
+        hb_vectors_soa pairs = { a[0], a[1], a[2], a[3], a[1], a[2] };
+        if (hb_eval_pdf_vectors(plan, n, pairs, (hb_rgb_soa){ f[0], f[1], f[2] }, pdf, &rep) != HB_OK || rep.invalid > n)
+            abort();
+        check_rgb(f, n);
+        if (hb_eval_pdf_angles(plan, n, (hb_angles_soa){ a[0], a[1], a[2], a[3] }, (hb_rgb_soa){ f[0], f[1], f[2] }, pdf,
+                               &rep) != HB_OK || rep.invalid > n)
+            abort();
+        check_rgb(f, n);
+        for (size_t k = 0; k < n; k++)
+            if (!(isfinite(pdf[k]) && pdf[k] >= 0.0f))
+                abort();
     }
     float h[MAX_SAMPLES], pdf[MAX_SAMPLES], ti[MAX_SAMPLES], pi[MAX_SAMPLES];
     for (size_t k = 0; k < n; k++)

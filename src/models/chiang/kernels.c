@@ -24,10 +24,10 @@ HB_INLINE vm load_near(hb_near_soa in, size_t i, size_t lanes, vf a[5])
 /* A near-field sampling batch: theta_o, phi_o, the uniform numbers, then h last. */
 HB_INLINE vm load_sample_near(hb_sample_near_in in, size_t i, size_t lanes, vf a[3 + HB_CHIANG_NEAR_DIMENSIONS])
 {
-    hb_sample_in far = { in.theta_o, in.phi_o, { 0 } };
+    hb_sample_batch far = { .in = { in.theta_o, in.phi_o, { 0 } } };
     for (int d = 0; d < HB_CHIANG_NEAR_DIMENSIONS; d++)
-        far.u[d] = in.u[d];
-    vm valid = load_sample(far, HB_CHIANG_NEAR_DIMENSIONS, i, lanes, a);
+        far.in.u[d] = in.u[d];
+    vm valid = load_sample(&far, HB_CHIANG_NEAR_DIMENSIONS, i, lanes, a);
     vf *h = a + 2 + HB_CHIANG_NEAR_DIMENSIONS;
     load_block(&in.h, 1, i, lanes, 0.0f, h);
     vm h_valid = offset_valid(*h);
@@ -37,9 +37,9 @@ HB_INLINE vm load_sample_near(hb_sample_near_in in, size_t i, size_t lanes, vf a
     return vm_and(valid, h_valid);
 }
 
-HB_INLINE vm load_sample_far(hb_sample_in in, size_t i, size_t lanes, vf *a)
+HB_INLINE vm load_sample_far(const hb_sample_batch *b, size_t i, size_t lanes, vf *a)
 {
-    return load_sample(in, HB_CHIANG_NEAR_DIMENSIONS + 1, i, lanes, a);
+    return load_sample(b, HB_CHIANG_NEAR_DIMENSIONS + 1, i, lanes, a);
 }
 
 HB_INLINE vf cos_theta_of(vf theta) { return cos_near_pole(theta, vf_set1(HB_PIO2_LO)); }
@@ -69,21 +69,23 @@ static void vectors_kernel(const hb_chiang *c, size_t n, hb_vectors_soa in, hb_r
     HB_BATCH(load_vectors, 6, in, n, invalid, (chiang_vectors_far(c, a, a + 3, f), store_rgb(out, i, lanes, valid, f)));
 }
 
-static void sample_kernel(const hb_chiang *c, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+static void sample_kernel(const hb_chiang *c, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
     vf theta_i, phi_i, pdf, weight[3];
-    HB_BATCH(load_sample_far, 3 + HB_CHIANG_NEAR_DIMENSIONS, in, n, invalid,
+    HB_BATCH(load_sample_far, 3 + HB_CHIANG_NEAR_DIMENSIONS, b, n, invalid,
              (chiang_sample_far(c, a[0], a[1], a + 2, &theta_i, &phi_i, &pdf, weight),
-              store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
+              store_sampled(b, i, lanes, valid, theta_i, phi_i, pdf, weight)));
 }
 
-static void pdf_kernel(const hb_chiang *c, size_t n, hb_angles_soa in, float *pdf, size_t *invalid)
+/* The far field's pdf; f too where out is not NULL (one pass: chiang_far forms both). */
+static void f_pdf_kernel(const hb_chiang *c, size_t n, const hb_pair_batch *in, const hb_rgb_soa *out, float *pdf,
+                         size_t *invalid)
 {
     vf M[HB_CHIANG_TERMS], f[3], p;
-    HB_BATCH(load_angles, 4, in, n, invalid,
+    HB_BATCH(load_pairs, 4, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
               chiang_far(c, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, &p),
-              store_block(pdf, i, lanes, vf_keep(valid, p))));
+              store_block(pdf, i, lanes, vf_keep(valid, p)), out ? store_rgb(*out, i, lanes, valid, f) : (void)0));
 }
 
 static void near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
@@ -118,7 +120,7 @@ const hb_chiang_kernels HB_ISA_SYMBOL(chiang_kernels) = {
     .angles = angles_kernel,
     .vectors = vectors_kernel,
     .sample = sample_kernel,
-    .pdf = pdf_kernel,
+    .f_pdf = f_pdf_kernel,
     .near = near_kernel,
     .sample_near = sample_near_kernel,
     .pdf_near = pdf_near_kernel,

@@ -6,13 +6,16 @@
 #include <stddef.h>
 
 #include "constants.h"
+#include "kernel/streams.h"
 
 typedef struct hb_chiang_kernels {
     /* far field (the mean over h) */
     void (*angles)(const hb_chiang *c, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid);
     void (*vectors)(const hb_chiang *c, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid);
-    void (*sample)(const hb_chiang *c, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid);
-    void (*pdf)(const hb_chiang *c, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
+    void (*sample)(const hb_chiang *c, size_t n, const hb_sample_batch *b, size_t *invalid);
+    /* the pdf, and f where out is not NULL, in one pass */
+    void (*f_pdf)(const hb_chiang *c, size_t n, const hb_pair_batch *in, const hb_rgb_soa *out, float *pdf,
+                  size_t *invalid);
     /* near field, at each sample's h */
     void (*near)(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);
     void (*sample_near)(const hb_chiang *c, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid);

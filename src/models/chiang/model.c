@@ -26,14 +26,20 @@ static int sample_dimensions(const hb_plan *plan)
     return HB_CHIANG_NEAR_DIMENSIONS + 1;
 }
 
-static void sample(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    kernels_of(plan)->sample(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan)->sample(&plan->chiang, n, b, invalid);
 }
 
-static void pdf(const hb_plan *plan, size_t n, hb_angles_soa in, float *out, size_t *invalid)
+static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
-    kernels_of(plan)->pdf(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan)->f_pdf(&plan->chiang, n, in, NULL, out, invalid);
+}
+
+static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf,
+                     size_t *invalid)
+{
+    kernels_of(plan)->f_pdf(&plan->chiang, n, in, &out, pdf, invalid);
 }
 
 static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
@@ -113,6 +119,7 @@ const hb_model_ops hb_chiang_model = {
     .sample_dimensions = sample_dimensions,
     .sample = sample,
     .pdf = pdf,
+    .eval_pdf = eval_pdf,
     .table = table,
     .eval_near = eval_near,
     .sample_near = sample_near,

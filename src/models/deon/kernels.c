@@ -4,9 +4,19 @@
 #include "kernels.h"
 #include "sample.h"
 
-HB_INLINE vm load_deon_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
+HB_INLINE vm load_deon_sample(const hb_sample_batch *b, size_t i, size_t lanes, vf *a)
 {
-    return load_sample(in, HB_DEON_SAMPLE_DIMENSIONS, i, lanes, a);
+    return load_sample(b, HB_DEON_SAMPLE_DIMENSIONS, i, lanes, a);
+}
+
+/* f and the pdf in one pass (quadrature plans: deon_f_pdf's f is deon_eval's). */
+HB_INLINE vf deon_f_pdf_angles(const hb_deon *d, const vf a[4], hb_i0 i0, vf f[3])
+{
+    vf M[HB_MAX_LOBES + 1];
+    deon_longitudinal_groups(d, a[0], a[2], i0, M);
+    deon_geometry g;
+    deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
+    return deon_f_pdf(d, M, &g, a[2], f);
 }
 
 /* One specialised kernel per I0 variant: the variant is a constant inside each. */
@@ -32,20 +42,28 @@ HB_INLINE vm load_deon_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
         HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
                  (deon_angles(deon, a[0], a[1], a[2], a[3], i0, f), store_rgb(out, i, lanes, valid, f))); \
     }                                                                                                     \
-    static void deon_sample_##suffix(const hb_deon *deon, size_t n, hb_sample_in in, hb_sample_out out,   \
+    static void deon_sample_##suffix(const hb_deon *deon, size_t n, const hb_sample_batch *b,              \
                                      size_t *invalid)                                                    \
     {                                                                                                     \
         vf theta_i, phi_i, pdf, weight[3];                                                                \
-        HB_BATCH(load_deon_sample, 2 + HB_DEON_SAMPLE_DIMENSIONS, in, n, invalid,                         \
+        HB_BATCH(load_deon_sample, 2 + HB_DEON_SAMPLE_DIMENSIONS, b, n, invalid,                          \
                  (deon_sample(deon, a[0], a[1], a + 2, i0, &theta_i, &phi_i, &pdf, weight),                \
-                  store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));                      \
+                  store_sampled(b, i, lanes, valid, theta_i, phi_i, pdf, weight)));                       \
     }                                                                                                     \
-    static void deon_pdf_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, float *pdf,            \
+    static void deon_pdf_##suffix(const hb_deon *deon, size_t n, const hb_pair_batch *in, float *pdf,     \
                                   size_t *invalid)                                                       \
     {                                                                                                     \
-        HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
+        HB_BATCH(load_pairs, 4, in, n, invalid,                                                           \
                  store_block(pdf, i, lanes,                                                               \
                              vf_keep(valid, deon_pdf_angles(deon, a[0], a[1], a[2], a[3], i0))));          \
+    }                                                                                                     \
+    static void deon_f_pdf_##suffix(const hb_deon *deon, size_t n, const hb_pair_batch *in, hb_rgb_soa out, \
+                                    float *pdf, size_t *invalid)                                         \
+    {                                                                                                     \
+        vf f[3];                                                                                          \
+        HB_BATCH(load_pairs, 4, in, n, invalid,                                                           \
+                 (store_block(pdf, i, lanes, vf_keep(valid, deon_f_pdf_angles(deon, a, i0, f))),          \
+                  store_rgb(out, i, lanes, valid, f)));                                                   \
     }                                                                                                     \
     static void deon_vectors_##suffix(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,   \
                                       size_t *invalid)                                                   \
@@ -70,5 +88,6 @@ const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
     .vectors = { deon_vectors_abramowitz, deon_vectors_paper },
     .sample = { deon_sample_abramowitz, deon_sample_paper },
     .pdf = { deon_pdf_abramowitz, deon_pdf_paper },
+    .f_pdf = { deon_f_pdf_abramowitz, deon_f_pdf_paper },
     .np_row = np_row,
 };

@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "constants.h"
+#include "kernel/streams.h"
 
 typedef void (*hb_longitudinal_angles_fn)(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,
                                           float *out, size_t *invalid);
@@ -16,9 +17,10 @@ typedef void (*hb_deon_angles_fn)(const hb_deon *deon, size_t n, hb_angles_soa i
                                   size_t *invalid);
 typedef void (*hb_deon_vectors_fn)(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                                    size_t *invalid);
-typedef void (*hb_deon_sample_fn)(const hb_deon *deon, size_t n, hb_sample_in in, hb_sample_out out,
-                                  size_t *invalid);
-typedef void (*hb_deon_pdf_fn)(const hb_deon *deon, size_t n, hb_angles_soa in, float *pdf, size_t *invalid);
+typedef void (*hb_deon_sample_fn)(const hb_deon *deon, size_t n, const hb_sample_batch *b, size_t *invalid);
+typedef void (*hb_deon_pdf_fn)(const hb_deon *deon, size_t n, const hb_pair_batch *in, float *pdf, size_t *invalid);
+typedef void (*hb_deon_f_pdf_fn)(const hb_deon *deon, size_t n, const hb_pair_batch *in, hb_rgb_soa out,
+                                 float *pdf, size_t *invalid);
 
 typedef void (*hb_deon_np_row_fn)(const hb_deon *deon, float cos_theta_d, size_t n, const float *phi, float *out);
 
@@ -29,6 +31,7 @@ typedef struct hb_deon_kernels {
     hb_deon_vectors_fn vectors[2];
     hb_deon_sample_fn sample[2];
     hb_deon_pdf_fn pdf[2];
+    hb_deon_f_pdf_fn f_pdf[2]; /* f (quadrature plans) and pdf in one pass */
     hb_deon_np_row_fn np_row; /* one row of the N_p table, out[(k * slots + s) * 3 + c] */
 } hb_deon_kernels;
 

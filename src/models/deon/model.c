@@ -38,14 +38,25 @@ static int sample_dimensions(const hb_plan *plan)
                ? HB_DEON_SAMPLE_DIMENSIONS : 0;
 }
 
-static void sample(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    ((const hb_deon_kernels *)plan->kernels)->sample[plan->options.i0](&plan->deon, n, in, out, invalid);
+    ((const hb_deon_kernels *)plan->kernels)->sample[plan->options.i0](&plan->deon, n, b, invalid);
 }
 
-static void pdf(const hb_plan *plan, size_t n, hb_angles_soa in, float *out, size_t *invalid)
+static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
     ((const hb_deon_kernels *)plan->kernels)->pdf[plan->options.i0](&plan->deon, n, in, out, invalid);
+}
+
+/* The quadrature forms f and the pdf's terms together (sample.h, deon_f_pdf); a table plan's f
+ * comes from its table, so it takes two passes. */
+static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf,
+                     size_t *invalid)
+{
+    if (plan->deon.np_table)
+        hb_eval_then_pdf(plan, n, in, out, pdf, invalid);
+    else
+        ((const hb_deon_kernels *)plan->kernels)->f_pdf[plan->options.i0](&plan->deon, n, in, out, pdf, invalid);
 }
 
 static void describe(hb_text *t, const hb_plan *plan)
@@ -132,6 +143,7 @@ const hb_model_ops hb_deon_model = {
     .sample_dimensions = sample_dimensions,
     .sample = sample,
     .pdf = pdf,
+    .eval_pdf = eval_pdf,
     .table = hb_deon_table_view,
     .describe = describe,
     .furnace_rule = furnace_rule,

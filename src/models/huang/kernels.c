@@ -5,14 +5,14 @@
 #include "kernels.h"
 #include "sample_paths.h"
 
-HB_INLINE vm load_huang_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
+HB_INLINE vm load_huang_sample(const hb_sample_batch *b, size_t i, size_t lanes, vf *a)
 {
-    return load_sample(in, HB_HUANG_SAMPLE_DIMENSIONS, i, lanes, a);
+    return load_sample(b, HB_HUANG_SAMPLE_DIMENSIONS, i, lanes, a);
 }
 
-HB_INLINE vm load_huang_path_sample(hb_sample_in in, size_t i, size_t lanes, vf *a)
+HB_INLINE vm load_huang_path_sample(const hb_sample_batch *b, size_t i, size_t lanes, vf *a)
 {
-    return load_sample(in, HB_HUANG_PATH_DIMENSIONS, i, lanes, a);
+    return load_sample(b, HB_HUANG_PATH_DIMENSIONS, i, lanes, a);
 }
 
 /* The sample indices first + lane of a block (mod 2^32), which key the Monte-Carlo numbers. */
@@ -39,27 +39,27 @@ static void vectors_kernel(const hb_huang *h, size_t n, hb_vectors_soa in, hb_rg
 }
 
 /* R-only plans sample exactly (weight = f / pdf); with TT or TRT, by traced paths (sample_paths.h). */
-static void sample_kernel(const hb_huang *h, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+static void sample_kernel(const hb_huang *h, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
     vf theta_i, phi_i, pdf, weight[3];
     if (h->lobes == 1u << HB_LOBE_R)
-        HB_BATCH(load_huang_sample, 2 + HB_HUANG_SAMPLE_DIMENSIONS, in, n, invalid,
+        HB_BATCH(load_huang_sample, 2 + HB_HUANG_SAMPLE_DIMENSIONS, b, n, invalid,
                  (huang_sample(h, a[0], a[1], a + 2, &theta_i, &phi_i, &pdf, weight),
-                  store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
+                  store_sampled(b, i, lanes, valid, theta_i, phi_i, pdf, weight)));
     else
-        HB_BATCH(load_huang_path_sample, 2 + HB_HUANG_PATH_DIMENSIONS, in, n, invalid,
+        HB_BATCH(load_huang_path_sample, 2 + HB_HUANG_PATH_DIMENSIONS, b, n, invalid,
                  (huang_path_sample(h, a[0], a[1], a + 2, lane_indices(i), &theta_i, &phi_i, &pdf, weight),
-                  store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
+                  store_sampled(b, i, lanes, valid, theta_i, phi_i, pdf, weight)));
 }
 
-static void pdf_kernel(const hb_huang *h, size_t n, hb_angles_soa in, float *pdf, size_t *invalid)
+static void pdf_kernel(const hb_huang *h, size_t n, const hb_pair_batch *in, float *pdf, size_t *invalid)
 {
     if (h->lobes == 1u << HB_LOBE_R)
-        HB_BATCH(load_angles, 4, in, n, invalid,
+        HB_BATCH(load_pairs, 4, in, n, invalid,
                  store_block(pdf, i, lanes,
                              vf_keep(valid, huang_pdf_angles(h, a[0], a[1], a[2], a[3]))));
     else
-        HB_BATCH(load_angles, 4, in, n, invalid,
+        HB_BATCH(load_pairs, 4, in, n, invalid,
                  store_block(pdf, i, lanes,
                              vf_keep(valid, huang_path_pdf(h, a[0], a[1], a[2], a[3], lane_indices(i)))));
 }

@@ -26,14 +26,21 @@ static int sample_dimensions(const hb_plan *plan)
     return plan->kernels ? HB_HUANG_PATH_DIMENSIONS : 0;
 }
 
-static void sample(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, size_t *invalid)
+static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    ((const hb_huang_kernels *)plan->kernels)->sample(&plan->huang, n, in, out, invalid);
+    ((const hb_huang_kernels *)plan->kernels)->sample(&plan->huang, n, b, invalid);
 }
 
-static void pdf(const hb_plan *plan, size_t n, hb_angles_soa in, float *out, size_t *invalid)
+static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
     ((const hb_huang_kernels *)plan->kernels)->pdf(&plan->huang, n, in, out, invalid);
+}
+
+/* f and its pdf share no stage (the pdf is eq. 33's, f eqs. 12, 23 and 24): two passes. */
+static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf,
+                     size_t *invalid)
+{
+    hb_eval_then_pdf(plan, n, in, out, pdf, invalid);
 }
 
 static void describe(hb_text *t, const hb_plan *plan)
@@ -127,6 +134,7 @@ const hb_model_ops hb_huang_model = {
     .sample_dimensions = sample_dimensions,
     .sample = sample,
     .pdf = pdf,
+    .eval_pdf = eval_pdf,
     .table = hb_huang_table_view,
     .describe = describe,
     .furnace_rule = furnace_rule,

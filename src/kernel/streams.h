@@ -1,0 +1,26 @@
+/* What the sampling, pdf and fused kernels read and write: the public batches, with directions
+ * as angles or as fibre-frame unit vectors (hb_sample_vectors, hb_pdf_vectors, hb_eval_pdf_vectors).
+ * A kernel converts vectors to angles as it loads a block and back as it stores one (batch.h), so
+ * one kernel serves both forms and the sample index keying a Monte-Carlo estimate is the same in
+ * both. Internal. */
+#ifndef HB_KERNEL_STREAMS_H
+#define HB_KERNEL_STREAMS_H
+
+#include "hairbsdf.h"
+
+/* Direction pairs: vectors when vectors.wi_x is not NULL, else angles. */
+typedef struct hb_pair_batch {
+    hb_angles_soa angles;
+    hb_vectors_soa vectors;
+} hb_pair_batch;
+
+/* A sampling batch: w_o from wo when wo[0] is not NULL, else from in.theta_o and in.phi_o; w_i to
+ * wi when wi[0] is not NULL (invalid samples get (0, 0, 0)), else to out.theta_i and out.phi_i. */
+typedef struct hb_sample_batch {
+    hb_sample_in in;
+    const float *wo[3];
+    hb_sample_out out;
+    float *wi[3];
+} hb_sample_batch;
+
+#endif
