@@ -33,8 +33,9 @@ enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
 #endif
 
 /* What a row times: hb_eval_angles, hb_sample_angles or hb_pdf_angles, or their near-field forms
- * (hb_eval_near, hb_sample_near, hb_pdf_near) at each sample's h. */
-typedef enum bench_op { OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR } bench_op;
+ * (hb_eval_near, hb_sample_near, hb_pdf_near) at each sample's h, or f and the pdf in one call
+ * (hb_eval_pdf_angles; its error is f's). */
+typedef enum bench_op { OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR, OP_EVAL_PDF } bench_op;
 
 static int op_is(bench_op op, bench_op far) { return op == far || op == far + OP_EVAL_NEAR; }
 
@@ -62,31 +63,49 @@ static float theta_i[BATCH], phi_i[BATCH], theta_o[BATCH], phi_o[BATCH], offset_
 static float out[3][BATCH], ref[3][BATCH];
 static float uniforms[HB_SAMPLE_DIMENSIONS][BATCH], sampled_theta[BATCH], sampled_phi[BATCH], sampled_pdf[BATCH];
 
-/* One call of the configuration's operation on the batch. For sampling, out holds the weights;
- * for the pdf, out[0..2] all hold the pdf. */
-static void run_op(const hb_plan *plan, bench_op op)
+/* The configuration's operation on samples [first, first + n) of the batch. For sampling, out holds
+ * the weights; for the pdf, out[0..2] all hold the pdf. */
+static void run_part(const hb_plan *plan, bench_op op, size_t first, size_t n)
 {
-    hb_angles_soa in = { theta_i, phi_i, theta_o, phi_o };
-    hb_near_soa near = { theta_i, phi_i, theta_o, phi_o, offset_h };
-    hb_sample_out sampled = { sampled_theta, sampled_phi, sampled_pdf, { out[0], out[1], out[2] } };
+    size_t k = first;
+    hb_angles_soa in = { theta_i + k, phi_i + k, theta_o + k, phi_o + k };
+    hb_near_soa near = { theta_i + k, phi_i + k, theta_o + k, phi_o + k, offset_h + k };
+    hb_rgb_soa f = { out[0] + k, out[1] + k, out[2] + k };
+    hb_sample_out sampled = { sampled_theta + k, sampled_phi + k, sampled_pdf + k, f };
+    const float *u[HB_SAMPLE_DIMENSIONS];
+    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+        u[d] = uniforms[d] + k;
     if (op == OP_EVAL) {
-        hb_eval_angles(plan, BATCH, in, (hb_rgb_soa){ out[0], out[1], out[2] }, NULL);
+        hb_eval_angles(plan, n, in, f, NULL);
     } else if (op == OP_EVAL_NEAR) {
-        hb_eval_near(plan, BATCH, near, (hb_rgb_soa){ out[0], out[1], out[2] }, NULL);
+        hb_eval_near(plan, n, near, f, NULL);
+    } else if (op == OP_EVAL_PDF) {
+        hb_eval_pdf_angles(plan, n, in, f, sampled_pdf + k, NULL);
     } else if (op == OP_SAMPLE) {
-        hb_sample_in sample_in = { theta_o, phi_o, { uniforms[0], uniforms[1], uniforms[2], uniforms[3], uniforms[4], uniforms[5], uniforms[6], uniforms[7] } };
-        hb_sample_angles(plan, BATCH, sample_in, sampled, NULL);
+        hb_sample_in sample_in = { theta_o + k, phi_o + k, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
+        hb_sample_angles(plan, n, sample_in, sampled, NULL);
     } else if (op == OP_SAMPLE_NEAR) {
-        hb_sample_near_in sample_in = { theta_o, phi_o, offset_h, { uniforms[0], uniforms[1], uniforms[2], uniforms[3], uniforms[4], uniforms[5], uniforms[6], uniforms[7] } };
-        hb_sample_near(plan, BATCH, sample_in, sampled, NULL);
+        hb_sample_near_in sample_in = { theta_o + k, phi_o + k, offset_h + k, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
+        hb_sample_near(plan, n, sample_in, sampled, NULL);
     } else {
         if (op == OP_PDF_NEAR)
-            hb_pdf_near(plan, BATCH, near, out[0], NULL);
+            hb_pdf_near(plan, n, near, out[0] + k, NULL);
         else
-            hb_pdf_angles(plan, BATCH, in, out[0], NULL);
-        memcpy(out[1], out[0], sizeof out[0]);
-        memcpy(out[2], out[0], sizeof out[0]);
+            hb_pdf_angles(plan, n, in, out[0] + k, NULL);
+        memcpy(out[1] + k, out[0] + k, n * sizeof(float));
+        memcpy(out[2] + k, out[0] + k, n * sizeof(float));
     }
+}
+
+/* One timed pass: the whole batch in one call, or (per_hit) one call per sample, as a path tracer
+ * calls at each ray hit. */
+static void run_op(const hb_plan *plan, bench_op op, int per_hit)
+{
+    if (!per_hit)
+        run_part(plan, op, 0, BATCH);
+    else
+        for (size_t k = 0; k < BATCH; k++)
+            run_part(plan, op, k, 1);
 }
 
 /* Directions spread over the sphere, half of them near the specular cone where M_p is large. */
@@ -103,7 +122,7 @@ static void make_inputs(double v)
     }
 }
 
-static int time_plan(const hb_material *m, const hb_options *o, bench_op op, row *r)
+static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int per_hit, row *r)
 {
     hb_plan *plan = NULL;
     hb_error err;
@@ -113,10 +132,10 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, row
     }
     int repeats = o->term == HB_TERM_FULL ? REPEATS / 10 : REPEATS;
     double t[REPEATS];
-    run_op(plan, op); /* warm up */
+    run_op(plan, op, per_hit); /* warm up */
     for (int k = 0; k < repeats; k++) {
         double t0 = now_ns();
-        run_op(plan, op);
+        run_op(plan, op, per_hit);
         t[k] = (now_ns() - t0) / BATCH;
     }
     qsort(t, (size_t)repeats, sizeof t[0], compare_double);
@@ -210,6 +229,7 @@ typedef struct config {
     int untilted;           /* the effect rows: alpha = 0 (dFH11: one M_p for lobes of equal roughness) */
     double eccentricity;    /* an elliptical fibre (MJC03, HHH22) */
     const char *label;      /* what the row measures, in the tables of docs/benchmarks.md and the README */
+    int per_hit;            /* one call per sample (ns per call), as a path tracer calls at each hit */
 } config;
 
 /* What each row measures: dFH11's M_p alone and its full model (R..TRRT + residual, RGB) per
@@ -223,132 +243,164 @@ typedef struct config {
  * by adaptive quadrature). */
 static const config configs[] = {
     { "deon", "longitudinal", "abramowitz", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 M_p alone (eq. 7, A&S I0), float (fast, balanced)" },
+      "dFH11 M_p alone (eq. 7, A&S I0), float (fast, balanced)", 0 },
     { "deon", "longitudinal", "abramowitz-high", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 M_p alone, double where it matters (high, reference)" },
+      "dFH11 M_p alone, double where it matters (high, reference)", 0 },
     { "deon", "longitudinal", "paper", HB_MODEL_DEON, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0, HB_I0_PAPER, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 M_p alone with eq. 15's series (error against the series in double)" },
+      "dFH11 M_p alone with eq. 15's series (error against the series in double)", 0 },
     { "deon", "full", "fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 full, R..TRRT + residual, RGB: fast" },
+      "dFH11 full, R..TRRT + residual, RGB: fast", 0 },
     { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 full: balanced" },
+      "dFH11 full: balanced", 0 },
     { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 full: high" },
+      "dFH11 full: high", 0 },
     { "deon", "full", "order35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 full: the paper's order 35 (18 nodes), float M_p" },
+      "dFH11 full: the paper's order 35 (18 nodes), float M_p", 0 },
     { "deon", "full", "order35-high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 full: order 35, double M_p (as at high)" },
+      "dFH11 full: order 35, double M_p (as at high)", 0 },
     { "deon", "full", "table-fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0,
-      "dFH11 full, N_p from the table: fast" },
+      "dFH11 full, N_p from the table: fast", 0 },
     { "deon", "full", "table-balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0,
-      "dFH11 full, N_p from the table: balanced" },
+      "dFH11 full, N_p from the table: balanced", 0 },
     { "deon", "full", "table-high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0,
-      "dFH11 full, N_p from the table: high" },
+      "dFH11 full, N_p from the table: high", 0 },
     { "marschner", "longitudinal", "gaussian", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0,
       HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "MJC03 longitudinal term alone" },
+      "MJC03 longitudinal term alone", 0 },
     { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "MJC03 full, R + TT + TRT with caustics, RGB" },
+      "MJC03 full, R + TT + TRT with caustics, RGB", 0 },
     { "huang", "R", "analytic", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R, GGX 0.1, App. A closed form (no G)" },
+      "HHH22 R, GGX 0.1, App. A closed form (no G)", 0 },
     { "huang", "R", "G-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R with Smith G, Simpson (peak-following): fast (16 panels)" },
+      "HHH22 R with Smith G, Simpson (peak-following): fast (16 panels)", 0 },
     { "huang", "R", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R with G: balanced (32 panels)" },
+      "HHH22 R with G: balanced (32 panels)", 0 },
     { "huang", "R", "G-high", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R with G: high (64 panels)" },
+      "HHH22 R with G: high (64 panels)", 0 },
     { "huang", "R", "G-paper-step", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_NUMERIC, 0.7, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R with G, the paper's rule (steps of 0.7 roughness)" },
+      "HHH22 R with G, the paper's rule (steps of 0.7 roughness)", 0 },
     { "deon", "sample", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 sampling: w_i, pdf and weight f/pdf (error: the weight's), balanced" },
+      "dFH11 sampling: w_i, pdf and weight f/pdf (error: the weight's), balanced", 0 },
     { "deon", "pdf", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 sampling pdf alone (error: against the reference quality's pdf), balanced" },
+      "dFH11 sampling pdf alone (error: against the reference quality's pdf), balanced", 0 },
     { "huang", "sample", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R sampling with G: w_i, pdf and weight (error: the weight's), balanced" },
+      "HHH22 R sampling with G: w_i, pdf and weight (error: the weight's), balanced", 0 },
     { "huang", "pdf", "G-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R sampling pdf alone (error: against adaptive quadrature), balanced" },
+      "HHH22 R sampling pdf alone (error: against adaptive quadrature), balanced", 0 },
     { "huang", "all", "mc-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
       HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R + TT + TRT, Monte-Carlo TT/TRT: fast (error: one estimate's noise)" },
+      "HHH22 R + TT + TRT, Monte-Carlo TT/TRT: fast (error: one estimate's noise)", 0 },
     { "huang", "all", "mc-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R + TT + TRT, Monte-Carlo TT/TRT: balanced" },
+      "HHH22 R + TT + TRT, Monte-Carlo TT/TRT: balanced", 0 },
     { "huang", "all", "table-fast", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R + TT + TRT, TT/TRT from the table: fast (error: where f is under 1% of the peak)" },
+      "HHH22 R + TT + TRT, TT/TRT from the table: fast (error: where f is under 1% of the peak)", 0 },
     { "huang", "all", "table-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 R + TT + TRT, TT/TRT from the table: balanced" },
+      "HHH22 R + TT + TRT, TT/TRT from the table: balanced", 0 },
     { "huang", "TT+TRT", "table-balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, HB_LOBES_HUANG & ~1u, HB_TT_TRT_TABLE, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 TT + TRT table lookup alone, balanced" },
+      "HHH22 TT + TRT table lookup alone, balanced", 0 },
     { "huang", "sample-all", "balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 sampling with TT and TRT (one traced path; no reference), balanced" },
+      "HHH22 sampling with TT and TRT (one traced path; no reference), balanced", 0 },
     { "huang", "pdf-all", "balanced", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF, HB_LOBES_HUANG, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "HHH22 sampling pdf with TT and TRT, balanced" },
+      "HHH22 sampling pdf with TT and TRT, balanced", 0 },
     /* CBTB16 (pbrt-v4's hair): near-field f at each sample's h per quality (the float and the double
      * M_p), its sampler and pdf, the far field (the mean over h) per quality, and R alone */
     { "chiang", "near", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "CBTB16 near field at h, balanced (float M_p)" },
+      "CBTB16 near field at h, balanced (float M_p)", 0 },
     { "chiang", "near", "high", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "CBTB16 near field at h, high (double M_p)" },
+      "CBTB16 near field at h, high (double M_p)", 0 },
     { "chiang", "sample-near", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "CBTB16 sampling at h (direction, pdf and f / pdf), balanced" },
+      "CBTB16 sampling at h (direction, pdf and f / pdf), balanced", 0 },
     { "chiang", "pdf-near", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "CBTB16 sampling pdf at h, balanced" },
+      "CBTB16 sampling pdf at h, balanced", 0 },
     { "chiang", "far", "fast", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "CBTB16 far field (mean over h), fast" },
+      "CBTB16 far field (mean over h), fast", 0 },
     { "chiang", "far", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "CBTB16 far field (mean over h), balanced" },
+      "CBTB16 far field (mean over h), balanced", 0 },
     { "chiang", "far", "high", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "CBTB16 far field (mean over h), high" },
+      "CBTB16 far field (mean over h), high", 0 },
     { "chiang", "effects", "R", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "effect: CBTB16 near field, R only" },
+      "effect: CBTB16 near field, R only", 0 },
+    /* dFH11 at the hit's h (near.h): f, its sampler and pdf; f and the pdf in one call (far field) */
+    { "deon", "near", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 near field at h, balanced", 0 },
+    { "deon", "sample-near", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 sampling at h (direction, pdf and f / pdf), balanced", 0 },
+    { "deon", "pdf-near", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_PDF_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 sampling pdf at h, balanced", 0 },
+    { "deon", "eval-pdf", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 f and pdf in one call (hb_eval_pdf_angles), balanced", 0 },
+    /* per hit: one call of one sample, ns per call (the batch rows above are ns per sample) */
+    { "deon", "per-hit", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "per hit (ns per call of n = 1): dFH11 far field, balanced", 1 },
+    { "deon", "per-hit", "near-balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "per hit: dFH11 near field at h, balanced", 1 },
+    { "deon", "per-hit", "eval-pdf", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_PDF, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "per hit: dFH11 f and pdf in one call, balanced", 1 },
+    { "marschner", "per-hit", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "per hit: MJC03 full", 1 },
+    { "huang", "per-hit", "R-analytic", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "per hit: HHH22 R, App. A closed form", 1 },
+    { "chiang", "per-hit", "near-balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "per hit: CBTB16 near field at h, balanced", 1 },
     /* what each effect costs: the balanced dFH11 row without TRT and above (dark hair), without the tilt,
      * R alone; MJC03 R alone and R + TT; HHH22's R lobe on an elliptical fibre */
     { "deon", "effects", "R+TT", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
       HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "effect: dFH11 balanced, R + TT only (dark hair)" },
+      "effect: dFH11 balanced, R + TT only (dark hair)", 0 },
     { "deon", "effects", "untilted", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0,
-      "effect: dFH11 balanced, alpha = 0 (one M_p for every lobe)" },
+      "effect: dFH11 balanced, alpha = 0 (one M_p for every lobe)", 0 },
     { "deon", "effects", "R+TT-untilted", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0,
-      "effect: dFH11 balanced, R + TT, alpha = 0" },
+      "effect: dFH11 balanced, R + TT, alpha = 0", 0 },
     { "deon", "effects", "R", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
       HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "effect: dFH11 balanced, R only (black hair)" },
+      "effect: dFH11 balanced, R only (black hair)", 0 },
     { "marschner", "effects", "R", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 1u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "effect: MJC03, R only" },
+      "effect: MJC03, R only", 0 },
     { "marschner", "effects", "R+TT", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 3u, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "effect: MJC03, R + TT" },
+      "effect: MJC03, R + TT", 0 },
     { "marschner", "effects", "elliptical", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.5,
-      "effect: MJC03, elliptical fibre (e 0.5)" },
+      "effect: MJC03, elliptical fibre (e 0.5)", 0 },
     { "huang", "effects", "G-balanced-elliptical", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.5,
-      "effect: HHH22 R with G, balanced, elliptical fibre (e 0.5)" },
+      "effect: HHH22 R with G, balanced, elliptical fibre (e 0.5)", 0 },
     { "huang", "effects", "G-balanced-untilted", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 1, 0.0,
-      "effect: HHH22 R with G, balanced, no tilt" },
+      "effect: HHH22 R with G, balanced, no tilt", 0 },
 };
 
 /* The options of a configuration (quality and ISA left to the caller where they differ). */
@@ -447,7 +499,7 @@ static void reference_of(const hb_material *m, const config *c)
             hb_pdf_angles(plan, NREF, in, ref[0], NULL);
         memcpy(ref[1], ref[0], sizeof ref[0]);
         memcpy(ref[2], ref[0], sizeof ref[0]);
-    } else if (c->op == OP_EVAL) {
+    } else if (c->op == OP_EVAL || c->op == OP_EVAL_PDF) {
         hb_eval_angles(plan, NREF, in, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
     } else if (c->op == OP_EVAL_NEAR) {
         hb_eval_near(plan, NREF, near, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
@@ -622,7 +674,7 @@ static int run_once(const char *name, long repeats)
             streams[d] = uniforms[d];
         hb_uniforms(1, 0, BATCH, HB_SAMPLE_DIMENSIONS, streams);
         for (long r = 0; r < repeats; r++)
-            run_op(plan, configs[ci].op);
+            run_op(plan, configs[ci].op, configs[ci].per_hit);
         hb_plan_destroy(plan);
         return 0;
     }
@@ -767,7 +819,7 @@ int main(int argc, char **argv)
             options_of(c, &o);
             o.isa = (hb_isa)isa;
             row r = { c->model, c->term, c->variant, (int)ci, HB_ISA_SCALAR, 0, 0, 0 };
-            if (time_plan(&mc, &o, c->op, &r))
+            if (time_plan(&mc, &o, c->op, c->per_hit, &r))
                 rows[nrows++] = r;
         }
     }

@@ -310,11 +310,11 @@ HB_API hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in,
 HB_API hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                           hb_eval_report *report);
 
-/* Near-field evaluation (CBTB16): each sample also gives h in [-1, 1], the signed offset across the
- * fibre's width at which w_o's ray meets it (docs/chiang.md: h's sign and pbrt's). hb_eval_angles of
- * the same plan is the far-field f, the mean over h by the plan's quadrature. A sample is invalid
- * as in hb_eval_angles, or when h is NaN or |h| > 1. Plans of models without a near field return
- * HB_ERR_UNSUPPORTED. */
+/* Near-field evaluation (CBTB16, dFH11): each sample also gives h in [-1, 1], the signed offset
+ * across the fibre's width at which w_o's ray meets it (docs/chiang.md: h's sign and pbrt's).
+ * hb_eval_angles of the same plan is the far-field f, the mean over h (docs/deon.md for dFH11's
+ * near field). A sample is invalid as in hb_eval_angles, or when h is NaN or |h| > 1. Plans of models
+ * without a near field (MJC03, HHH22) or of HB_TERM_LONGITUDINAL return HB_ERR_UNSUPPORTED. */
 typedef struct hb_near_soa {
     const float *theta_i, *phi_i, *theta_o, *phi_o, *h;
 } hb_near_soa;
@@ -393,9 +393,9 @@ HB_API hb_status hb_frame_from_tangent(const float tangent[3], const float *norm
 HB_API void hb_frame_to_local(const hb_frame *frame, const float world[3], float local[3]);
 HB_API void hb_frame_to_world(const hb_frame *frame, const float local[3], float world[3]);
 
-/* Near-field sampling and pdf (CBTB16): as hb_sample_angles and hb_pdf_angles at each sample's
- * offset h (hb_eval_near); HB_ERR_UNSUPPORTED for plans without a near field. The far-field calls
- * of the same plan draw h from one more uniform number and return the far-field pdf. */
+/* Near-field sampling and pdf (CBTB16, dFH11): as hb_sample_angles and hb_pdf_angles at each
+ * sample's offset h (hb_eval_near), reading hb_plan_sample_dimensions(plan) - 1 numbers;
+ * HB_ERR_UNSUPPORTED for plans without a near-field sampler. */
 typedef struct hb_sample_near_in {
     const float *theta_o, *phi_o, *h;
     const float *u[HB_SAMPLE_DIMENSIONS];

@@ -546,14 +546,14 @@ static void test_chiang_api(hb_test_ctx *t)
     o.lobes = 1u << HB_LOBE_TT;
     CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "TT alone: %s", err.message);
     hb_plan_destroy(plan);
-    o.model = HB_MODEL_DEON;
+    o.model = HB_MODEL_HUANG;
     o.lobes = HB_LOBES_DEFAULT;
-    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "deon: %s", err.message);
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "huang: %s", err.message);
     float x = 0.1f, r, g, b;
     CHECK(t, hb_eval_near(plan, 1, (hb_near_soa){ &x, &x, &x, &x, &x }, (hb_rgb_soa){ &r, &g, &b }, NULL) ==
-                 HB_ERR_UNSUPPORTED, "hb_eval_near on a deon plan");
+                 HB_ERR_UNSUPPORTED, "hb_eval_near on a huang plan");
     CHECK(t, hb_pdf_near(plan, 1, (hb_near_soa){ &x, &x, &x, &x, &x }, &r, NULL) == HB_ERR_UNSUPPORTED,
-          "hb_pdf_near on a deon plan");
+          "hb_pdf_near on a huang plan");
     hb_plan_destroy(plan);
     static const chiang_material blond = { "blond", 0.3, 0.3, 0.035, { 0.12, 0.2, 0.36 }, 1.55 };
     hb_plan *reference = chiang_plan(t, &blond, HB_QUALITY_REFERENCE, HB_ISA_AUTO);

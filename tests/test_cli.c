@@ -153,6 +153,27 @@ static void test_eval_errors(hb_test_ctx *t)
     CHECK(t, r.status == 1 && strstr(r.err, "phi_o,h"), "chiang without h: %d %s", r.status, r.err);
     run_tool(t, "eval --model chiang --far", "0.1,0.2,-0.3,0.4\n", &r);
     CHECK(t, r.status == 0 && atof(r.out) > 0.0, "chiang far field: %d %s %s", r.status, r.out, r.err);
+    /* a header decides: dFH11 at h where it names h, its far field where it does not or without one */
+    run_result near, far, plain;
+    run_tool(t, "eval --model deon", "theta_i,phi_i,theta_o,phi_o,h\n0.1,0.2,-0.3,0.4,0.5\n", &near);
+    run_tool(t, "eval --model deon", "theta_i,phi_i,theta_o,phi_o\n0.1,0.2,-0.3,0.4\n", &far);
+    run_tool(t, "eval --model deon", "0.1,0.2,-0.3,0.4\n", &plain);
+    CHECK(t, near.status == 0 && far.status == 0 && plain.status == 0 && strcmp(far.out, plain.out) == 0 &&
+                 strcmp(near.out, far.out) != 0 && atof(near.out) > 0.0,
+          "deon near '%s' (%s), far '%s', plain '%s'", near.out, near.err, far.out, plain.out);
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    hb_plan *plan = NULL;
+    float ti = 0.1f, pi = 0.2f, to = -0.3f, po = 0.4f, h = 0.5f, f[3];
+    CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK &&
+                 hb_eval_near(plan, 1, (hb_near_soa){ &ti, &pi, &to, &po, &h }, (hb_rgb_soa){ f, f + 1, f + 2 }, NULL) ==
+                     HB_OK && fabs(atof(near.out) / f[0] - 1.0) < 1e-6,
+          "deon near through the tool %s, the library %.9g", near.out, f[0]);
+    hb_plan_destroy(plan);
+    run_tool(t, "sample --model deon --theta-o 0.3 --h 0.5 --count 4", "", &r);
+    CHECK(t, r.status == 0 && strchr(r.out, ','), "deon sample --h: %d %s %s", r.status, r.out, r.err);
 }
 
 static void test_help(hb_test_ctx *t)
@@ -367,7 +388,7 @@ static void test_sample_commands(hb_test_ctx *t)
     static const char *const refused[] = { "sample --model marschner --theta-o 0.1", "sample --count 10",
                                            "sample --theta-o 2", "sample --theta-o 0.1 --count 0",
                                            "sample --theta-o 0.1 --seed -3", "pdf --model marschner",
-                                           "sample --theta-o 0.1 --h 0.5", "sample --model chiang --theta-o 0.1 --h 2" };
+                                           "sample --model huang --theta-o 0.1 --h 0.5", "sample --model chiang --theta-o 0.1 --h 2" };
     for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
         if (!run_tool(t, refused[k], "0,0,0,0\n", &r))
             return;

@@ -54,7 +54,8 @@ static void eval_usage(FILE *to, int pdf)
 {
     fprintf(to, "usage: hairbsdf %s [options] [--strict] [--far] [-o OUTPUT] [INPUT.csv]\n"
                 "Reads theta_i,phi_i,theta_o,phi_o (radians) per line from INPUT.csv or stdin, and h (the offset in\n"
-                "[-1, 1]) after them for a near-field model (chiang) unless --far (its mean over h); writes %s\n"
+                "[-1, 1]) after them where a header theta_i,phi_i,theta_o,phi_o,h names it (deon, chiang: the near\n"
+                "field at h) or, without a header, for chiang unless --far (its mean over h); writes %s\n"
                 "per line to OUTPUT or stdout. An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1)\n"
                 "gives %s and is reported with its line; with --strict it is an error.\n%s",
             pdf ? "pdf" : "eval",
@@ -112,8 +113,10 @@ int cmd_eval(int argc, char **argv, int pdf)
         hb_plan_destroy(plan);
         return 2;
     }
-    /* a model with a near field answers a call of no samples */
-    int near = !far && hb_eval_near(plan, 0, (hb_near_soa){ 0 }, (hb_rgb_soa){ 0 }, NULL) == HB_OK;
+    /* A model with a near field answers a call of no samples. A header names the columns: with h, the
+     * near field; without, the far field. Without a header CBTB16, a near-field model, reads h. */
+    int near_field = !far && hb_eval_near(plan, 0, (hb_near_soa){ 0 }, (hb_rgb_soa){ 0 }, NULL) == HB_OK;
+    int near = near_field && args.options.model == HB_MODEL_CHIANG;
     int columns = near ? 5 : 4;
     FILE *in = input_path ? fopen(input_path, "r") : stdin;
     FILE *out = output_path ? fopen(output_path, "w") : stdout;
@@ -140,7 +143,9 @@ int cmd_eval(int argc, char **argv, int pdf)
         float row[5];
         char copy[512];
         snprintf(copy, sizeof copy, "%s", s);
-        if (!nul && !seen_content && csv_is_header(s, columns)) {
+        if (!nul && !seen_content && (csv_is_header(s, 4) || (near_field && csv_is_header(s, 5)))) {
+            near = csv_is_header(s, 5);
+            columns = near ? 5 : 4;
             seen_content = 1;
             continue;
         }

@@ -15,7 +15,7 @@ static void sample_usage(FILE *to)
 {
     fprintf(to, "usage: hairbsdf sample [options] --theta-o X [--phi-o Y] [--h H] [--count N] [--seed S] [--summary]\n"
                 "Draws N directions w_i (default 16) for w_o = (theta_o, phi_o), at the offset H in [-1, 1] for a\n"
-                "near-field model (chiang; without --h its far field, h drawn too), with random numbers from\n"
+                "model with a near field (deon, chiang; without --h the far field), with random numbers from\n"
                 "hb_uniforms(seed), and prints theta_i,phi_i,pdf,w_r,w_g,w_b per sample, where the weight\n"
                 "w = f / pdf (huang with TT or TRT: the traced path's throughput, whose mean is that of f / pdf);\n--summary prints count,mean_w_r,mean_w_g,mean_w_b,stderr_r,stderr_g,stderr_b.\n%s",
             cli_model_options_help);
@@ -94,7 +94,7 @@ int cmd_sample(int argc, char **argv)
         return 2;
     }
     if (have_h && hb_eval_near(plan, 0, (hb_near_soa){ 0 }, (hb_rgb_soa){ 0 }, NULL) != HB_OK) {
-        fprintf(stderr, "hairbsdf sample: --h: this model has no near field (chiang has)\n");
+        fprintf(stderr, "hairbsdf sample: --h: this model has no near field (deon and chiang have)\n");
         hb_plan_destroy(plan);
         return 2;
     }

@@ -64,7 +64,7 @@ hb_status hb_eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa
     if (st != HB_OK)
         return st;
     const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
-    if (!ops->eval_near)
+    if (!ops->eval_near || plan->options.term != HB_TERM_FULL)
         return HB_ERR_UNSUPPORTED;
     if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o || !in.h))
         return HB_ERR_NULL;

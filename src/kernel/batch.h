@@ -76,15 +76,35 @@ HB_INLINE vm unit_vector_valid(const vf w[3])
  * are replaced by a benign direction, so no NaN or huge value reaches the math (a float-to-int
  * conversion of one is undefined behaviour); their output is 0 anyway. Azimuths are reduced to
  * [-pi, pi] alike on every ISA (vmath.h, reduce_angle). */
-HB_INLINE vm load_angles(hb_angles_soa in, size_t i, size_t lanes, vf a[4])
+HB_INLINE vm valid_angles(vf a[4])
 {
-    const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
-    load_block(src, 4, i, lanes, 0.0f, a);
     vm valid = vm_and(angle_pair_valid(a[0], a[1]), angle_pair_valid(a[2], a[3]));
     HB_UNROLL
     for (int k = 0; k < 4; k++)
         a[k] = vf_keep(valid, k % 2 ? reduce_angle(a[k]) : a[k]);
     return valid;
+}
+
+HB_INLINE vm load_angles(hb_angles_soa in, size_t i, size_t lanes, vf a[4])
+{
+    const float *src[4] = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
+    load_block(src, 4, i, lanes, 0.0f, a);
+    return valid_angles(a);
+}
+
+/* Sample k of an angle batch in every lane (the one-sample paths), as load_angles checks it. */
+HB_INLINE vm load_angles_one(hb_angles_soa in, size_t k, vf a[4])
+{
+    a[0] = vf_set1(in.theta_i[k]), a[1] = vf_set1(in.phi_i[k]), a[2] = vf_set1(in.theta_o[k]), a[3] = vf_set1(in.phi_o[k]);
+    return valid_angles(a);
+}
+
+/* Lane 0 of v into dst[k], 0 where invalid (the one-sample paths). */
+HB_INLINE void store_one(float *dst, size_t k, vm valid, vf v)
+{
+    float lanes[HB_W];
+    vf_storeu(lanes, vf_keep(valid, v));
+    dst[k] = lanes[0];
 }
 
 HB_INLINE vm load_vectors(hb_vectors_soa in, size_t i, size_t lanes, vf a[6])
@@ -149,6 +169,39 @@ HB_INLINE vm load_sample(const hb_sample_batch *b, int dims, size_t i, size_t la
         a[k] = vf_select(valid, a[k], vf_set1(k < 2 ? 0.0f : 0.5f));
     a[1] = reduce_angle(a[1]);
     return valid;
+}
+
+/* h in [-1, 1]; false for NaN. */
+HB_INLINE vm offset_valid(vf h) { return vf_le(vf_abs(h), vf_set1(1.0f)); }
+
+/* An angle batch with h as a fifth stream; invalid lanes get h = 0. */
+HB_INLINE vm load_near(hb_near_soa in, size_t i, size_t lanes, vf a[5])
+{
+    hb_angles_soa angles = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
+    vm valid = load_angles(angles, i, lanes, a);
+    const float *h = in.h;
+    load_block(&h, 1, i, lanes, 0.0f, a + 4);
+    valid = vm_and(valid, offset_valid(a[4]));
+    for (int k = 0; k < 4; k++)
+        a[k] = vf_keep(valid, a[k]);
+    a[4] = vf_keep(valid, a[4]);
+    return valid;
+}
+
+/* A near-field sampling batch: theta_o, phi_o, the `dims` uniform numbers, then h last. */
+HB_INLINE vm load_sample_near(hb_sample_near_in in, int dims, size_t i, size_t lanes, vf *a)
+{
+    hb_sample_batch far = { .in = { in.theta_o, in.phi_o, { 0 } } };
+    for (int d = 0; d < dims; d++)
+        far.in.u[d] = in.u[d];
+    vm valid = load_sample(&far, dims, i, lanes, a);
+    vf *h = a + 2 + dims;
+    load_block(&in.h, 1, i, lanes, 0.0f, h);
+    vm h_valid = offset_valid(*h);
+    for (int k = 0; k < 2 + dims; k++)
+        a[k] = vf_select(h_valid, a[k], vf_set1(k < 2 ? 0.0f : 0.5f));
+    *h = vf_keep(vm_and(valid, h_valid), *h);
+    return vm_and(valid, h_valid);
 }
 
 /* Invalid lanes get 0 in every plane. */

@@ -135,8 +135,10 @@ void hb_ref_deon_node(const hb_plan *plan, double sin2_theta_d, double gamma_i, 
             A[p][c] = p > 0 ? (1 - f) * (1 - f) * pow(f, p - 1) * pow(T[c], p) /* eq. 13 */
                             : d->r_fresnel_offset ? f : 1.0;                   /* eq. 14, or eq. 12 later */
     }
-    for (int c = 0; c < 3; c++) /* every order above pmax */
-        A[HB_LOBE_RESIDUAL][c] = (1 - f) * (1 - f) * pow(f, d->pmax) * pow(T[c], d->pmax + 1) / (1.0 - f * T[c]);
+    for (int c = 0; c < 3; c++) { /* every order above pmax; 1 - f T as (1 - f) + f (1 - T), and the limit 0 at f = 1 */
+        double series = (1.0 - f) + f * (1.0 - T[c]);
+        A[HB_LOBE_RESIDUAL][c] = series > 0.0 ? (1 - f) * (1 - f) * pow(f, d->pmax) * pow(T[c], d->pmax + 1) / series : 0.0;
+    }
 }
 
 /* eqs. 10, 12-14 for every order of the plan at one geometry, with n_panels panels of a
@@ -199,5 +201,28 @@ void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta
                                             plan->options.i0);
         for (int c = 0; c < 3; c++)
             f[c] += M * N[p][c];
+    }
+}
+
+/* The near field at offset h (src/models/deon/near.h): eq. 10's integrand at h per lobe,
+ * A(p, |h|) D_p(+-phi - Phi(p, |h|)) with phi's sign that of h, times M_p; the residual spread
+ * uniformly, 1 / (2 pi). */
+void hb_ref_deon_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                      double f[3])
+{
+    const hb_deon *d = &plan->deon;
+    double phi = remainder(phi_o - phi_i, 2.0 * M_PI), theta_d = 0.5 * (theta_o - theta_i);
+    double dot = cos(theta_i) * cos(theta_o) * cos(phi) + sin(theta_i) * sin(theta_o);
+    double fresnel_r = d->r_fresnel_offset ? 1.0 : hb_ref_fresnel(plan->material.eta, sqrt(fmax(0.0, 0.5 * (1.0 + dot))));
+    double A[HB_MAX_LOBES + 1][3], Phi[HB_MAX_LOBES], side = h < 0.0 ? -phi : phi;
+    hb_ref_deon_node(plan, sin(theta_d) * sin(theta_d), asin(fmin(fabs(h), 1.0)), A, Phi);
+    f[0] = f[1] = f[2] = 0.0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        if (!hb_deon_lobe_on(d, p))
+            continue;
+        double M = hb_ref_deon_longitudinal(plan->v[p], theta_i, theta_o - d->longitudinal[p].shift, plan->options.i0);
+        double D = p == HB_LOBE_RESIDUAL ? 0.5 / M_PI : hb_ref_detector(plan->beta_n[p], side - Phi[p]);
+        for (int c = 0; c < 3; c++)
+            f[c] += M * A[p][c] * D * (p == 0 ? fresnel_r : 1.0);
     }
 }

@@ -28,13 +28,13 @@ static void longitudinal_groups(const hb_plan *plan, double theta_i, double thet
                                   : 0.0;
 }
 
-/* m_p = M_p A(p, h_j) (channel mean) at node j; returns their sum. */
-static double lobe_masses(const hb_plan *plan, const double M[HB_MAX_LOBES + 1], double sin2_theta_d, int j,
+/* m_p = M_p A(p, h) (channel mean) at h = sin(gamma_i); returns their sum. */
+static double lobe_masses(const hb_plan *plan, const double M[HB_MAX_LOBES + 1], double sin2_theta_d, double gamma_i,
                           double mass[HB_MAX_LOBES + 1], double Phi[HB_MAX_LOBES])
 {
     const hb_deon *d = &plan->deon;
     double A[HB_MAX_LOBES + 1][3], total = 0.0;
-    hb_ref_deon_node(plan, sin2_theta_d, d->gamma_i[j], A, Phi);
+    hb_ref_deon_node(plan, sin2_theta_d, gamma_i, A, Phi);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         mass[p] = hb_deon_lobe_on(d, p) ? M[d->m_group[p]] * (A[p][0] + A[p][1] + A[p][2]) / 3.0 : 0.0;
         total += mass[p];
@@ -56,7 +56,7 @@ double hb_ref_deon_pdf(const hb_plan *plan, double theta_i, double phi_i, double
         weight_total += d->weight[j];
     for (int j = 0; j < d->nodes; j++) {
         double mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES], detected = 0.0;
-        double total = lobe_masses(plan, M, sin_td * sin_td, j, mass, Phi);
+        double total = lobe_masses(plan, M, sin_td * sin_td, d->gamma_i[j], mass, Phi);
         if (total <= 0.0)
             continue;
         for (int p = 0; p <= d->pmax; p++)
@@ -87,26 +87,37 @@ static double normal_quantile(double u)
     return 0.5 * (lo + hi);
 }
 
-void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const double u[5], double *theta_i,
-                        double *phi_i)
+/* Step 1: theta_i from the longitudinal mixture by u[0..2]; *rest (may be NULL) gets u[0]'s remainder
+ * within the chosen group's share. */
+static double sample_theta(const hb_plan *plan, double theta_o, const double *u, double *rest)
 {
     const hb_deon *d = &plan->deon;
-    /* 1. theta_i from the longitudinal mixture */
     double c[HB_MAX_LOBES + 1];
-    double target = u[0] * lobe_choice(d, theta_o, c), cumulative = 0.0;
+    double target = u[0] * lobe_choice(d, theta_o, c), cumulative = 0.0, below = 0.0;
     int g = -1;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
         if (hb_deon_group_leader(d, p)) {
-            if (g < 0 || target >= cumulative)
+            if (g < 0 || target >= cumulative) {
                 g = p;
+                below = cumulative;
+            }
             cumulative += c[p];
         }
+    if (rest)
+        *rest = fmin(fmax((target - below) / fmax(c[g], 1e-300), 0.0), 1.0 - 0x1p-24);
     double v = plan->v[g], shift = d->longitudinal[g].shift;
     double sin_o = sin(theta_o - shift), cos_o = fabs(cos(theta_o - shift));
     double one_minus_cos_psi = fmin(-v * log(u[1] + (1.0 - u[1]) * exp(-2.0 / v)), 2.0); /* vMF about the mirror */
     double sin_psi = sqrt(fmax(one_minus_cos_psi * (2.0 - one_minus_cos_psi), 0.0));
     double sin_i = (one_minus_cos_psi - 1.0) * sin_o + sin_psi * cos(2.0 * M_PI * u[2]) * cos_o;
-    *theta_i = asin(fmax(-1.0, fmin(1.0, sin_i)));
+    return asin(fmax(-1.0, fmin(1.0, sin_i)));
+}
+
+void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const double u[5], double *theta_i,
+                        double *phi_i)
+{
+    const hb_deon *d = &plan->deon;
+    *theta_i = sample_theta(plan, theta_o, u, NULL);
     /* 2. the node, then the lobe in proportion to M_p A(p, h), then the side */
     int j = 0;
     while (j < d->nodes - 1 && u[3] >= d->node_cdf[j])
@@ -115,9 +126,9 @@ void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const
     double M[HB_MAX_LOBES + 1], mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES];
     longitudinal_groups(plan, *theta_i, theta_o, M);
     double sin_td = sin(0.5 * (theta_o - *theta_i));
-    double total = lobe_masses(plan, M, sin_td * sin_td, j, mass, Phi);
-    target = within * total;
-    cumulative = 0.0;
+    double total = lobe_masses(plan, M, sin_td * sin_td, d->gamma_i[j], mass, Phi);
+    double target = within * total;
+    double cumulative = 0.0;
     int lobe = -1;
     double below = 0.0;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
@@ -134,4 +145,47 @@ void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const
                                              : Phi[lobe] + plan->beta_n[lobe] * normal_quantile(u[4]);
     double phi = remainder(negative_side ? -spread : spread, 2.0 * M_PI);
     *phi_i = remainder(phi_o - phi, 2.0 * M_PI);
+}
+
+/* The near field at offset h (src/models/deon/sample.h, deon_sample_near): theta_i as in the far
+ * field, u[0]'s remainder picks the lobe by M_p A(p, |h|), u[3] draws phi on h's side. */
+void hb_ref_deon_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double u[4],
+                             double *theta_i, double *phi_i)
+{
+    double rest, M[HB_MAX_LOBES + 1], mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES];
+    *theta_i = sample_theta(plan, theta_o, u, &rest);
+    longitudinal_groups(plan, *theta_i, theta_o, M);
+    double sin_td = sin(0.5 * (theta_o - *theta_i));
+    double target = rest * lobe_masses(plan, M, sin_td * sin_td, asin(fmin(fabs(h), 1.0)), mass, Phi);
+    double cumulative = 0.0;
+    int lobe = -1;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        if (hb_deon_lobe_on(&plan->deon, p)) {
+            if (lobe < 0 || target >= cumulative)
+                lobe = p;
+            cumulative += mass[p];
+        }
+    double spread = lobe == HB_LOBE_RESIDUAL ? M_PI * (2.0 * u[3] - 1.0)
+                                             : Phi[lobe] + plan->beta_n[lobe] * normal_quantile(u[3]);
+    *phi_i = remainder(phi_o - remainder(h < 0.0 ? -spread : spread, 2.0 * M_PI), 2.0 * M_PI);
+}
+
+double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h)
+{
+    const hb_deon *d = &plan->deon;
+    double phi = remainder(phi_o - phi_i, 2.0 * M_PI), sin_td = sin(0.5 * (theta_o - theta_i));
+    double M[HB_MAX_LOBES + 1], c[HB_MAX_LOBES + 1], mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES];
+    longitudinal_groups(plan, theta_i, theta_o, M);
+    double c_total = lobe_choice(d, theta_o, c), mixture = 0.0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        mixture += c[p] * M[p];
+    double total = lobe_masses(plan, M, sin_td * sin_td, asin(fmin(fabs(h), 1.0)), mass, Phi), detected = 0.0;
+    if (total <= 0.0)
+        return 0.0;
+    double side = h < 0.0 ? -phi : phi;
+    for (int p = 0; p <= d->pmax; p++)
+        if (mass[p] > 0.0)
+            detected += mass[p] * hb_ref_detector(plan->beta_n[p], side - Phi[p]);
+    detected += mass[HB_LOBE_RESIDUAL] * 0.5 / M_PI;
+    return mixture / c_total * detected / total;
 }

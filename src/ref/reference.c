@@ -87,17 +87,25 @@ size_t hb_ref_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_
 void hb_ref_eval_near_pair(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
                            double f[3])
 {
-    hb_ref_chiang_near(plan, theta_i, phi_i, theta_o, phi_o, h, f, NULL);
+    if (plan->options.model == HB_MODEL_DEON)
+        hb_ref_deon_near(plan, theta_i, phi_i, theta_o, phi_o, h, f);
+    else
+        hb_ref_chiang_near(plan, theta_i, phi_i, theta_o, phi_o, h, f, NULL);
 }
 
 void hb_ref_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double *u,
                         double *theta_i, double *phi_i)
 {
-    hb_ref_chiang_sample_near(plan, theta_o, phi_o, h, u, theta_i, phi_i);
+    if (plan->options.model == HB_MODEL_DEON)
+        hb_ref_deon_sample_near(plan, theta_o, phi_o, h, u, theta_i, phi_i);
+    else
+        hb_ref_chiang_sample_near(plan, theta_o, phi_o, h, u, theta_i, phi_i);
 }
 
 double hb_ref_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h)
 {
+    if (plan->options.model == HB_MODEL_DEON)
+        return hb_ref_deon_pdf_near(plan, theta_i, phi_i, theta_o, phi_o, h);
     double f[3], pdf;
     hb_ref_chiang_near(plan, theta_i, phi_i, theta_o, phi_o, h, f, &pdf);
     return pdf;

@@ -55,6 +55,14 @@ void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const
                         double *phi_i);
 double hb_ref_deon_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o);
 
+/* dFH11 at offset h (the near field, src/models/deon/near.h): f, the sampler from four numbers and
+ * its pdf, in double. */
+void hb_ref_deon_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                      double f[3]);
+void hb_ref_deon_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double u[4],
+                             double *theta_i, double *phi_i);
+double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h);
+
 /* HHH22 microsurface: D(w_h, w_m) at cos_m = w_h . w_m (eq. 41 for GGX, Beckmann) and
  * Smith's Lambda for a direction at cos_w to the mesonormal (Heitz 2014). */
 double hb_ref_huang_ndf(hb_ndf ndf, double roughness, double cos_m);

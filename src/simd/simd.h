@@ -119,4 +119,14 @@ HB_INLINE vf vf_floor(vf a)
 HB_INLINE vf vf_rcp(vf a) { return vf_div(vf_set1(1.0f), a); }
 HB_INLINE vf vf_clamp(vf a, float lo, float hi) { return vf_min(vf_max(a, vf_set1(lo)), vf_set1(hi)); }
 
+/* The sum of the lanes, in lane order (a horizontal add: for the rare one-sample paths only). */
+HB_INLINE float vf_sum_lanes(vf a)
+{
+    float lanes[HB_W], sum = 0.0f;
+    vf_storeu(lanes, a);
+    for (int k = 0; k < HB_W; k++)
+        sum += lanes[k];
+    return sum;
+}
+
 #endif

@@ -4,37 +4,9 @@
 #include "kernels.h"
 #include "sample.h"
 
-/* h in [-1, 1]; false for NaN. */
-HB_INLINE vm offset_valid(vf h) { return vf_le(vf_abs(h), vf_set1(1.0f)); }
-
-/* An angle batch with h as a fifth stream; invalid lanes get h = 0. */
-HB_INLINE vm load_near(hb_near_soa in, size_t i, size_t lanes, vf a[5])
+HB_INLINE vm load_chiang_sample_near(hb_sample_near_in in, size_t i, size_t lanes, vf *a)
 {
-    hb_angles_soa angles = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
-    vm valid = load_angles(angles, i, lanes, a);
-    const float *h = in.h;
-    load_block(&h, 1, i, lanes, 0.0f, a + 4);
-    valid = vm_and(valid, offset_valid(a[4]));
-    for (int k = 0; k < 4; k++)
-        a[k] = vf_keep(valid, a[k]);
-    a[4] = vf_keep(valid, a[4]);
-    return valid;
-}
-
-/* A near-field sampling batch: theta_o, phi_o, the uniform numbers, then h last. */
-HB_INLINE vm load_sample_near(hb_sample_near_in in, size_t i, size_t lanes, vf a[3 + HB_CHIANG_NEAR_DIMENSIONS])
-{
-    hb_sample_batch far = { .in = { in.theta_o, in.phi_o, { 0 } } };
-    for (int d = 0; d < HB_CHIANG_NEAR_DIMENSIONS; d++)
-        far.in.u[d] = in.u[d];
-    vm valid = load_sample(&far, HB_CHIANG_NEAR_DIMENSIONS, i, lanes, a);
-    vf *h = a + 2 + HB_CHIANG_NEAR_DIMENSIONS;
-    load_block(&in.h, 1, i, lanes, 0.0f, h);
-    vm h_valid = offset_valid(*h);
-    for (int k = 0; k < 2 + HB_CHIANG_NEAR_DIMENSIONS; k++)
-        a[k] = vf_select(h_valid, a[k], vf_set1(k < 2 ? 0.0f : 0.5f));
-    *h = vf_keep(vm_and(valid, h_valid), *h);
-    return vm_and(valid, h_valid);
+    return load_sample_near(in, HB_CHIANG_NEAR_DIMENSIONS, i, lanes, a);
 }
 
 HB_INLINE vm load_sample_far(const hb_sample_batch *b, size_t i, size_t lanes, vf *a)
@@ -101,7 +73,7 @@ static void sample_near_kernel(const hb_chiang *c, size_t n, hb_sample_near_in i
                                size_t *invalid)
 {
     vf theta_i, phi_i, pdf, weight[3];
-    HB_BATCH(load_sample_near, 3 + HB_CHIANG_NEAR_DIMENSIONS, in, n, invalid,
+    HB_BATCH(load_chiang_sample_near, 3 + HB_CHIANG_NEAR_DIMENSIONS, in, n, invalid,
              (chiang_sample_near(c, a[0], a[1], a[2 + HB_CHIANG_NEAR_DIMENSIONS], a + 2, &theta_i, &phi_i, &pdf,
                                  weight),
               store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));

@@ -378,9 +378,9 @@ HB_INLINE vf fold_scaled(const hb_scaled_detector *s, vf u)
  * wrapped, in the detector's units (hb_scaled_detector; sigma |phi| is in [0, P/2]). At a node
  * 0 <= gamma_t <= gamma_i <= pi/2, so R's sigma Phi_0 = -2 sigma gamma_i lies in [-P/2, 0] and TT's
  * sigma Phi_1 in [0, P/2]: one of each pair needs no wrap, the other only a fold from [0, P]. */
-HB_INLINE vf detector_pair_scaled(const hb_scaled_detector *s, int p, int j, vf scaled_phi, vf gamma_t)
+HB_INLINE vf detector_pair_scaled(const hb_scaled_detector *s, int p, vf offset, vf scaled_phi, vf gamma_t)
 {
-    vf offset = vf_set1(s->offset[j]), w1, w2;
+    vf w1, w2;
     if (p == 0) {
         w1 = fold_scaled(s, vf_sub(scaled_phi, offset)); /* sigma (|phi| + 2 gamma_i) */
         w2 = vf_add(scaled_phi, offset);                 /* sigma (|phi| - 2 gamma_i) */
@@ -403,84 +403,147 @@ HB_INLINE vf detector_pair_scaled(const hb_scaled_detector *s, int p, int j, vf 
  * 2 cos(gamma_t) per traversal, docs/conventions.md) and gamma_t are formed once for every lobe. M is per M_p
  * group (the group leader's index); with pdf, the sampling density's node sum as
  * azimuthal_deon_shaped forms it. */
+
+/* What every node of the fused sum reads from the sample, formed once per sample. */
+typedef struct deon_fused_sample {
+    deon_medium medium;
+    vf mu2[3], M_scaled[HB_STANDARD_PMAX + 1], scaled_phi[HB_STANDARD_PMAX + 1], M_residual;
+    const vf *M;
+} deon_fused_sample;
+
+/* Node constants as vectors: one node in every lane (a batch of samples), or a block of nodes
+ * across the lanes (one sample; unused lanes have weight 0). */
+typedef struct deon_fused_nodes {
+    vf h, cos_gamma_i, weight, half_probability, offset[HB_STANDARD_PMAX + 1];
+} deon_fused_nodes;
+
+/* The running sums of the node loop: R's (the same in every channel), the channels', the pdf's. */
+typedef struct deon_fused_sums {
+    vf R, rgb[3], pdf;
+} deon_fused_sums;
+
+HB_INLINE void deon_fused_prepare(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
+                                  deon_fused_sample *s, deon_fused_sums *sums, deon_shape shape)
+{
+    deon_medium_of(d, g, &s->medium, shape.channels);
+    vf abs_phi = vf_abs(g->phi);
+    HB_UNROLL
+    for (int c = 0; c < shape.channels; c++)
+        s->mu2[c] = vf_add(s->medium.mu_log2e[c], s->medium.mu_log2e[c]); /* two cos(gamma_t) per traversal */
+    HB_UNROLL
+    for (int p = 0; p <= HB_STANDARD_PMAX; p++) {
+        s->M_scaled[p] = deon_lobe_on(d, p, shape) ? vf_mul(M[d->m_group[p]], vf_set1(d->detector[p].gauss_norm))
+                                                   : vf_set1(0.0f);
+        s->scaled_phi[p] = vf_mul(abs_phi, vf_set1(d->scaled[p].scale));
+    }
+    s->M_residual = deon_lobe_on(d, HB_LOBE_RESIDUAL, shape)
+                        ? vf_mul(M[d->m_group[HB_LOBE_RESIDUAL]], vf_set1(HB_RESIDUAL_DETECTOR_PAIR))
+                        : vf_set1(0.0f);
+    s->M = M;
+    sums->R = sums->pdf = sums->rgb[0] = sums->rgb[1] = sums->rgb[2] = vf_set1(0.0f);
+}
+
+HB_INLINE void deon_fused_node(const hb_deon *d, const deon_fused_sample *s, const deon_fused_nodes *node,
+                               deon_fused_sums *sums, int with_pdf, deon_shape shape)
+{
+    const int channels = shape.channels;
+    vf sin_gamma_t = vf_mul(node->h, s->medium.inv_eta_prime);
+    vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
+    vf gamma_t = d->asin_narrow ? vf_asin_narrow(sin_gamma_t, vf_mul(sin_gamma_t, sin_gamma_t)) : vf_asin(sin_gamma_t);
+    vf f = fresnel_dielectric(vf_mul(s->medium.cos_theta_d, node->cos_gamma_i), &d->ior); /* eq. 14 */
+    vf one_minus_f = vf_sub(vf_set1(1.0f), f), a[HB_STANDARD_PMAX + 2];
+    a[0] = vf_mul(node->weight, f);
+    a[1] = vf_mul(vf_mul(one_minus_f, one_minus_f), node->weight); /* (1 - f)^2 f^(p-1), eq. 13 */
+    HB_UNROLL
+    for (int p = 2; p <= HB_STANDARD_PMAX + 1; p++)
+        a[p] = vf_mul(a[p - 1], f);
+    vf T[3], pair[HB_STANDARD_PMAX + 1], sp[HB_STANDARD_PMAX + 1];
+    HB_UNROLL
+    for (int c = 0; c < channels; c++)
+        T[c] = vf_exp2_neg(vf_mul(s->mu2[c], cos_gamma_t));
+    HB_UNROLL
+    for (int p = 0; p <= HB_STANDARD_PMAX; p++) {
+        pair[p] = deon_lobe_on(d, p, shape)
+                      ? detector_pair_scaled(&d->scaled[p], p, node->offset[p], s->scaled_phi[p], gamma_t)
+                      : vf_set1(0.0f);
+        sp[p] = vf_mul(a[p], vf_mul(s->M_scaled[p], pair[p]));
+    }
+    vf q = vf_mul(a[HB_STANDARD_PMAX + 1], s->M_residual);
+    sums->R = vf_add(sums->R, sp[0]);
+    vf series[3];
+    HB_UNROLL
+    for (int c = 0; c < channels; c++) {
+        series[c] = residual_series(f, T[c]);
+        vf inner = vf_fma(T[c], vf_mul(q, series[c]), sp[3]);
+        inner = vf_fma(T[c], inner, sp[2]);
+        inner = vf_fma(T[c], inner, sp[1]);
+        sums->rgb[c] = vf_fma(T[c], inner, sums->rgb[c]);
+    }
+    if (with_pdf) { /* m_p = M_p times A(p, h) averaged over the channels (the node's weight cancels) */
+        vf A[3], T_power[3], mass = vf_set1(0.0f), detected = vf_set1(0.0f);
+        for (int c = 0; c < 3; c++)
+            T_power[c] = vf_set1(1.0f);
+        for (int p = 0; p <= HB_STANDARD_PMAX + 1; p++) { /* the last: the residual's orders */
+            for (int c = 0; c < 3; c++) {
+                int k = channels == 1 ? 0 : c;
+                vf series_k = p == HB_STANDARD_PMAX + 1 ? series[k] : vf_set1(1.0f);
+                A[c] = vf_mul(vf_mul(a[p], T_power[c]), series_k);
+                T_power[c] = vf_mul(T_power[c], T[k]);
+            }
+            int lobe = p == HB_STANDARD_PMAX + 1 ? HB_LOBE_RESIDUAL : p;
+            vf m = deon_lobe_on(d, lobe, shape) ? vf_mul(s->M[d->m_group[lobe]], channel_mean(A)) : vf_set1(0.0f);
+            vf detector = lobe == HB_LOBE_RESIDUAL ? vf_set1(HB_RESIDUAL_DETECTOR_PAIR)
+                                                   : vf_mul(pair[lobe], vf_set1(d->detector[lobe].gauss_norm));
+            mass = vf_add(mass, m);
+            detected = vf_fma(m, detector, detected);
+        }
+        sums->pdf = vf_fma(node->half_probability, vf_div(detected, vf_max(mass, vf_set1(1e-37f))), sums->pdf);
+    }
+}
+
 HB_INLINE void deon_fused_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
                                  vf out[3], deon_pdf_terms *pdf, deon_shape shape)
 {
-    const int channels = shape.channels;
-    deon_medium medium;
-    deon_medium_of(d, g, &medium, channels);
-    vf mu2[3], M_scaled[HB_STANDARD_PMAX + 1], scaled_phi[HB_STANDARD_PMAX + 1], abs_phi = vf_abs(g->phi);
-    HB_UNROLL
-    for (int c = 0; c < channels; c++)
-        mu2[c] = vf_add(medium.mu_log2e[c], medium.mu_log2e[c]); /* two cos(gamma_t) per traversal */
-    HB_UNROLL
-    for (int p = 0; p <= HB_STANDARD_PMAX; p++) {
-        M_scaled[p] = deon_lobe_on(d, p, shape) ? vf_mul(M[d->m_group[p]], vf_set1(d->detector[p].gauss_norm))
-                                                : vf_set1(0.0f);
-        scaled_phi[p] = vf_mul(abs_phi, vf_set1(d->scaled[p].scale));
-    }
-    vf M_residual = deon_lobe_on(d, HB_LOBE_RESIDUAL, shape)
-                        ? vf_mul(M[d->m_group[HB_LOBE_RESIDUAL]], vf_set1(HB_RESIDUAL_DETECTOR_PAIR))
-                        : vf_set1(0.0f);
-    vf sum_R = vf_set1(0.0f), sum[3] = { vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f) };
-    if (pdf)
-        pdf->sum = vf_set1(0.0f);
+    deon_fused_sample s;
+    deon_fused_sums sums;
+    deon_fused_prepare(d, g, M, &s, &sums, shape);
     for (int j = 0; j < d->nodes; j++) {
-        vf sin_gamma_t = vf_mul(vf_set1(d->h[j]), medium.inv_eta_prime);
-        vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
-        vf gamma_t = d->asin_narrow ? vf_asin_narrow(sin_gamma_t, vf_mul(sin_gamma_t, sin_gamma_t)) : vf_asin(sin_gamma_t);
-        vf f = fresnel_dielectric(vf_mul(medium.cos_theta_d, vf_set1(d->cos_gamma_i[j])), &d->ior); /* eq. 14 */
-        vf weight = vf_set1(d->weight[j]), one_minus_f = vf_sub(vf_set1(1.0f), f), a[HB_STANDARD_PMAX + 2];
-        a[0] = vf_mul(weight, f);
-        a[1] = vf_mul(vf_mul(one_minus_f, one_minus_f), weight); /* (1 - f)^2 f^(p-1), eq. 13 */
+        deon_fused_nodes node = { vf_set1(d->h[j]), vf_set1(d->cos_gamma_i[j]), vf_set1(d->weight[j]),
+                                  vf_set1(d->node_half_probability[j]), { vf_set1(0.0f) } };
         HB_UNROLL
-        for (int p = 2; p <= HB_STANDARD_PMAX + 1; p++)
-            a[p] = vf_mul(a[p - 1], f);
-        vf T[3], pair[HB_STANDARD_PMAX + 1], s[HB_STANDARD_PMAX + 1];
-        HB_UNROLL
-        for (int c = 0; c < channels; c++)
-            T[c] = vf_exp2_neg(vf_mul(mu2[c], cos_gamma_t));
-        HB_UNROLL
-        for (int p = 0; p <= HB_STANDARD_PMAX; p++) {
-            pair[p] = deon_lobe_on(d, p, shape) ? detector_pair_scaled(&d->scaled[p], p, j, scaled_phi[p], gamma_t)
-                                                : vf_set1(0.0f);
-            s[p] = vf_mul(a[p], vf_mul(M_scaled[p], pair[p]));
-        }
-        vf q = vf_mul(a[HB_STANDARD_PMAX + 1], M_residual);
-        sum_R = vf_add(sum_R, s[0]);
-        vf series[3];
-        HB_UNROLL
-        for (int c = 0; c < channels; c++) {
-            series[c] = residual_series(f, T[c]);
-            vf inner = vf_fma(T[c], vf_mul(q, series[c]), s[3]);
-            inner = vf_fma(T[c], inner, s[2]);
-            inner = vf_fma(T[c], inner, s[1]);
-            sum[c] = vf_fma(T[c], inner, sum[c]);
-        }
-        if (pdf) { /* m_p = M_p times A(p, h) averaged over the channels (the node's weight cancels) */
-            vf A[3], T_power[3], mass = vf_set1(0.0f), detected = vf_set1(0.0f);
-            for (int c = 0; c < 3; c++)
-                T_power[c] = vf_set1(1.0f);
-            for (int p = 0; p <= HB_STANDARD_PMAX + 1; p++) { /* the last: the residual's orders */
-                for (int c = 0; c < 3; c++) {
-                    int k = channels == 1 ? 0 : c;
-                    vf series_k = p == HB_STANDARD_PMAX + 1 ? series[k] : vf_set1(1.0f);
-                    A[c] = vf_mul(vf_mul(a[p], T_power[c]), series_k);
-                    T_power[c] = vf_mul(T_power[c], T[k]);
-                }
-                int lobe = p == HB_STANDARD_PMAX + 1 ? HB_LOBE_RESIDUAL : p;
-                vf m = deon_lobe_on(d, lobe, shape) ? vf_mul(M[d->m_group[lobe]], channel_mean(A)) : vf_set1(0.0f);
-                vf detector = lobe == HB_LOBE_RESIDUAL ? vf_set1(HB_RESIDUAL_DETECTOR_PAIR)
-                                                       : vf_mul(pair[lobe], vf_set1(d->detector[lobe].gauss_norm));
-                mass = vf_add(mass, m);
-                detected = vf_fma(m, detector, detected);
-            }
-            pdf->sum = vf_fma(vf_set1(d->node_half_probability[j]),
-                              vf_div(detected, vf_max(mass, vf_set1(1e-37f))), pdf->sum);
-        }
+        for (int p = 0; p <= HB_STANDARD_PMAX; p++)
+            node.offset[p] = vf_set1(d->scaled[p].offset[j]);
+        deon_fused_node(d, &s, &node, &sums, pdf != NULL, shape);
     }
+    if (pdf)
+        pdf->sum = sums.pdf;
     for (int c = 0; c < 3; c++)
-        out[c] = vf_add(sum[channels == 1 ? 0 : c], sum_R);
+        out[c] = vf_add(sums.rgb[shape.channels == 1 ? 0 : c], sums.R);
+}
+
+/* The same for one sample whose value fills every lane of g and M, with the nodes across the lanes
+ * (HB_W at a time, the plan's node arrays zero past its count): one block of work for up to HB_W
+ * nodes instead of a block per node, for a path tracer's call of a few samples. f and the pdf's sum
+ * come back in every lane; the sum over nodes runs in another order than deon_fused_shaped's, which
+ * moves the result by a rounding. */
+HB_INLINE void deon_fused_one_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
+                                     vf out[3], deon_pdf_terms *pdf, deon_shape shape)
+{
+    deon_fused_sample s;
+    deon_fused_sums sums;
+    deon_fused_prepare(d, g, M, &s, &sums, shape);
+    for (int j = 0; j < d->nodes; j += HB_W) {
+        deon_fused_nodes node = { vf_loadu(d->h + j), vf_loadu(d->cos_gamma_i + j), vf_loadu(d->weight + j),
+                                  vf_loadu(d->node_half_probability + j), { vf_set1(0.0f) } };
+        HB_UNROLL
+        for (int p = 0; p <= HB_STANDARD_PMAX; p++)
+            node.offset[p] = vf_loadu(d->scaled[p].offset + j);
+        deon_fused_node(d, &s, &node, &sums, pdf != NULL, shape);
+    }
+    if (pdf)
+        pdf->sum = vf_set1(vf_sum_lanes(sums.pdf));
+    for (int c = 0; c < 3; c++)
+        out[c] = vf_set1(vf_sum_lanes(vf_add(sums.rgb[shape.channels == 1 ? 0 : c], sums.R)));
 }
 
 HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3],
@@ -495,6 +558,14 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 1, 0 });
     else
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
+}
+
+/* deon_fused for one sample, its value in every lane, the nodes across the lanes: one shape serves
+ * every standard plan (the lobe set read at run time, three channels even for a grey fibre). */
+HB_INLINE void deon_fused_one(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3],
+                              deon_pdf_terms *pdf)
+{
+    deon_fused_one_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
 }
 
 /* f by quadrature from M per group leader (longitudinal_deon_groups_*): the standard shape folds M_p

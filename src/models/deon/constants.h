@@ -8,8 +8,9 @@
 /* dFH11 quadrature nodes a plan evaluates: gamma_i >= 0 of the largest order */
 #define HB_MAX_NODES ((HB_MAX_QUADRATURE_ORDER + 1) / 2)
 
-/* Uniform numbers a dFH11 sample reads (docs/sampling.md). */
+/* Uniform numbers a dFH11 sample reads (docs/sampling.md), and a near-field sample at a given h. */
 #define HB_DEON_SAMPLE_DIMENSIONS 5
+#define HB_DEON_NEAR_DIMENSIONS 4
 
 /* Constants of one lobe's longitudinal function, fixed at plan creation. */
 typedef struct hb_longitudinal {

@@ -22,6 +22,11 @@ typedef void (*hb_deon_pdf_fn)(const hb_deon *deon, size_t n, const hb_pair_batc
 typedef void (*hb_deon_f_pdf_fn)(const hb_deon *deon, size_t n, const hb_pair_batch *in, hb_rgb_soa out,
                                  float *pdf, size_t *invalid);
 
+typedef void (*hb_deon_near_fn)(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);
+typedef void (*hb_deon_pdf_near_fn)(const hb_deon *deon, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
+typedef void (*hb_deon_sample_near_fn)(const hb_deon *deon, size_t n, hb_sample_near_in in, hb_sample_out out,
+                                       size_t *invalid);
+
 typedef void (*hb_deon_np_row_fn)(const hb_deon *deon, float cos_theta_d, size_t n, const float *phi, float *out);
 
 typedef struct hb_deon_kernels {
@@ -32,6 +37,9 @@ typedef struct hb_deon_kernels {
     hb_deon_sample_fn sample[2];
     hb_deon_pdf_fn pdf[2];
     hb_deon_f_pdf_fn f_pdf[2]; /* f (quadrature plans) and pdf in one pass */
+    hb_deon_near_fn near[2];   /* at each sample's offset h (near.h) */
+    hb_deon_pdf_near_fn pdf_near[2];
+    hb_deon_sample_near_fn sample_near[2];
     hb_deon_np_row_fn np_row; /* one row of the N_p table, out[(k * slots + s) * 3 + c] */
 } hb_deon_kernels;
 

@@ -59,6 +59,23 @@ static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_
         ((const hb_deon_kernels *)plan->kernels)->f_pdf[plan->options.i0](&plan->deon, n, in, out, pdf, invalid);
 }
 
+/* The near field at each sample's h (near.h): f by the plan's kernels, HB_TERM_FULL only (the
+ * longitudinal term has no h). */
+static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    ((const hb_deon_kernels *)plan->kernels)->near[plan->options.i0](&plan->deon, n, in, out, invalid);
+}
+
+static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)
+{
+    ((const hb_deon_kernels *)plan->kernels)->sample_near[plan->options.i0](&plan->deon, n, in, out, invalid);
+}
+
+static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, size_t *invalid)
+{
+    ((const hb_deon_kernels *)plan->kernels)->pdf_near[plan->options.i0](&plan->deon, n, in, out, invalid);
+}
+
 static void describe(hb_text *t, const hb_plan *plan)
 {
     const hb_deon *d = &plan->deon;
@@ -144,6 +161,9 @@ const hb_model_ops hb_deon_model = {
     .sample = sample,
     .pdf = pdf,
     .eval_pdf = eval_pdf,
+    .eval_near = eval_near,
+    .sample_near = sample_near,
+    .pdf_near = pdf_near,
     .table = hb_deon_table_view,
     .describe = describe,
     .furnace_rule = furnace_rule,

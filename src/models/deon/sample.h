@@ -16,7 +16,7 @@
 #ifndef HB_DEON_SAMPLE_H
 #define HB_DEON_SAMPLE_H
 
-#include "azimuthal.h"
+#include "near.h"
 
 /* c_g(theta_o) by linear interpolation of the plan's table in |theta_o|; returns their sum. */
 HB_INLINE vf deon_lobe_choice_at(const hb_deon *d, vf theta_o, vf c[HB_MAX_LOBES + 1])
@@ -44,11 +44,12 @@ HB_INLINE void deon_longitudinal_groups(const hb_deon *d, vf theta_i, vf theta_o
     longitudinal_deon_groups_angles(d, theta_i, theta_o, i0, M);
 }
 
-/* Step 1: theta_i from the mixture sum_g c_g M_g (c normalised by their sum). */
+/* Step 1: theta_i from the mixture sum_g c_g M_g (c normalised by their sum); *rest gets u[0]'s
+ * remainder within the chosen group's share, a uniform number independent of the choice. */
 HB_INLINE vf deon_sample_theta(const hb_deon *d, const vf c[HB_MAX_LOBES + 1], vf c_total, vf theta_o,
-                               const vf u[3])
+                               const vf u[3], vf *rest)
 {
-    vf target = vf_mul(u[0], c_total), cumulative = vf_set1(0.0f);
+    vf target = vf_mul(u[0], c_total), cumulative = vf_set1(0.0f), below = cumulative, share = vf_set1(1.0f);
     vf v = vf_set1(0.0f), e2 = v, cos_shift = v, sin_shift = v;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         if (!hb_deon_group_leader(d, p))
@@ -59,27 +60,21 @@ HB_INLINE vf deon_sample_theta(const hb_deon *d, const vf c[HB_MAX_LOBES + 1], v
         e2 = vf_select(take, vf_set1(d->exp_minus_two_inv_v[p]), e2);
         cos_shift = vf_select(take, vf_set1((float)l->cos_shift), cos_shift);
         sin_shift = vf_select(take, vf_set1((float)l->sin_shift), sin_shift);
+        below = vf_select(take, cumulative, below);
+        share = vf_select(take, c[p], share);
         cumulative = vf_add(cumulative, c[p]);
     }
+    if (rest)
+        *rest = vf_clamp(vf_div(vf_sub(target, below), vf_max(share, vf_set1(1e-37f))), 0.0f, 0.99999994f);
     return longitudinal_sample(v, e2, cos_shift, sin_shift, theta_o, u[1], u[2]);
 }
 
-/* Steps 2 and 3: phi = phi_o - phi_i given theta_i. */
-HB_STAGE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf theta_i, vf theta_o, const vf u[2])
+/* Step 2 at one node (h = sin gamma_i >= 0): the lobe, in proportion to m_p = M_p A(p, h) (channel
+ * mean), picked by u in [0, 1); returns u's remainder within the lobe's share, and the lobe's exit
+ * azimuth Phi, detector width beta and whether it is the residual. */
+HB_STAGE vf deon_pick_lobe(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf theta_i, vf theta_o, vf h, vf gamma_i,
+                           vf cos_gamma_i, vf u, vf *Phi, vf *beta, vm *residual)
 {
-    /* the node, by the plan's cumulative weights, and u[0] rescaled within it */
-    vf lo = vf_set1(0.0f), hi = vf_set1(d->node_cdf[0]);
-    vf h = vf_set1(d->h[0]), gamma_i = vf_set1(d->gamma_i[0]), cos_gamma_i = vf_set1(d->cos_gamma_i[0]);
-    for (int j = 1; j < d->nodes; j++) {
-        vm past = vf_ge(u[0], vf_set1(d->node_cdf[j - 1]));
-        lo = vf_select(past, vf_set1(d->node_cdf[j - 1]), lo);
-        hi = vf_select(past, vf_set1(d->node_cdf[j]), hi);
-        h = vf_select(past, vf_set1(d->h[j]), h);
-        gamma_i = vf_select(past, vf_set1(d->gamma_i[j]), gamma_i);
-        cos_gamma_i = vf_select(past, vf_set1(d->cos_gamma_i[j]), cos_gamma_i);
-    }
-    vf within = vf_clamp(vf_div(vf_sub(u[0], lo), vf_sub(hi, lo)), 0.0f, 0.99999994f);
-    /* the lobe, in proportion to m_p = M_p A(p, h) */
     deon_geometry g;
     vf sin_td, cos_td;
     vf_sincos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), &sin_td, &cos_td);
@@ -96,9 +91,10 @@ HB_STAGE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf t
         mass[p] = vf_mul(M[d->m_group[p]], channel_mean(node.A[p]));
         total = vf_add(total, mass[p]);
     }
-    vf target = vf_mul(within, total), below = vf_set1(0.0f), cumulative = vf_set1(0.0f);
-    vf chosen_mass = vf_set1(1.0f), Phi = vf_set1(0.0f), beta = vf_set1(0.0f);
-    vm residual = vf_lt(total, vf_set1(0.0f)); /* false */
+    vf target = vf_mul(u, total), below = vf_set1(0.0f), cumulative = vf_set1(0.0f), chosen_mass = vf_set1(1.0f);
+    *Phi = vf_set1(0.0f);
+    *beta = vf_set1(0.0f);
+    *residual = vf_lt(total, vf_set1(0.0f)); /* false */
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         if (!hb_deon_lobe_on(d, p))
             continue;
@@ -106,27 +102,56 @@ HB_STAGE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf t
         below = vf_select(take, cumulative, below);
         chosen_mass = vf_select(take, mass[p], chosen_mass);
         if (p == HB_LOBE_RESIDUAL) {
-            residual = take;
+            *residual = take;
         } else {
-            Phi = vf_select(take, node.paths.Phi[p], Phi);
-            beta = vf_select(take, vf_set1(d->beta_n[p]), beta);
-            residual = vm_andnot(residual, take);
+            *Phi = vf_select(take, node.paths.Phi[p], *Phi);
+            *beta = vf_select(take, vf_set1(d->beta_n[p]), *beta);
+            *residual = vm_andnot(*residual, take);
         }
         cumulative = vf_add(cumulative, mass[p]);
     }
-    vm negative_side = vf_lt(vf_div(vf_sub(target, below), vf_max(chosen_mass, vf_set1(1e-37f))), vf_set1(0.5f));
-    /* phi about the lobe's exit azimuth, on the chosen side: D_p(phi - Phi) or D_p(-phi - Phi) */
-    vf spread = vf_select(residual, vf_mul(vf_fnma(vf_set1(-2.0f), u[1], vf_set1(-1.0f)), vf_set1(HB_PI_F)),
-                          vf_fma(beta, vf_normal_quantile(u[1]), Phi));
+    return vf_div(vf_sub(target, below), vf_max(chosen_mass, vf_set1(1e-37f)));
+}
+
+/* Step 3: phi from the lobe's detector about its exit azimuth on the chosen side, D_p(phi - Phi)
+ * (or D_p(-phi - Phi) on the negative side: a Gaussian, wrapped), or uniformly for the residual. */
+HB_INLINE vf deon_draw_phi(vf Phi, vf beta, vm residual, vm negative_side, vf u)
+{
+    vf spread = vf_select(residual, vf_mul(vf_fnma(vf_set1(-2.0f), u, vf_set1(-1.0f)), vf_set1(HB_PI_F)),
+                          vf_fma(beta, vf_normal_quantile(u), Phi));
     return wrap_angle(vf_select(negative_side, vf_neg(spread), spread));
 }
 
-/* f (RGB) and the sampling pdf at given angles; M: each group's M_p at these angles. */
-HB_STAGE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o,
-                        vf out[3])
+/* Steps 2 and 3 in the far field: phi = phi_o - phi_i given theta_i. u[0] picks the node by the
+ * plan's cumulative weights, then, rescaled, the lobe, then, rescaled again, the side. */
+HB_STAGE vf deon_sample_phi(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf theta_i, vf theta_o, const vf u[2])
+{
+    vf lo = vf_set1(0.0f), hi = vf_set1(d->node_cdf[0]);
+    vf h = vf_set1(d->h[0]), gamma_i = vf_set1(d->gamma_i[0]), cos_gamma_i = vf_set1(d->cos_gamma_i[0]);
+    for (int j = 1; j < d->nodes; j++) {
+        vm past = vf_ge(u[0], vf_set1(d->node_cdf[j - 1]));
+        lo = vf_select(past, vf_set1(d->node_cdf[j - 1]), lo);
+        hi = vf_select(past, vf_set1(d->node_cdf[j]), hi);
+        h = vf_select(past, vf_set1(d->h[j]), h);
+        gamma_i = vf_select(past, vf_set1(d->gamma_i[j]), gamma_i);
+        cos_gamma_i = vf_select(past, vf_set1(d->cos_gamma_i[j]), cos_gamma_i);
+    }
+    vf within = vf_clamp(vf_div(vf_sub(u[0], lo), vf_sub(hi, lo)), 0.0f, 0.99999994f);
+    vf Phi, beta;
+    vm residual;
+    vf side = deon_pick_lobe(d, M, theta_i, theta_o, h, gamma_i, cos_gamma_i, within, &Phi, &beta, &residual);
+    return deon_draw_phi(Phi, beta, residual, vf_lt(side, vf_set1(0.5f)), u[1]);
+}
+
+/* f (RGB) and the sampling pdf at given angles; M: each group's M_p at these angles. one: a single
+ * sample fills the lanes (deon_fused_one, standard plans). */
+HB_STAGE vf deon_f_pdf_of(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o,
+                          vf out[3], int one)
 {
     deon_pdf_terms terms = { M, vf_set1(0.0f) };
-    if (d->standard) { /* f as hb_eval computes it (azimuthal.h, deon_eval), so weight = f / pdf */
+    if (d->standard && one) {
+        deon_fused_one(d, g, M, out, &terms);
+    } else if (d->standard) { /* f as hb_eval computes it (azimuthal.h, deon_eval), so weight = f / pdf */
         deon_fused(d, g, M, out, &terms);
     } else {
         vf N[HB_MAX_LOBES + 1][3];
@@ -146,6 +171,11 @@ HB_STAGE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deo
     return vf_mul(vf_div(mixture, c_total), terms.sum);
 }
 
+HB_INLINE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o, vf out[3])
+{
+    return deon_f_pdf_of(d, M, g, theta_o, out, 0);
+}
+
 /* The pdf alone, from angles. */
 HB_INLINE vf deon_pdf_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, vf phi_o, hb_i0 i0)
 {
@@ -156,22 +186,64 @@ HB_INLINE vf deon_pdf_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o,
     return deon_f_pdf(d, M, &g, theta_o, f);
 }
 
+/* The weights f / pdf, 0 where the pdf is 0. */
+HB_INLINE void weights_of(vf pdf, const vf f[3], vf weight[3])
+{
+    vm positive = vf_gt(pdf, vf_set1(0.0f));
+    vf inv_pdf = vf_div(vf_set1(1.0f), vf_select(positive, pdf, vf_set1(1.0f)));
+    for (int k = 0; k < 3; k++)
+        weight[k] = vf_keep(positive, vf_mul(f[k], inv_pdf));
+}
+
 /* One sample: theta_i, phi_i, the pdf and the weight f / pdf (0 where the pdf is 0). */
 HB_INLINE void deon_sample(const hb_deon *d, vf theta_o, vf phi_o, const vf u[5], hb_i0 i0, vf *theta_i, vf *phi_i,
                            vf *pdf, vf weight[3])
 {
     vf c[HB_MAX_LOBES + 1], M[HB_MAX_LOBES + 1], f[3];
     vf c_total = deon_lobe_choice_at(d, theta_o, c);
-    *theta_i = deon_sample_theta(d, c, c_total, theta_o, u);
+    *theta_i = deon_sample_theta(d, c, c_total, theta_o, u, NULL);
     deon_longitudinal_groups(d, *theta_i, theta_o, i0, M);
     *phi_i = wrap_angle(vf_sub(phi_o, deon_sample_phi(d, M, *theta_i, theta_o, u + 3)));
     deon_geometry g;
     deon_geometry_angles(d, *theta_i, *phi_i, theta_o, phi_o, &g);
     *pdf = deon_f_pdf(d, M, &g, theta_o, f);
-    vm positive = vf_gt(*pdf, vf_set1(0.0f));
-    vf inv_pdf = vf_div(vf_set1(1.0f), vf_select(positive, *pdf, vf_set1(1.0f)));
-    for (int k = 0; k < 3; k++)
-        weight[k] = vf_keep(positive, vf_mul(f[k], inv_pdf));
+    weights_of(*pdf, f, weight);
+}
+
+/* The near field at offset h (near.h) reads four numbers: u[0] picks the M_p group and theta_i
+ * from it with u[1], u[2] as in the far field, u[0]'s remainder picks the lobe in proportion to
+ * m_p = M_p A(p, h), and u[3] draws phi from its detector on h's side. Its density is
+ *     pdf = (sum_g c_g M_g(theta_i)) sum_p m_p D_p(+-phi - Phi(p, |h|)) / sum_p m_p,
+ * which near.h's pdf term forms with f. */
+HB_INLINE vf deon_near_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o,
+                             vf h, vf f[3])
+{
+    vf azimuthal, c[HB_MAX_LOBES + 1], mixture = vf_set1(0.0f);
+    deon_near(d, g, M, h, f, &azimuthal);
+    vf c_total = deon_lobe_choice_at(d, theta_o, c);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        if (hb_deon_group_leader(d, p))
+            mixture = vf_fma(c[p], M[p], mixture);
+    return vf_mul(vf_div(mixture, c_total), azimuthal);
+}
+
+HB_INLINE void deon_sample_near(const hb_deon *d, vf theta_o, vf phi_o, vf h, const vf u[4], hb_i0 i0, vf *theta_i,
+                                vf *phi_i, vf *pdf, vf weight[3])
+{
+    vf c[HB_MAX_LOBES + 1], M[HB_MAX_LOBES + 1], f[3], rest, Phi, beta;
+    vf c_total = deon_lobe_choice_at(d, theta_o, c);
+    *theta_i = deon_sample_theta(d, c, c_total, theta_o, u, &rest);
+    deon_longitudinal_groups(d, *theta_i, theta_o, i0, M);
+    vf a = vf_min(vf_abs(h), vf_set1(1.0f));
+    vf cos_gamma_i = vf_sqrt(vf_mul(vf_sub(vf_set1(1.0f), a), vf_add(vf_set1(1.0f), a)));
+    vm residual;
+    deon_pick_lobe(d, M, *theta_i, theta_o, a, vf_asin(a), cos_gamma_i, rest, &Phi, &beta, &residual);
+    vf phi = deon_draw_phi(Phi, beta, residual, vf_lt(h, vf_set1(0.0f)), u[3]);
+    *phi_i = wrap_angle(vf_sub(phi_o, phi));
+    deon_geometry g;
+    deon_geometry_angles(d, *theta_i, *phi_i, theta_o, phi_o, &g);
+    *pdf = deon_near_f_pdf(d, M, &g, theta_o, h, f);
+    weights_of(*pdf, f, weight);
 }
 
 #endif
