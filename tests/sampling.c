@@ -175,3 +175,38 @@ double hb_test_chi_square(size_t n, const double *prob, double total, int nt, in
     }
     return hb_test_chi_square_tail(*chi2, *cells - 1);
 }
+
+double hb_test_weighted_cells(size_t n, const double *f_cells, int nt, int np, int *cells, double *uncompared)
+{
+    static double sum[4096], sum2[4096];
+    static unsigned count[4096];
+    hb_sample_buffers *b = &hb_samples;
+    memset(sum, 0, sizeof sum);
+    memset(sum2, 0, sizeof sum2);
+    memset(count, 0, sizeof count);
+    for (size_t i = 0; i < n; i++) {
+        int a = (int)floor((sin((double)b->ti[i]) + 1.0) * nt / 2.0), c = (int)floor((b->pi[i] + M_PI) * np / (2.0 * M_PI));
+        a = a < 0 ? 0 : a >= nt ? nt - 1 : a;
+        c = c < 0 ? 0 : c >= np ? np - 1 : c;
+        sum[a * np + c] += b->w[0][i];
+        sum2[a * np + c] += (double)b->w[0][i] * b->w[0][i];
+        count[a * np + c]++;
+    }
+    double total = 0.0, worst = 0.0;
+    for (int k = 0; k < nt * np; k++)
+        total += f_cells[k];
+    *cells = 0;
+    *uncompared = 0.0;
+    for (int k = 0; k < nt * np; k++) {
+        double mean = sum[k] / (double)n, second = sum2[k] / (double)n;
+        if (count[k] < 20 || f_cells[k] < 1e-3 * total) { /* too few samples, or too little f, for a variance:
+                                                            heavy-tailed weights there make it an underestimate */
+            *uncompared += f_cells[k] / total;
+            continue;
+        }
+        double sigma = sqrt(fmax(second - mean * mean, 0.0) / (double)n);
+        worst = fmax(worst, fabs(mean - f_cells[k]) / fmax(sigma, 1e-12 * total));
+        ++*cells;
+    }
+    return worst;
+}

@@ -46,6 +46,14 @@ void hb_test_check_sampled_weights(hb_test_ctx *t, size_t n, const char *label, 
  * (cells expecting fewer than 5 pooled); returns the p-value (Wilson-Hilferty), *chi2 and *cells. */
 double hb_test_chi_square(size_t n, const double *prob, double total, int nt, int np, double *chi2, int *cells);
 
+/* The sampler's estimate of f in each of nt x np equal-area cells (the sum of the batch's first-channel
+ * weights in the cell over n) against f_cells (hb_test_cell_integrals of f): the largest z-score over
+ * the cells with 20 samples or more and at least 1e-3 of f (elsewhere rare large weights make the sample
+ * variance an underestimate); *cells gets how many were compared and *uncompared the share of f in the
+ * others. Unlike a chi-square against the pdf's cell integrals, it needs
+ * no quadrature of the pdf, so it holds where the pdf has integrable singularities (caustics). */
+double hb_test_weighted_cells(size_t n, const double *f_cells, int nt, int np, int *cells, double *uncompared);
+
 /* The upper tail of the chi-square distribution with k degrees of freedom (Wilson-Hilferty). */
 double hb_test_chi_square_tail(double x, double k);
 

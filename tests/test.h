@@ -87,6 +87,7 @@ extern const hb_test hb_tests_chiang[];
 extern const hb_test hb_tests_renderer_calls[];
 extern const hb_test hb_tests_colour[];
 extern const hb_test hb_tests_deon_near[];
+extern const hb_test hb_tests_marschner_sample[];
 extern const hb_test hb_tests_docs[];
 
 #endif

@@ -385,9 +385,9 @@ static void test_sample_commands(hb_test_ctx *t)
                             &se[2]) == 7 && count == 4096 && fabs(mean[0] - 1.0) <= 1e-3 && se[0] <= 1e-3,
           "chiang at h 0.5: '%s'", r.out);
 
-    static const char *const refused[] = { "sample --model marschner --theta-o 0.1", "sample --count 10",
+    static const char *const refused[] = { "sample --model marschner --quality reference --theta-o 0.1", "sample --count 10",
                                            "sample --theta-o 2", "sample --theta-o 0.1 --count 0",
-                                           "sample --theta-o 0.1 --seed -3", "pdf --model marschner",
+                                           "sample --theta-o 0.1 --seed -3", "pdf --model marschner --quality reference",
                                            "sample --model huang --theta-o 0.1 --h 0.5", "sample --model chiang --theta-o 0.1 --h 2" };
     for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
         if (!run_tool(t, refused[k], "0,0,0,0\n", &r))

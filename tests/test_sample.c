@@ -263,11 +263,13 @@ static void test_sample_api(hb_test_ctx *t)
     hb_material_default(&m);
     hb_options_default(&o);
     o.model = HB_MODEL_MARSCHNER;
+    o.quality = HB_QUALITY_REFERENCE;
     CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "marschner plan");
-    CHECK(t, hb_plan_sample_dimensions(plan) == 0, "marschner has no sampler");
-    CHECK(t, hb_sample_angles(plan, 0, in, out, NULL) == HB_ERR_UNSUPPORTED, "marschner sampling is refused");
+    CHECK(t, hb_plan_sample_dimensions(plan) == 0, "MJC03 has no double-precision sampler");
+    CHECK(t, hb_sample_angles(plan, 0, in, out, NULL) == HB_ERR_UNSUPPORTED, "MJC03 reference sampling is refused");
     hb_plan_destroy(plan);
     o.model = HB_MODEL_DEON;
+    o.quality = HB_QUALITY_BALANCED;
     o.r_fresnel = HB_R_FRESNEL_HALF_ANGLE;
     CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "half-angle plan");
     CHECK(t, hb_pdf_angles(plan, 0, (hb_angles_soa){ 0 }, NULL, NULL) == HB_ERR_UNSUPPORTED,

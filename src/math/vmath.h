@@ -401,6 +401,15 @@ HB_INLINE vf vf_normal_quantile(vf u)
     return vf_mul(vf_mul(erfinv_over_x, vf_fnma(vf_set1(-2.0f), u, vf_set1(-1.0f))), vf_set1(1.41421356f));
 }
 
+/* A sampler's weights f / pdf per channel, 0 where the pdf is 0. */
+HB_INLINE void sample_weights(vf pdf, const vf f[3], vf weight[3])
+{
+    vm positive = vf_gt(pdf, vf_set1(0.0f));
+    vf inv_pdf = vf_div(vf_set1(1.0f), vf_select(positive, pdf, vf_set1(1.0f)));
+    for (int k = 0; k < 3; k++)
+        weight[k] = vf_keep(positive, vf_mul(f[k], inv_pdf));
+}
+
 /* An azimuth |x| <= HB_PHI_LIMIT past 2 pi reduced to x - 2 pi k in [-pi, pi], the same on every
  * ISA: 2 pi as 6.28125 (8 bits, so k times it and the first difference are exact) plus a float
  * remainder, and no fused operation, so each step rounds alike with and without FMA. At |x| = 1e4

@@ -186,15 +186,6 @@ HB_INLINE vf deon_pdf_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o,
     return deon_f_pdf(d, M, &g, theta_o, f);
 }
 
-/* The weights f / pdf, 0 where the pdf is 0. */
-HB_INLINE void weights_of(vf pdf, const vf f[3], vf weight[3])
-{
-    vm positive = vf_gt(pdf, vf_set1(0.0f));
-    vf inv_pdf = vf_div(vf_set1(1.0f), vf_select(positive, pdf, vf_set1(1.0f)));
-    for (int k = 0; k < 3; k++)
-        weight[k] = vf_keep(positive, vf_mul(f[k], inv_pdf));
-}
-
 /* One sample: theta_i, phi_i, the pdf and the weight f / pdf (0 where the pdf is 0). */
 HB_INLINE void deon_sample(const hb_deon *d, vf theta_o, vf phi_o, const vf u[5], hb_i0 i0, vf *theta_i, vf *phi_i,
                            vf *pdf, vf weight[3])
@@ -207,7 +198,7 @@ HB_INLINE void deon_sample(const hb_deon *d, vf theta_o, vf phi_o, const vf u[5]
     deon_geometry g;
     deon_geometry_angles(d, *theta_i, *phi_i, theta_o, phi_o, &g);
     *pdf = deon_f_pdf(d, M, &g, theta_o, f);
-    weights_of(*pdf, f, weight);
+    sample_weights(*pdf, f, weight);
 }
 
 /* The near field at offset h (near.h) reads four numbers: u[0] picks the M_p group and theta_i
@@ -243,7 +234,7 @@ HB_INLINE void deon_sample_near(const hb_deon *d, vf theta_o, vf phi_o, vf h, co
     deon_geometry g;
     deon_geometry_angles(d, *theta_i, *phi_i, theta_o, phi_o, &g);
     *pdf = deon_near_f_pdf(d, M, &g, theta_o, h, f);
-    weights_of(*pdf, f, weight);
+    sample_weights(*pdf, f, weight);
 }
 
 #endif

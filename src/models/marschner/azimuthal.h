@@ -110,7 +110,7 @@ HB_INLINE vf centre_on_lobe(vf phi, int p)
 }
 
 /* sum over the roots gamma_i of phi_hat(p, gamma_i) = phi + 2 pi k of A(p, h) |2 d phi_hat / dh|^-1
- * (the survey's N_p), for the plan's branches k. */
+ * (the survey's N_p), for the plan's branches k; with ab NULL, A = 1 into N[0] alone. */
 HB_INLINE void azimuthal_marschner_roots(const hb_marschner *m, int p, int all_three, int branches,
                                          const mjc_index *ix, const mjc_absorption *ab, vf phi, vf N[3])
 {
@@ -132,6 +132,10 @@ HB_INLINE void azimuthal_marschner_roots(const hb_marschner *m, int p, int all_t
             vf slope = vf_abs(vf_fma(vf_mul(vf_set1(3.0f), ix->cubic_a), vf_mul(gamma, gamma), ix->cubic_b));
             vf weight = vf_div(vf_max(c, vf_set1(0.0f)), vf_mul(vf_set1(2.0f), vf_max(slope, vf_set1(HB_MJC_SLOPE_FLOOR))));
             weight = vf_keep(inside, weight);
+            if (!ab) { /* the roots' density alone (sample.h) */
+                N[0] = vf_add(N[0], weight);
+                continue;
+            }
             vf A[3];
             attenuation_marschner(m, p, ix, ab, s, c, A);
             for (int ch = 0; ch < 3; ch++)

@@ -9,7 +9,11 @@ typedef struct hb_gaussian_lobe {
     float mean;          /* alpha_p, the shift of the lobe in theta_h */
     float log2e_over_two_beta2; /* log2(e) / (2 beta^2): g = norm 2^-(x^2 log2e_over_two_beta2) */
     float norm;          /* 1 / (beta sqrt(2 pi)) */
+    float beta;          /* the width: theta_i = 2 theta_h - theta_o has mean 2 mean - theta_o and width 2 beta */
 } hb_gaussian_lobe;
+
+/* Uniform numbers an MJC03 sample reads (docs/sampling.md). */
+#define HB_MARSCHNER_SAMPLE_DIMENSIONS 3
 
 /* Everything the MJC03 kernel reads, fixed at plan creation (docs/marschner.md). */
 typedef struct hb_marschner {
@@ -28,6 +32,7 @@ typedef struct hb_marschner {
     hb_gaussian_lobe lobe[3];
     float caustic_log2e_over_two_w2, caustic_norm, caustic_width; /* the fade and glint Gaussian g(w_c; x) */
     float inv_caustic_fade, caustic_limit, glint_scale;
+    float lobe_probability[3]; /* sampling (sample.h): lobe p is drawn with this probability */
 } hb_marschner;
 
 #endif

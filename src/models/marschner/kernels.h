@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "constants.h"
+#include "kernel/streams.h"
 
 typedef void (*hb_gaussian_angles_fn)(const hb_gaussian_lobe *lobe, size_t n, hb_angles_soa in, float *out,
                                       size_t *invalid);
@@ -21,7 +22,8 @@ typedef struct hb_marschner_kernels {
     hb_gaussian_vectors_fn longitudinal_vectors;
     hb_marschner_angles_fn angles;
     hb_marschner_vectors_fn vectors;
+    void (*sample)(const hb_marschner *mjc, size_t n, const hb_sample_batch *b, size_t *invalid);
+    void (*pdf)(const hb_marschner *mjc, size_t n, const hb_pair_batch *in, float *pdf, size_t *invalid);
 } hb_marschner_kernels;
-
 
 #endif

@@ -1,5 +1,5 @@
 /* MJC03 behind the model interface (models/model.h): its kernels through the plan, its
- * description, furnace rule and named configuration. It has no sampler and no table. */
+ * sampler (sample.h), description, furnace rule and named configuration. It has no table. */
 #include <math.h>
 
 #include "marschner.h"
@@ -28,10 +28,27 @@ static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rg
     }
 }
 
+/* The sampler runs on the kernels (no double-precision procedure: a reference plan cannot sample). */
 static int sample_dimensions(const hb_plan *plan)
 {
-    (void)plan;
-    return 0;
+    return plan->kernels && plan->options.term == HB_TERM_FULL ? HB_MARSCHNER_SAMPLE_DIMENSIONS : 0;
+}
+
+static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
+{
+    ((const hb_marschner_kernels *)plan->kernels)->sample(&plan->marschner, n, b, invalid);
+}
+
+static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
+{
+    ((const hb_marschner_kernels *)plan->kernels)->pdf(&plan->marschner, n, in, out, invalid);
+}
+
+/* f (the caustics' fade and glint, the attenuation) and the pdf share only the geometry: two passes. */
+static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf_out,
+                     size_t *invalid)
+{
+    hb_eval_then_pdf(plan, n, in, out, pdf_out, invalid);
 }
 
 static hb_status table(const hb_plan *plan, hb_table_view *view)
@@ -81,6 +98,9 @@ const hb_model_ops hb_marschner_model = {
     .eval_angles = eval_angles,
     .eval_vectors = eval_vectors,
     .sample_dimensions = sample_dimensions,
+    .sample = sample,
+    .pdf = pdf,
+    .eval_pdf = eval_pdf,
     .table = table,
     .describe = describe,
     .furnace_rule = furnace_rule,

@@ -30,6 +30,31 @@ static double marschner_cubic_span(int p, double eta_prime)
     return span;
 }
 
+/* The sampler's lobe probabilities (sample.h): each lobe's attenuation at normal incidence and h = 0
+ * (R: F(eta, 0); TT: (1 - F)^2 T; TRT: (1 - F)^2 F T^2, T = exp(-2 sigma_a), channel mean), every
+ * lobe of the plan at least a tenth of the largest so that no lobe goes unsampled (equal shares where
+ * the absorption leaves every lobe 0). */
+static void lobe_probabilities(hb_plan *plan)
+{
+    hb_marschner *k = &plan->marschner;
+    double eta = plan->material.eta, r = (eta - 1.0) / (eta + 1.0), F = r * r, weight[3] = { 0.0, 0.0, 0.0 };
+    for (int c = 0; c < 3; c++) {
+        double T = exp(-2.0 * plan->sigma_a[c]);
+        weight[0] += F / 3.0;
+        weight[1] += (1.0 - F) * (1.0 - F) * T / 3.0;
+        weight[2] += (1.0 - F) * (1.0 - F) * F * T * T / 3.0;
+    }
+    double largest = 0.0, total = 0.0;
+    for (int p = 0; p < 3; p++)
+        largest = (k->lobes >> p & 1u) ? fmax(largest, weight[p]) : largest;
+    for (int p = 0; p < 3; p++) { /* a fibre that absorbs every lobe away (largest 0): equal shares */
+        weight[p] = (k->lobes >> p & 1u) ? (largest > 0.0 ? fmax(weight[p], 0.1 * largest) : 1.0) : 0.0;
+        total += weight[p];
+    }
+    for (int p = 0; p < 3; p++)
+        k->lobe_probability[p] = (float)(weight[p] / total);
+}
+
 /* MJC03 lobes (Table 1 ratios, docs/conventions.md): beta_R = beta_m, beta_TT = beta_R / 2,
  * beta_TRT = 2 beta_R; means alpha_R = -alpha (the R highlight toward the root, as dFH11's),
  * alpha_TT = -alpha_R / 2, alpha_TRT = -3 alpha_R / 2; per-lobe overrides win. */
@@ -46,6 +71,7 @@ static void derive_constants(hb_plan *plan)
         k->lobe[p].mean = (float)mean;
         k->lobe[p].log2e_over_two_beta2 = (float)(M_LOG2E / (2.0 * beta * beta));
         k->lobe[p].norm = (float)(1.0 / (beta * sqrt(2.0 * M_PI)));
+        k->lobe[p].beta = (float)beta;
     }
     k->lobes = plan->options.lobes == HB_LOBES_DEFAULT ? 7u : plan->options.lobes;
     k->absorption_paper = plan->options.absorption == HB_ABSORPTION_PAPER;
@@ -79,6 +105,7 @@ static void derive_constants(hb_plan *plan)
     k->inv_caustic_fade = (float)(1.0 / m->caustic_fade);
     k->caustic_limit = (float)m->caustic_limit;
     k->glint_scale = (float)m->glint_scale;
+    lobe_probabilities(plan);
 }
 
 
