@@ -191,15 +191,16 @@ static void test_eval_pdf(hb_test_ctx *t)
         eval_pdf_case(t, &cases[c]);
 }
 
-/* Calls of one and two samples (a path tracer's per hit; dFH11 then sums the quadrature's nodes
- * across the lanes) give what one batch call gives, f and the fused pdf, within 1e-6 relative (the
- * sum runs in another order). HHH22's Monte-Carlo TT/TRT keys its numbers by the index within the
- * call, so its values differ by design and it is left out. */
+/* Calls of one and two samples (a path tracer's per hit: dFH11's standard plans sum the quadrature's
+ * nodes across the lanes, a call of one sample elsewhere runs on the scalar kernels) give what one
+ * batch call gives, f and the fused pdf, within the stated bound between ISAs (3e-5 of the peak; dFH11
+ * measured 3e-7, the sum in another order). HHH22's Monte-Carlo TT/TRT keys its numbers by the index
+ * within the call, so its values differ by design and it is left out. */
 static void test_per_hit_calls(hb_test_ctx *t)
 {
     fill_pairs(t);
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-        if (estimated_pdf(&cases[c])) /* its Monte-Carlo TT/TRT is keyed by the index within the call */
+        if (estimated_pdf(&cases[c]))
             continue;
         hb_plan *plan = case_plan(t, &cases[c]);
         if (!plan)
@@ -208,25 +209,24 @@ static void test_per_hit_calls(hb_test_ctx *t)
         float *a[4] = { buf.angles[0], buf.angles[1], buf.angles[2], buf.angles[3] };
         hb_eval_pdf_angles(plan, M, (hb_angles_soa){ a[0], a[1], a[2], a[3] }, (hb_rgb_soa){ buf.f[0], buf.f[1], buf.f[2] },
                            buf.pdf, NULL);
-        double worst = 0.0;
         for (int k = 0; k < M;) {
-            int n = k + 1 + k % 2 <= M ? 1 + k % 2 : 1, fused = k % 3 == 0;
+            int n = k + 1 + k % 2 <= M ? 1 + k % 2 : 1;
             hb_angles_soa in = { a[0] + k, a[1] + k, a[2] + k, a[3] + k };
             hb_rgb_soa f = { buf.f2[0] + k, buf.f2[1] + k, buf.f2[2] + k };
-            if (fused)
+            if (k % 3 == 0) {
                 hb_eval_pdf_angles(plan, (size_t)n, in, f, buf.pdf2 + k, NULL);
-            else
+            } else {
                 hb_eval_angles(plan, (size_t)n, in, f, NULL);
-            for (int j = k; j < k + n; j++) {
-                for (int ch = 0; ch < 3; ch++)
-                    worst = fmax(worst, relative(buf.f[ch][j], buf.f2[ch][j]));
-                if (fused)
-                    worst = fmax(worst, relative(buf.pdf[j], buf.pdf2[j]));
+                hb_pdf_angles(plan, (size_t)n, in, buf.pdf2 + k, NULL);
             }
             k += n;
         }
-        CHECK(t, worst <= 1e-6, "%s: per-hit calls differ from the batch by %.3g", cases[c].label, worst);
-        hb_test_note(t, "%s: calls of 1 and 2 samples within %.2g of the batch", cases[c].label, worst);
+        float *got[3] = { buf.f2[0], buf.f2[1], buf.f2[2] }, *want[3] = { buf.f[0], buf.f[1], buf.f[2] };
+        float *pdf_got[3] = { buf.pdf2, buf.pdf2, buf.pdf2 }, *pdf_want[3] = { buf.pdf, buf.pdf, buf.pdf };
+        double ef = hb_test_spec_error(got, want, M, NULL), ep = hb_test_spec_error(pdf_got, pdf_want, M, NULL);
+        CHECK(t, ef <= 3e-5 && ep <= 3e-5, "%s: per-hit calls differ from the batch by %.3g (f), %.3g (pdf)",
+              cases[c].label, ef, ep);
+        hb_test_note(t, "%s: calls of 1 and 2 samples within %.2g (f), %.2g (pdf) of the batch", cases[c].label, ef, ep);
         hb_plan_destroy(plan);
     }
 }

@@ -7,16 +7,16 @@
 
 static unsigned lobes(const hb_options *o) { return o->lobes == HB_LOBES_DEFAULT ? 7u | 1u << HB_LOBE_RESIDUAL : o->lobes; }
 
-static const hb_chiang_kernels *kernels_of(const hb_plan *plan) { return plan->kernels; }
+static const hb_chiang_kernels *kernels_of(const hb_plan *plan, size_t n) { return hb_kernels_for(plan, n); }
 
 static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    kernels_of(plan)->angles(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan, n)->angles(&plan->chiang, n, in, out, invalid);
 }
 
 static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    kernels_of(plan)->vectors(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan, n)->vectors(&plan->chiang, n, in, out, invalid);
 }
 
 /* The far-field sampler reads one number more than the near field's: h. */
@@ -28,33 +28,33 @@ static int sample_dimensions(const hb_plan *plan)
 
 static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    kernels_of(plan)->sample(&plan->chiang, n, b, invalid);
+    kernels_of(plan, n)->sample(&plan->chiang, n, b, invalid);
 }
 
 static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
-    kernels_of(plan)->f_pdf(&plan->chiang, n, in, NULL, out, invalid);
+    kernels_of(plan, n)->f_pdf(&plan->chiang, n, in, NULL, out, invalid);
 }
 
 static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf,
                      size_t *invalid)
 {
-    kernels_of(plan)->f_pdf(&plan->chiang, n, in, &out, pdf, invalid);
+    kernels_of(plan, n)->f_pdf(&plan->chiang, n, in, &out, pdf, invalid);
 }
 
 static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    kernels_of(plan)->near(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan, n)->near(&plan->chiang, n, in, out, invalid);
 }
 
 static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)
 {
-    kernels_of(plan)->sample_near(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan, n)->sample_near(&plan->chiang, n, in, out, invalid);
 }
 
 static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, size_t *invalid)
 {
-    kernels_of(plan)->pdf_near(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan, n)->pdf_near(&plan->chiang, n, in, out, invalid);
 }
 
 static hb_status table(const hb_plan *plan, hb_table_view *view)

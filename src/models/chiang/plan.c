@@ -125,7 +125,7 @@ hb_status hb_chiang_derive(hb_plan *plan, hb_error *error)
 {
     (void)error;
     HB_PER_ISA(hb_chiang_kernels, chiang_kernels, kernels_by_isa);
-    plan->kernels = plan->options.quality == HB_QUALITY_REFERENCE ? NULL : kernels_by_isa[plan->isa];
+    HB_PLAN_SET_KERNELS(plan, kernels_by_isa, plan->options.quality == HB_QUALITY_REFERENCE);
     derive_constants(plan);
     return HB_OK;
 }

@@ -209,7 +209,7 @@ hb_status hb_deon_validate(const hb_material *m, const hb_options *o, hb_error *
 hb_status hb_deon_derive(hb_plan *plan, hb_error *error)
 {
     HB_PER_ISA(hb_deon_kernels, deon_kernels, kernels_by_isa);
-    plan->kernels = plan->options.quality == HB_QUALITY_REFERENCE ? NULL : kernels_by_isa[plan->isa];
+    HB_PLAN_SET_KERNELS(plan, kernels_by_isa, plan->options.quality == HB_QUALITY_REFERENCE);
     derive_constants(plan);
     hb_deon_derive_sampling(plan);
     return plan->options.azimuthal == HB_AZIMUTHAL_TABLE ? hb_deon_build_table(plan, error) : HB_OK;

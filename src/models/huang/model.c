@@ -10,12 +10,12 @@ static unsigned lobes(const hb_options *o) { return o->lobes == HB_LOBES_DEFAULT
 
 static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    ((const hb_huang_kernels *)plan->kernels)->angles(&plan->huang, n, in, out, invalid);
+    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->angles(&plan->huang, n, in, out, invalid);
 }
 
 static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    ((const hb_huang_kernels *)plan->kernels)->vectors(&plan->huang, n, in, out, invalid);
+    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->vectors(&plan->huang, n, in, out, invalid);
 }
 
 /* R alone is sampled exactly, with TT and TRT by traced paths; the double path has no TT/TRT sampler. */
@@ -28,12 +28,12 @@ static int sample_dimensions(const hb_plan *plan)
 
 static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    ((const hb_huang_kernels *)plan->kernels)->sample(&plan->huang, n, b, invalid);
+    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->sample(&plan->huang, n, b, invalid);
 }
 
 static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
-    ((const hb_huang_kernels *)plan->kernels)->pdf(&plan->huang, n, in, out, invalid);
+    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->pdf(&plan->huang, n, in, out, invalid);
 }
 
 /* f and its pdf share no stage (the pdf is eq. 33's, f eqs. 12, 23 and 24): two passes. */

@@ -107,7 +107,7 @@ hb_status hb_huang_derive(hb_plan *plan, hb_error *error)
     HB_PER_ISA(hb_huang_kernels, huang_kernels, kernels_by_isa);
     const hb_options *o = &plan->options;
     int reference = o->quality == HB_QUALITY_REFERENCE || o->tt_trt == HB_TT_TRT_REFERENCE;
-    plan->kernels = reference ? NULL : kernels_by_isa[plan->isa];
+    HB_PLAN_SET_KERNELS(plan, kernels_by_isa, reference);
     derive_constants(plan);
     if (o->tt_trt == HB_TT_TRT_TABLE && (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)))
         return hb_huang_build_table(plan, error);

@@ -8,7 +8,7 @@ static unsigned lobes(const hb_options *o) { return o->lobes == HB_LOBES_DEFAULT
 
 static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    const hb_marschner_kernels *k = plan->kernels;
+    const hb_marschner_kernels *k = hb_kernels_for(plan, n);
     if (plan->options.term == HB_TERM_LONGITUDINAL) {
         k->longitudinal_angles(&plan->marschner.lobe[HB_LOBE_R], n, in, out.r, invalid);
         hb_spread_channels(n, out);
@@ -19,7 +19,7 @@ static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_
 
 static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    const hb_marschner_kernels *k = plan->kernels;
+    const hb_marschner_kernels *k = hb_kernels_for(plan, n);
     if (plan->options.term == HB_TERM_LONGITUDINAL) {
         k->longitudinal_vectors(&plan->marschner.lobe[HB_LOBE_R], n, in, out.r, invalid);
         hb_spread_channels(n, out);
@@ -36,12 +36,12 @@ static int sample_dimensions(const hb_plan *plan)
 
 static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    ((const hb_marschner_kernels *)plan->kernels)->sample(&plan->marschner, n, b, invalid);
+    ((const hb_marschner_kernels *)hb_kernels_for(plan, n))->sample(&plan->marschner, n, b, invalid);
 }
 
 static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
-    ((const hb_marschner_kernels *)plan->kernels)->pdf(&plan->marschner, n, in, out, invalid);
+    ((const hb_marschner_kernels *)hb_kernels_for(plan, n))->pdf(&plan->marschner, n, in, out, invalid);
 }
 
 /* f (the caustics' fade and glint, the attenuation) and the pdf share only the geometry: two passes. */
