@@ -104,7 +104,7 @@ TOOL_SRCS := $(wildcard tools/*.c)
 # tests/kernel_hooks.c reads kernel internals: compiled once per ISA like the kernels.
 TEST_SRCS := $(filter-out tests/kernel_hooks.c,$(wildcard tests/*.c))
 TEST_HOOK_OBJS := $(foreach isa,$(ISAS),$(B)/$(isa)/tests/kernel_hooks.o)
-FUZZ_TARGETS := fuzz_cli fuzz_eval
+FUZZ_TARGETS := fuzz_cli fuzz_eval fuzz_table
 BENCH_SRCS := $(wildcard bench/*.c)
 
 STATIC_LIB := $(B)/libhairbsdf.a
@@ -120,6 +120,7 @@ ENGINE_EXAMPLE := $(B)/example_engine$(EXE)
 TEST_BIN := $(B)/hairbsdf_tests$(EXE)
 BENCH_BIN := $(B)/hairbsdf_bench$(EXE)
 REPLAYS := $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%$(EXE))
+FUZZ_TOOL_OBJS := $(B)/tools/csv.o $(B)/tools/cli_options.o $(B)/tools/cli_threads.o
 
 .PHONY: all test check tsan bench bench-instr calibration demo images fuzz fuzz-run install abi clean
 all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LINK)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE)
@@ -158,7 +159,7 @@ $(SHARED_LINK): $(SHARED_LIB)
 	ln -sf $(notdir $<) $@
 
 $(TOOL): $(TOOL_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
-	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) $(EXR_LIBS)
+	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) $(EXR_LIBS) -lpthread
 
 $(EXAMPLE): $(B)/examples/minimal.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
@@ -199,8 +200,8 @@ tsan:
 	$(MAKE) CC=clang TSAN=1 test TEST_FLAGS="--filter threads"
 
 # The fuzz harnesses without libFuzzer, replaying the kept corpus (make test runs them).
-$(B)/replay_fuzz_%$(EXE): tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(B)/tools/csv.o $(B)/tools/cli_options.o $(STATIC_LIB)
-	$(CC) $(ALL_CFLAGS) -Itools $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
+$(B)/replay_fuzz_%$(EXE): tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_TOOL_OBJS) $(STATIC_LIB)
+	$(CC) $(ALL_CFLAGS) -Itools $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) -lpthread
 
 bench: $(BENCH_BIN)
 	@mkdir -p bench/results
@@ -253,8 +254,8 @@ fuzz-run: $(FUZZ_TARGETS:%=$(B)/%)
 	for t in $(FUZZ_TARGETS); do mkdir -p tests/fuzz/corpus/$$t; \
 	  $(B)/$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 tests/fuzz/corpus/$$t || exit 1; done
 
-$(B)/fuzz_%: tests/fuzz/fuzz_%.c $(B)/tools/csv.o $(B)/tools/cli_options.o $(STATIC_LIB)
-	$(CC) $(ALL_CFLAGS) -Itools -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+$(B)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_TOOL_OBJS) $(STATIC_LIB)
+	$(CC) $(ALL_CFLAGS) -Itools -fsanitize=fuzzer -o $@ $^ $(LDLIBS) -lpthread
 
 # The README's pictures, by the commands the README shows.
 images: $(TOOL)

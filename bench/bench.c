@@ -8,12 +8,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "hairbsdf.h"
 #include "plot.h"
+#include "clock.h"
 #include "readme.h"
+#include "table_files.h"
 
 enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
 
@@ -45,13 +46,6 @@ typedef struct row {
     hb_isa isa;
     double min_ns, median_ns, max_rel_err;
 } row;
-
-static double now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e9 + ts.tv_nsec;
-}
 
 static int compare_double(const void *a, const void *b)
 {
@@ -876,6 +870,8 @@ int main(int argc, char **argv)
     FILE *scaling_out = open_memstream(&scaling_text, &scaling_size);
     if (!partial && scaling_out)
         scaling(&m, scaling_out);
+    if ((!partial || !strcmp(only, "table-files")) && scaling_out)
+        bench_table_files(&m, scaling_out);
     if (scaling_out)
         fclose(scaling_out);
     printf("%s", scaling_text ? scaling_text : "");

@@ -23,9 +23,9 @@ extern "C" {
  * appends fields to hb_material and hb_options: a program built against an older header passes its
  * smaller struct_size and the fields it lacks take their defaults. */
 #define HB_VERSION_MAJOR 0
-#define HB_VERSION_MINOR 3
+#define HB_VERSION_MINOR 4
 #define HB_VERSION_PATCH 0
-#define HB_VERSION_STRING "0.3.0"
+#define HB_VERSION_STRING "0.4.0"
 
 /* HB_API marks what the library exports; the shared library exports nothing else. Define
  * HB_STATIC when linking the static library on Windows. */
@@ -48,7 +48,10 @@ typedef enum hb_status {
     HB_ERR_UNSUPPORTED, /* the model, lobe, term or option combination does not exist (yet) */
     HB_ERR_ISA,         /* the requested instruction set is not available on this CPU */
     HB_ERR_VERSION,     /* a struct_size from a newer header than this library's, or no release's */
-    HB_ERR_NOMEM        /* plan creation could not allocate */
+    HB_ERR_NOMEM,       /* plan creation could not allocate */
+    HB_ERR_FILE,        /* a table file is damaged, of another format or library version, or baked for another
+                           material or options (the message names the difference) */
+    HB_ERR_CANCELLED    /* plan creation was cancelled by options.progress */
 } hb_status;
 
 /* The library's version at run time, "major.minor.patch"; major, minor and patch (each may be NULL)
@@ -208,6 +211,11 @@ typedef enum hb_azimuthal {
                                 With the default R Fresnel (HB_R_FRESNEL_OFFSET) only */
 } hb_azimuthal;
 
+/* Callbacks of a long plan creation (hb_options.progress and .parallel). */
+typedef int (*hb_progress_fn)(void *context, double fraction);
+typedef void (*hb_task_fn)(void *task_context, int index);
+typedef void (*hb_parallel_fn)(void *context, int count, hb_task_fn task, void *task_context);
+
 typedef struct hb_options {
     size_t struct_size; /* sizeof(hb_options), set by hb_options_default; an older header's is accepted */
     hb_model model;     /* default HB_MODEL_DEON */
@@ -250,6 +258,24 @@ typedef struct hb_options {
     double tolerance;
     double budget_ns;
     const char *calibration;
+    /* A table file (hb_table_save's bytes) to load instead of building the plan's table: plan creation
+     * checks its format, library version, checksum, model, material and options against this plan's
+     * and copies its values (the bytes may be freed afterwards), or refuses with HB_ERR_FILE. Only for
+     * plans that have a table (dFH11 azimuthal = table, HHH22 tt_trt = table), not with tolerance or
+     * budget_ns. NULL: the table is built. */
+    const void *table_file;
+    size_t table_file_size;
+    /* Long plan creations (table builds; HHH22's TT/TRT table takes seconds at high quality). progress,
+     * if not NULL, is called on the creating thread as the build goes, with an estimate of the fraction
+     * done (non-decreasing, 1 at the end); returning nonzero cancels it, and hb_plan_create returns
+     * HB_ERR_CANCELLED. parallel, if not NULL, runs a part of the build as `count` independent tasks:
+     * it must call task(task_context, k) once for every k in [0, count), on any threads in any order,
+     * and return when all have returned (an engine's job system; the CLI's --threads). The table is
+     * the same bit for bit however its tasks run. Plans without a table call neither. */
+    hb_progress_fn progress;
+    void *progress_context;
+    hb_parallel_fn parallel;
+    void *parallel_context;
 } hb_options;
 
 #define HB_MAX_TT_PANELS 2048
@@ -428,6 +454,13 @@ typedef struct hb_table_view {
 
 /* HB_ERR_UNSUPPORTED when the plan has no table. */
 HB_API hb_status hb_plan_table(const hb_plan *plan, hb_table_view *view);
+
+/* The plan's table as a table file (`.hbt`, docs/engines.md gives the layout), to ship with an engine's
+ * data and load with options.table_file: writes at most capacity bytes to bytes and the file's length
+ * to *size (bytes may be NULL to ask for the length). HB_ERR_UNSUPPORTED when the plan has no table,
+ * HB_ERR_PARAM when capacity is less than the length. A plan loaded from the file evaluates bit for
+ * bit as the plan that saved it on the same instruction set. */
+HB_API hb_status hb_table_save(const hb_plan *plan, void *bytes, size_t capacity, size_t *size);
 
 /* White furnace: E(w_o) = integral over the sphere of f(w_i, w_o) dw_i per channel, by
  * quadrature fine enough for the plan's roughness (docs/conventions.md). A lossless fibre with

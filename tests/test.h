@@ -76,6 +76,8 @@ extern const hb_test hb_tests_api[];
 extern const hb_test hb_tests_cli[];
 extern const hb_test hb_tests_images[];
 extern const hb_test hb_tests_deon_table[];
+extern const hb_test hb_tests_table_file[];
+extern const hb_test hb_tests_table_build[];
 extern const hb_test hb_tests_plan_select[];
 extern const hb_test hb_tests_corpus[];
 extern const hb_test hb_tests_sample[];

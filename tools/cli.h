@@ -13,6 +13,9 @@ typedef struct cli_model_args {
      * the concentrations), resolved when the plan is created, when beta_n and the model are known */
     enum { CLI_COLOUR_NONE, CLI_COLOUR_SIGMA_A, CLI_COLOUR_MELANIN } colour_to;
     double colour[3];
+    const char *table_path; /* --table: a table file to load (the plan then evaluates from its table) */
+    int threads;            /* --threads: for table builds (hb_options.parallel), default 1 */
+    int progress;           /* --progress: table builds report to stderr */
 } cli_model_args;
 
 void cli_model_args_default(cli_model_args *args);
@@ -20,7 +23,7 @@ void cli_model_args_default(cli_model_args *args);
 /* The material the options describe: args->material with a colour option resolved. */
 hb_status cli_material(const cli_model_args *args, hb_material *material, hb_error *error);
 
-/* hb_plan_create of cli_material(args) and options. */
+/* hb_plan_create of cli_material(args) and options; with --table, from that file's table. */
 hb_status cli_plan_create(const cli_model_args *args, const hb_options *options, hb_plan **plan, hb_error *error);
 
 /* Parses argv[*i] (and its value) if it is a model or material option. Returns 1 when

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_threads.h"
 
 const char cli_model_options_help[] =
     "Model options:\n"
@@ -32,6 +33,10 @@ const char cli_model_options_help[] =
     "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
     "  --azimuthal quadrature|table   dFH11 N_p per sample, or from a table built at plan creation\n"
     "  --table-tolerance X            dFH11 N_p table: midpoint error bound (default: from quality)\n"
+    "  --table FILE.hbt               load the table of `hairbsdf bake` instead of building it (the same\n"
+    "                                 material and options as the bake; implies --azimuthal table or --tt-trt table)\n"
+    "  --threads N                    build tables on N threads (default 1)\n"
+    "  --progress                     report a table build's progress on stderr\n"
     "  --tolerance X                  choose the configuration: the cheapest whose error (of the peak f) is at most X,\n"
     "                                 dropping lobes that cannot matter (see hairbsdf plan)\n"
     "  --budget-ns X                  choose the most accurate configuration that takes at most X ns per sample\n"
@@ -55,6 +60,9 @@ void cli_model_args_default(cli_model_args *args)
     hb_material_default(&args->material);
     hb_options_default(&args->options);
     args->colour_to = CLI_COLOUR_NONE;
+    args->table_path = NULL;
+    args->threads = 1;
+    args->progress = 0;
 }
 
 /* CBTB16's azimuthal roughness b in [0, 1] for the colour fit: the material's beta_n for CBTB16;
@@ -88,11 +96,59 @@ hb_status cli_material(const cli_model_args *args, hb_material *material, hb_err
     return HB_OK;
 }
 
+/* The whole file at path in a buffer the caller frees; NULL if it cannot be read. */
+static void *read_file(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    size_t capacity = 1 << 16, n = 0;
+    unsigned char *bytes = malloc(capacity);
+    for (size_t got = 1; bytes && got > 0; n += got) {
+        if (n == capacity) {
+            unsigned char *grown = realloc(bytes, capacity *= 2);
+            if (!grown)
+                free(bytes);
+            bytes = grown;
+            if (!bytes)
+                break;
+        }
+        got = fread(bytes + n, 1, capacity - n, f);
+    }
+    if (ferror(f)) {
+        free(bytes);
+        bytes = NULL;
+    }
+    fclose(f);
+    *size = n;
+    return bytes;
+}
+
 hb_status cli_plan_create(const cli_model_args *args, const hb_options *options, hb_plan **plan, hb_error *error)
 {
     hb_material material;
     hb_status st = cli_material(args, &material, error);
-    return st != HB_OK ? st : hb_plan_create(&material, options, plan, error);
+    if (st != HB_OK)
+        return st;
+    hb_options o = *options;
+    if (args->threads > 1)
+        o.parallel = cli_parallel, o.parallel_context = (void *)&args->threads;
+    if (args->progress)
+        o.progress = cli_progress;
+    if (!args->table_path)
+        return hb_plan_create(&material, &o, plan, error);
+    o.table_file = read_file(args->table_path, &o.table_file_size);
+    if (!o.table_file) {
+        snprintf(error->message, sizeof error->message, "cannot read the table file %s", args->table_path);
+        return error->status = HB_ERR_FILE;
+    }
+    if (o.model == HB_MODEL_HUANG)
+        o.tt_trt = HB_TT_TRT_TABLE;
+    else
+        o.azimuthal = HB_AZIMUTHAL_TABLE;
+    st = hb_plan_create(&material, &o, plan, error);
+    free((void *)o.table_file);
+    return st;
 }
 
 /* A whole field as a finite number. strtod's ERANGE also flags a subnormal result, which is a
@@ -198,7 +254,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
                                               "--ndf", "--sigma-a", "--pmax", "--quadrature", "--absorption",
                                               "--r-fresnel", "--r-integration", "--r-panels", "--tt-trt",
                                               "--tt-panels", "--seed", "--calibration", "--azimuthal", "--colour",
-                                              "--melanin-colour", NULL };
+                                              "--melanin-colour", "--table", "--threads", NULL };
     static const char *const per_lobe[] = { "--lobe-beta-m", "--lobe-beta-n", "--lobe-alpha", NULL };
     static const char *const absorptions[] = { "corrected", "paper", NULL };
     static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
@@ -213,6 +269,10 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
 
     if (strcmp(argv[*i], "--no-shadowing") == 0) {
         args->options.shadowing = HB_SHADOWING_NONE;
+        return 1;
+    }
+    if (strcmp(argv[*i], "--progress") == 0) {
+        args->progress = 1;
         return 1;
     }
     char name[64];
@@ -317,6 +377,10 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         if ((k = pick(value, azimuthals)) >= 0) o->azimuthal = (hb_azimuthal)k; else expected = "quadrature or table";
     } else if (strcmp(name, "--sigma-a") == 0) {
         if (!parse_triple(value, m->sigma_a)) expected = "three finite numbers R,G,B";
+    } else if (strcmp(name, "--table") == 0) {
+        args->table_path = value;
+    } else if (strcmp(name, "--threads") == 0) {
+        if (!parse_int(value, 1, 64, &args->threads)) expected = "a thread count from 1 to 64";
     } else if (strcmp(name, "--colour") == 0 || strcmp(name, "--melanin-colour") == 0) {
         args->colour_to = name[2] == 'c' ? CLI_COLOUR_SIGMA_A : CLI_COLOUR_MELANIN;
         if (!parse_triple(value, args->colour)) expected = "three numbers R,G,B in (0, 1]";

@@ -1,6 +1,6 @@
 /* hairbsdf bake: the table a shader or engine bakes for a material (docs/engines.md):
- * dFH11 N_p per M_p group over (sqrt(cos(theta_d)), |phi|), or HHH22 f_TT + f_TRT; as the binary
- * layout below, or as float RGB EXR (one image row per line of the table, slots stacked). */
+ * dFH11 N_p per M_p group over (sqrt(cos(theta_d)), |phi|), or HHH22 f_TT + f_TRT; as a table file
+ * (hb_table_save), or as float RGB EXR (one image row per line of the table, slots stacked). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,55 +15,26 @@ static void bake_usage(FILE *to)
                 "deon: N_p per group of lobes sharing an M_p, over (sqrt(cos(theta_d)), |phi|), refined until the\n"
                 "midpoint interpolation error is below X of each group's peak (default: from --quality);\n"
                 "huang: its TT + TRT table (resolution from --quality and the roughness). Prints the axes.\n"
-                "FILE.hbt layout (little-endian): \"HBTABLE1\", u32 model (1 deon, 2 huang), u32 axes, u32 slots,\n"
-                "u32 channels (3); per axis u32 nodes, f64 lo, f64 hi, char[64] what it is; per slot u32 lobe\n"
-                "mask; f64 measured error (NaN if not measured); then f32 values, axes row-major, then slot,\n"
-                "then RGB. FILE.exr (with OpenEXR): width = the last axis, one row per node of the other axes,\n"
-                "slots stacked top to bottom.\n%s",
+                "FILE.hbt: the table file of docs/engines.md (header with the material, options, library version\n"
+                "and a checksum; f32 values, axes row-major, then slot, then RGB), which --table FILE.hbt loads\n"
+                "into a plan of the same material and options. FILE.exr (with OpenEXR): width = the last axis,\n"
+                "one row per node of the other axes, slots stacked top to bottom.\n%s",
             cli_model_options_help);
 }
 
-static void put(FILE *f, const void *bytes, size_t n) { fwrite(bytes, 1, n, f); }
-
-static void put_u32(FILE *f, unsigned v)
+/* The plan's table file (hb_table_save), which --table loads back. */
+static int write_hbt(const char *path, const hb_plan *plan)
 {
-    unsigned char b[4] = { (unsigned char)v, (unsigned char)(v >> 8), (unsigned char)(v >> 16), (unsigned char)(v >> 24) };
-    put(f, b, 4);
-}
-
-static void put_bits(FILE *f, const void *value, size_t n) /* a float or double, little-endian */
-{
-    unsigned char b[8];
-    memcpy(b, value, n);
-    const unsigned one = 1;
-    if (*(const unsigned char *)&one == 0) /* big-endian host: reverse */
-        for (size_t k = 0; k < n / 2; k++) {
-            unsigned char t = b[k];
-            b[k] = b[n - 1 - k], b[n - 1 - k] = t;
-        }
-    put(f, b, n);
-}
-
-static int write_hbt(const char *path, const hb_table_view *v)
-{
-    FILE *f = fopen(path, "wb");
-    if (!f)
+    size_t size;
+    if (hb_table_save(plan, NULL, 0, &size) != HB_OK)
         return -1;
-    put(f, "HBTABLE1", 8);
-    put_u32(f, (unsigned)v->model), put_u32(f, (unsigned)v->axes), put_u32(f, (unsigned)v->slots), put_u32(f, 3);
-    for (int k = 0; k < v->axes; k++) {
-        char name[64] = { 0 };
-        snprintf(name, sizeof name, "%s", v->axis[k]);
-        put_u32(f, (unsigned)v->size[k]);
-        put_bits(f, &v->lo[k], 8), put_bits(f, &v->hi[k], 8);
-        put(f, name, sizeof name);
-    }
-    for (int s = 0; s < v->slots; s++)
-        put_u32(f, v->slot_lobes[s]);
-    put_bits(f, &v->error, 8);
-    for (size_t k = 0; k < v->count; k++)
-        put_bits(f, &v->values[k], 4);
-    return fclose(f) == 0 ? 0 : -1;
+    unsigned char *bytes = malloc(size);
+    FILE *f = bytes ? fopen(path, "wb") : NULL;
+    int st = f && hb_table_save(plan, bytes, size, &size) == HB_OK && fwrite(bytes, 1, size, f) == size ? 0 : -1;
+    if (f && fclose(f) != 0)
+        st = -1;
+    free(bytes);
+    return st;
 }
 
 static int write_exr(const char *path, const hb_table_view *v)
@@ -134,7 +105,7 @@ int cmd_bake(int argc, char **argv)
     int st = hb_plan_table(plan, &v) == HB_OK ? 0 : 2;
     if (st)
         fprintf(stderr, "hairbsdf bake: this plan has no table (huang without TT and TRT?)\n");
-    if (!st && (exr ? write_exr(path, &v) : write_hbt(path, &v)) != 0) {
+    if (!st && (exr ? write_exr(path, &v) : write_hbt(path, plan)) != 0) {
         fprintf(stderr, "hairbsdf bake: cannot write %s\n", path);
         st = 1;
     }

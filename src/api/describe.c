@@ -10,6 +10,8 @@ size_t hb_plan_describe(const hb_plan *plan, char *out, size_t size)
         return 0;
     hb_model_ops_of(plan->options.model)->describe(&t, plan);
     hb_say(&t, "evaluation: %s\n", plan->kernels ? hb_isa_name(plan->isa) : "double-precision reference (scalar)");
+    if (plan->table_file_size)
+        hb_say(&t, "table: loaded from a table file of %zu bytes, not built\n", plan->table_file_size);
     const hb_selection *s = &plan->selection;
     if (s->active) {
         if (s->tolerance > 0.0)

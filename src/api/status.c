@@ -21,6 +21,8 @@ const char *hb_status_string(hb_status status)
     case HB_ERR_ISA: return "instruction set not available on this CPU";
     case HB_ERR_VERSION: return "struct_size is from a newer header than this library";
     case HB_ERR_NOMEM: return "out of memory";
+    case HB_ERR_FILE: return "the table file is damaged or was baked for another material, options or version";
+    case HB_ERR_CANCELLED: return "plan creation was cancelled by its progress callback";
     }
     return "unknown status";
 }

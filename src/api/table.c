@@ -1,5 +1,7 @@
-/* hb_plan_table: the view of a plan's table that engines bake, from its model. */
+/* hb_plan_table: the view of a plan's table that engines bake, from its model; hb_table_save: that
+ * table as a table file (src/models/table_file.c). */
 #include "models/model.h"
+#include "models/table_file.h"
 
 hb_status hb_plan_table(const hb_plan *plan, hb_table_view *v)
 {
@@ -9,8 +11,23 @@ hb_status hb_plan_table(const hb_plan *plan, hb_table_view *v)
     hb_status st = hb_model_ops_of(plan->options.model)->table(plan, v);
     if (st != HB_OK)
         return st;
-    v->count = (size_t)v->slots * 3;
-    for (int k = 0; k < v->axes; k++)
-        v->count *= (size_t)v->size[k];
+    v->count = hb_table_count(v);
+    return HB_OK;
+}
+
+hb_status hb_table_save(const hb_plan *plan, void *bytes, size_t capacity, size_t *size)
+{
+    if (!plan || !size)
+        return HB_ERR_NULL;
+    hb_table_view v;
+    hb_status st = hb_plan_table(plan, &v);
+    if (st != HB_OK)
+        return st;
+    *size = hb_table_file_write(plan, &v, NULL);
+    if (!bytes)
+        return HB_OK;
+    if (capacity < *size)
+        return HB_ERR_PARAM;
+    hb_table_file_write(plan, &v, bytes);
     return HB_OK;
 }

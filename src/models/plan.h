@@ -55,6 +55,7 @@ struct hb_plan {
     int chiang_far_capped;            /* the far field's rule asked for more than HB_CHIANG_MAX_NODES */
     hb_chiang chiang;
     hb_selection selection; /* tolerance and budget plans */
+    size_t table_file_size; /* the table file the table was loaded from (0: built); options.table_file is NULL */
 };
 
 /* Fills error (if not NULL) with status and the formatted message; returns status (src/models/fail.c). */

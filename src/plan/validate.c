@@ -104,6 +104,11 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
     if ((o->tolerance > 0.0 || o->budget_ns > 0.0) && (o->quality == HB_QUALITY_REFERENCE || o->term != HB_TERM_FULL))
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "a tolerance or budget plan chooses among the float configurations of "
                     "the full model: not with the reference quality or the longitudinal term");
+    if ((o->table_file != NULL) != (o->table_file_size > 0))
+        return hb_plan_fail(error, HB_ERR_PARAM, "table_file and table_file_size go together: give both or neither");
+    if (o->table_file && (o->tolerance > 0.0 || o->budget_ns > 0.0))
+        return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "a table file fixes the configuration it was baked with: give its "
+                    "quality and options, not a tolerance or budget_ns");
     if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE && o->azimuthal != HB_AZIMUTHAL_TABLE)
         return hb_plan_fail(error, HB_ERR_PARAM, "azimuthal = %d is not a variant", (int)o->azimuthal);
     if (!(o->table_tolerance == 0.0 || in_range(o->table_tolerance, 1e-6, 0.5)))

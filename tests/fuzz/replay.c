@@ -24,7 +24,7 @@ int main(int argc, char **argv)
             FILE *f = fopen(path, "rb");
             if (!f)
                 continue;
-            static uint8_t buf[1 << 16];
+            static uint8_t buf[1 << 18];
             size_t n = fread(buf, 1, sizeof buf, f);
             fclose(f);
             LLVMFuzzerTestOneInput(buf, n); /* aborts on a failed check */

@@ -1,10 +1,13 @@
 /* dFH11 N_p table (HB_AZIMUTHAL_TABLE): its resolution refined from the tolerance, rows built by
- * the plan's kernel (src/models/deon/azimuthal.h); and its view for hb_plan_table, which engines bake. */
+ * the plan's kernel (src/models/deon/azimuthal.h), or loaded from a table file; and its view for
+ * hb_plan_table, which engines bake. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "deon.h"
+#include "models/build_tasks.h"
+#include "models/table_file.h"
 
 static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
 
@@ -16,13 +19,29 @@ static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
 #define MAX_WORK 1e8
 #define HB_TABLE_READ_PAD 4
 
-/* N rows at cos(theta_d) = cd[j] for the azimuths phi[0..n_phi), into out (n_cd rows). */
-static void build_rows(const hb_plan *plan, int n_cd, const double *cd, int n_phi, const float *phi, float *out)
+/* The rows of one grid: N at cos(theta_d) = cd[j] for the azimuths phi[0..n_phi), row j at out + j * row. */
+typedef struct row_grid {
+    const hb_plan *plan;
+    const double *cd;
+    int n_phi;
+    const float *phi;
+    float *out;
+} row_grid;
+
+static void build_row(void *grid, int j)
 {
-    size_t row = (size_t)n_phi * (size_t)plan->deon.table_slots * 3;
-    for (int j = 0; j < n_cd; j++)
-        ((const hb_deon_kernels *)plan->kernels)->np_row(&plan->deon, (float)cd[j], (size_t)n_phi, phi,
-                                                          out + (size_t)j * row);
+    const row_grid *g = grid;
+    size_t row = (size_t)g->n_phi * (size_t)g->plan->deon.table_slots * 3;
+    ((const hb_deon_kernels *)g->plan->kernels)->np_row(&g->plan->deon, (float)g->cd[j], (size_t)g->n_phi, g->phi,
+                                                        g->out + (size_t)j * row);
+}
+
+/* n_cd rows as tasks (build_tasks.h), reporting progress from `from` to `to`. */
+static hb_status build_rows(const hb_plan *plan, int n_cd, const double *cd, int n_phi, const float *phi, float *out,
+                            double from, double to, hb_error *error)
+{
+    row_grid grid = { plan, cd, n_phi, phi, out };
+    return hb_build_tasks(&plan->options, n_cd, hb_build_part(n_cd), build_row, &grid, from, to, error);
 }
 
 /* Uniform node coordinates in [0, hi]; with `half`, the midpoints. */
@@ -52,6 +71,55 @@ static double midpoint_error(const float *values, const float *mid, int lines, i
     return worst;
 }
 
+/* The table's layout for a resolution (the view without values and error). */
+static void layout(const hb_plan *plan, int n_cd, int n_phi, hb_table_view *v)
+{
+    const hb_deon *d = &plan->deon;
+    *v = (hb_table_view){ .model = HB_MODEL_DEON, .axes = 2, .size = { n_cd, n_phi },
+                          .lo = { 0.0, 0.0 }, .hi = { 1.0, M_PI },
+                          .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]" },
+                          .slots = d->table_slots };
+    for (int s = 0; s < d->table_slots; s++)
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            if (hb_deon_lobe_on(d, p) && d->m_group[p] == d->table_leader[s])
+                v->slot_lobes[s] |= 1u << p;
+    v->count = hb_table_count(v);
+}
+
+static void install(hb_plan *plan, float *values, int n_cd, int n_phi, double error)
+{
+    plan->deon_table = values;
+    plan->deon.np_table = values;
+    plan->deon.table_cd = n_cd, plan->deon.table_phi = n_phi;
+    plan->table_error = error;
+}
+
+/* The table of options.table_file, whose resolution it gives and whose measured error must meet tol. */
+static hb_status load_table(hb_plan *plan, double tol, hb_error *error)
+{
+    hb_table_file file;
+    hb_status st = hb_table_file_read(plan, &file, error);
+    if (st != HB_OK)
+        return st;
+    int n_cd = file.layout.size[0], n_phi = file.layout.size[1];
+    if (n_cd < 2 || n_cd > MAX_CD || n_phi < 2 || n_phi > MAX_PHI || !(file.layout.error <= tol))
+        return hb_plan_fail(error, HB_ERR_FILE,
+                            "table file: %d x %d nodes with midpoint error %.3g, where this plan's table has at most "
+                            "%d x %d and error at most %g", n_cd, n_phi, file.layout.error, MAX_CD, MAX_PHI, tol);
+    hb_table_view expected;
+    layout(plan, n_cd, n_phi, &expected);
+    float *values = calloc(expected.count + HB_TABLE_READ_PAD, sizeof *values);
+    if (!values)
+        return hb_plan_fail(error, HB_ERR_NOMEM, "could not allocate the deon N_p table (%d x %d nodes)", n_cd, n_phi);
+    st = hb_table_file_values(&file, &expected, values, error);
+    if (st != HB_OK) {
+        free(values);
+        return st;
+    }
+    install(plan, values, n_cd, n_phi, file.layout.error);
+    return HB_OK;
+}
+
 hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
 {
     hb_deon *d = &plan->deon;
@@ -61,7 +129,10 @@ hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
             d->table_leader[d->table_slots++] = p;
     double tol = plan->options.table_tolerance > 0.0 ? plan->options.table_tolerance
                                                      : tolerance_of_quality[plan->options.quality];
+    if (plan->options.table_file)
+        return load_table(plan, tol, error);
     int texel = 3 * d->table_slots, n_phi = 33, n_cd = 9;
+    double done = 0.0; /* the progress reported */
     for (;;) {
         double work = 3.0 * n_phi * n_cd * d->nodes;
         if (work > MAX_WORK)
@@ -93,9 +164,19 @@ hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
         axis_nodes(n_phi, M_PI, 1, angle);
         for (int k = 0; k + 1 < n_phi; k++)
             phi[n_phi + k] = (float)angle[k];
-        build_rows(plan, n_cd, cd, n_phi, phi, values);
-        build_rows(plan, n_cd, cd, n_phi - 1, phi + n_phi, mid_phi);
-        build_rows(plan, n_cd - 1, cd + n_cd, n_phi, phi, mid_cd);
+        /* each attempt at least doubles the work: it takes half of what is left of the progress */
+        double span = (1.0 - done) / 2.0;
+        hb_status st = build_rows(plan, n_cd, cd, n_phi, phi, values, done, done + span / 3.0, error);
+        if (st == HB_OK)
+            st = build_rows(plan, n_cd, cd, n_phi - 1, phi + n_phi, mid_phi, done + span / 3.0, done + 2.0 * span / 3.0,
+                            error);
+        if (st == HB_OK)
+            st = build_rows(plan, n_cd - 1, cd + n_cd, n_phi, phi, mid_cd, done + 2.0 * span / 3.0, done + span, error);
+        done += span;
+        if (st != HB_OK) {
+            free(values), free(mid_phi), free(mid_cd), free(phi), free(cd), free(angle), free(peak);
+            return st;
+        }
         for (size_t k = 0; k < nodes; k++)
             for (int v = 0; v < texel; v++)
                 peak[v] = fmax(peak[v], values[k * (size_t)texel + (size_t)v]);
@@ -106,11 +187,8 @@ hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
         free(mid_phi), free(mid_cd), free(phi), free(cd), free(angle), free(peak);
         /* bilinear error at a cell's centre is about the sum of the two axes' midpoint errors */
         if (error_phi + error_cd <= tol) {
-            plan->deon_table = values;
-            d->np_table = values;
-            d->table_cd = n_cd, d->table_phi = n_phi;
-            plan->table_error = error_phi + error_cd;
-            return HB_OK;
+            install(plan, values, n_cd, n_phi, error_phi + error_cd);
+            return hb_build_finish(&plan->options, error); /* a refusal here frees the plan and its table */
         }
         free(values);
         int refine_phi = error_phi >= error_cd ? n_phi < MAX_PHI : n_cd >= MAX_CD;
@@ -129,14 +207,8 @@ hb_status hb_deon_table_view(const hb_plan *plan, hb_table_view *v)
 {
     if (!plan->deon_table)
         return HB_ERR_UNSUPPORTED;
-    const hb_deon *d = &plan->deon;
-    *v = (hb_table_view){ .model = HB_MODEL_DEON, .axes = 2, .size = { d->table_cd, d->table_phi },
-                          .lo = { 0.0, 0.0 }, .hi = { 1.0, M_PI },
-                          .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]" },
-                          .slots = d->table_slots, .values = plan->deon_table, .error = plan->table_error };
-    for (int s = 0; s < d->table_slots; s++)
-        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-            if (hb_deon_lobe_on(d, p) && d->m_group[p] == d->table_leader[s])
-                v->slot_lobes[s] |= 1u << p;
+    layout(plan, plan->deon.table_cd, plan->deon.table_phi, v);
+    v->values = plan->deon_table;
+    v->error = plan->table_error;
     return HB_OK;
 }

@@ -1,10 +1,13 @@
 /* HHH22 TT/TRT table (HB_TT_TRT_TABLE): its grid, chosen from quality and roughness, and its
- * rows, each built by the plan's kernel (src/models/huang/table.h); and its view for hb_plan_table. docs/huang.md has the measured error and build time per quality. */
+ * rows, each built by the plan's kernel (src/models/huang/table.h) or loaded from a table file; and
+ * its view for hb_plan_table. docs/huang.md has the measured error and build time per quality. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "huang.h"
+#include "models/build_tasks.h"
+#include "models/table_file.h"
 
 /* Per quality (fast, balanced, high): nodes in theta_i and in phi_i (elliptical), the delta step
  * and the step of u = asinh(s / roughness) (near s = 0 that is the step in s over the roughness),
@@ -43,7 +46,8 @@ static hb_status out_of_memory(hb_error *error, void *a, void *b, void *c)
     return HB_ERR_NOMEM;
 }
 
-hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
+/* The grid of plan->huang.table, from quality and roughness. */
+static void choose_grid(hb_plan *plan)
 {
     hb_huang *h = &plan->huang;
     hb_huang_table *t = &h->table;
@@ -61,49 +65,11 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
     t->n_sum = nodes_for(u_hi - u_lo, res->u_step, 9, 513);
     t->u_lo = (float)u_lo;
     t->u_scale = (float)((t->n_sum - 1) / (u_hi - u_lo));
-
-    size_t row = (size_t)t->n_sum * (size_t)t->n_delta * 3;
-    size_t rows = (size_t)t->n_theta_i * (size_t)t->n_phi_i;
-    size_t exits = 2 * (size_t)res->lattice * (size_t)(h->tt_panels + 1);
-    double connections = (double)rows * (double)exits * (double)(row / 3);
-    if (connections > MAX_CONNECTIONS) {
-        if (error) {
-            error->status = HB_ERR_UNSUPPORTED;
-            snprintf(error->message, sizeof error->message,
-                     "the TT/TRT table at roughness %g and this quality needs %.2g path connections (about %.0f s "
-                     "to build; the limit is %.0g): use a coarser quality, tt_trt = mc, or fewer tt_panels",
-                     r, connections, connections * 2.6e-9, MAX_CONNECTIONS);
-        }
-        return HB_ERR_UNSUPPORTED;
-    }
-    float *values = malloc(rows * row * sizeof *values);
-    float *grid = malloc(((size_t)t->n_sum + (size_t)t->n_delta) * sizeof *grid);
-    float *scratch = malloc(exits * HB_HUANG_EXIT_FLOATS * sizeof *scratch);
-    if (!values || !grid || !scratch)
-        return out_of_memory(error, values, grid, scratch);
-    for (int k = 0; k < t->n_sum; k++)
-        grid[k] = (float)(r * sinh(u_lo + k * (u_hi - u_lo) / (t->n_sum - 1)));
-    for (int l = 0; l < t->n_delta; l++)
-        grid[t->n_sum + l] = (float)(t->delta_lo + l * delta_range / (t->n_delta - 1));
-    hb_huang_table_build build = { grid, grid + t->n_sum, res->lattice, scratch };
-    for (int i = 0; i < t->n_theta_i; i++)
-        for (int m = 0; m < t->n_phi_i; m++) {
-            double theta_i = -M_PI_2 + M_PI * i / (t->n_theta_i - 1);
-            double phi_i = t->n_phi_i > 1 ? M_PI_2 * m / (t->n_phi_i - 1) : 0.0;
-            ((const hb_huang_kernels *)plan->kernels)->table_row(h, (float)theta_i, (float)phi_i, &build,
-                                           values + ((size_t)i * (size_t)t->n_phi_i + (size_t)m) * row);
-        }
-    free(grid);
-    free(scratch);
-    plan->huang_table = values;
-    t->values = values;
-    return HB_OK;
 }
 
-hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *v)
+/* The table's layout from its grid (the view without values). */
+static void layout(const hb_plan *plan, hb_table_view *v)
 {
-    if (!plan->huang_table)
-        return HB_ERR_UNSUPPORTED;
     *v = (hb_table_view){ .model = HB_MODEL_HUANG };
     const hb_huang_table *t = &plan->huang.table;
     int k = 0;
@@ -118,7 +84,111 @@ hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *v)
     v->axes = k;
     v->slots = 1;
     v->slot_lobes[0] = plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT);
-    v->values = plan->huang_table;
     v->error = NAN;
+    v->count = hb_table_count(v);
+}
+
+/* The table of options.table_file, on the grid this plan would build. */
+static hb_status load_table(hb_plan *plan, hb_error *error)
+{
+    hb_table_file file;
+    hb_status st = hb_table_file_read(plan, &file, error);
+    if (st != HB_OK)
+        return st;
+    hb_table_view expected;
+    layout(plan, &expected);
+    float *values = malloc(expected.count * sizeof *values);
+    if (!values)
+        return out_of_memory(error, NULL, NULL, NULL);
+    st = hb_table_file_values(&file, &expected, values, error);
+    if (st != HB_OK) {
+        free(values);
+        return st;
+    }
+    plan->huang_table = values;
+    plan->huang.table.values = values;
+    return HB_OK;
+}
+
+/* The table's rows as tasks (build_tasks.h): row k is theta_i node k / n_phi_i and phi_i node k % n_phi_i;
+ * a task uses the scratch of its slot in the part. */
+typedef struct table_rows {
+    const hb_plan *plan;
+    hb_huang_table_build build; /* its scratch set per task */
+    float *scratch;
+    size_t scratch_floats;
+    int part;
+    float *values;
+    size_t row;
+} table_rows;
+
+static void build_row(void *rows, int k)
+{
+    const table_rows *r = rows;
+    const hb_huang_table *t = &r->plan->huang.table;
+    int i = k / t->n_phi_i, m = k % t->n_phi_i;
+    double theta_i = -M_PI_2 + M_PI * i / (t->n_theta_i - 1);
+    double phi_i = t->n_phi_i > 1 ? M_PI_2 * m / (t->n_phi_i - 1) : 0.0;
+    hb_huang_table_build build = r->build;
+    build.scratch = r->scratch + (size_t)(k % r->part) * r->scratch_floats;
+    ((const hb_huang_kernels *)r->plan->kernels)->table_row(&r->plan->huang, (float)theta_i, (float)phi_i, &build,
+                                                             r->values + (size_t)k * r->row);
+}
+
+hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
+{
+    choose_grid(plan);
+    if (plan->options.table_file)
+        return load_table(plan, error);
+    hb_huang *h = &plan->huang;
+    hb_huang_table *t = &h->table;
+    const table_resolution *res = &resolutions[plan->options.quality];
+    double r = plan->material.roughness;
+    double delta_range = h->elliptical ? 2.0 * M_PI : M_PI;
+    double u_lo = asinh(-M_PI / r), u_hi = asinh(M_PI / r);
+    size_t row = (size_t)t->n_sum * (size_t)t->n_delta * 3;
+    size_t rows = (size_t)t->n_theta_i * (size_t)t->n_phi_i;
+    size_t exits = 2 * (size_t)res->lattice * (size_t)(h->tt_panels + 1);
+    double connections = (double)rows * (double)exits * (double)(row / 3);
+    if (connections > MAX_CONNECTIONS) {
+        if (error) {
+            error->status = HB_ERR_UNSUPPORTED;
+            snprintf(error->message, sizeof error->message,
+                     "the TT/TRT table at roughness %g and this quality needs %.2g path connections (about %.0f s "
+                     "to build; the limit is %.0g): use a coarser quality, tt_trt = mc, or fewer tt_panels",
+                     r, connections, connections * 2.6e-9, MAX_CONNECTIONS);
+        }
+        return HB_ERR_UNSUPPORTED;
+    }
+    int count = (int)rows, part = hb_build_part(count);
+    size_t scratch_floats = exits * HB_HUANG_EXIT_FLOATS;
+    float *values = malloc(rows * row * sizeof *values);
+    float *grid = malloc(((size_t)t->n_sum + (size_t)t->n_delta) * sizeof *grid);
+    float *scratch = malloc((size_t)part * scratch_floats * sizeof *scratch); /* one per task of a part */
+    if (!values || !grid || !scratch)
+        return out_of_memory(error, values, grid, scratch);
+    for (int k = 0; k < t->n_sum; k++)
+        grid[k] = (float)(r * sinh(u_lo + k * (u_hi - u_lo) / (t->n_sum - 1)));
+    for (int l = 0; l < t->n_delta; l++)
+        grid[t->n_sum + l] = (float)(t->delta_lo + l * delta_range / (t->n_delta - 1));
+    table_rows rows_run = { plan, { grid, grid + t->n_sum, res->lattice, NULL }, scratch, scratch_floats, part, values, row };
+    hb_status st = hb_build_tasks(&plan->options, count, part, build_row, &rows_run, 0.0, 1.0, error);
+    free(grid);
+    free(scratch);
+    if (st != HB_OK) {
+        free(values);
+        return st;
+    }
+    plan->huang_table = values;
+    t->values = values;
+    return HB_OK;
+}
+
+hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *v)
+{
+    if (!plan->huang_table)
+        return HB_ERR_UNSUPPORTED;
+    layout(plan, v);
+    v->values = plan->huang_table;
     return HB_OK;
 }

@@ -1,0 +1,312 @@
+/* Table files: writing a plan's table with its header, and reading one back against a plan.
+ * Layout (little-endian; docs/engines.md): "HBTABLE2", u64 file length, char[16] library version,
+ * char[16] ISA that built it, u32 model, axes, slots, channels (3); per axis u32 nodes, f64 lo,
+ * f64 hi, char[64] what it is; per slot u32 lobe mask; f64 measured error; u32 field count, then
+ * per field char[24] name and f64 value (the material and options the table depends on); u64
+ * value count; f32 values (axes row-major, then slot, then RGB); u64 XXH64 (seed 0) of every byte before. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "math/hash.h"
+#include "table_file.h"
+
+#define NAME_BYTES 24
+#define AXIS_BYTES 64
+#define TEXT_BYTES 16
+#define MAX_FIELDS 64
+/* No table holds more (N_p is at most about 1 / beta_n, HHH22's TT + TRT far below this at the
+ * smallest roughness); the kernels multiply a value by M_p and sum a few, which stays finite in float. */
+#define HB_TABLE_VALUE_LIMIT 1e20f
+
+typedef struct field {
+    char name[NAME_BYTES];
+    double value;
+} field;
+
+static int add(field *f, int k, const char *name, double value)
+{
+    memset(f[k].name, 0, sizeof f[k].name); /* the padding is written too */
+    snprintf(f[k].name, sizeof f[k].name, "%s", name);
+    f[k].value = value;
+    return k + 1;
+}
+
+static int add_array(field *f, int k, const char *name, const double *v, int n)
+{
+    char indexed[NAME_BYTES];
+    for (int j = 0; j < n; j++) {
+        snprintf(indexed, sizeof indexed, "%s[%d]", name, j);
+        k = add(f, k, indexed, v[j]);
+    }
+    return k;
+}
+
+/* Everything of the material and options a table depends on, by name. */
+static int plan_fields(const hb_plan *plan, field *f)
+{
+    const hb_material *m = &plan->material;
+    const hb_options *o = &plan->options;
+    int k = add(f, 0, "eta", m->eta);
+    k = add_array(f, k, "sigma_a", m->sigma_a, 3);
+    k = add(f, k, "eumelanin", m->eumelanin), k = add(f, k, "pheomelanin", m->pheomelanin);
+    k = add(f, k, "beta_m", m->beta_m), k = add(f, k, "beta_n", m->beta_n), k = add(f, k, "alpha", m->alpha);
+    k = add(f, k, "ndf", m->ndf), k = add(f, k, "roughness", m->roughness), k = add(f, k, "eccentricity", m->eccentricity);
+    k = add_array(f, k, "lobe_beta_m", m->lobe_beta_m, HB_MAX_LOBES);
+    k = add_array(f, k, "lobe_beta_n", m->lobe_beta_n, HB_MAX_LOBES);
+    k = add_array(f, k, "lobe_alpha", m->lobe_alpha, HB_MAX_LOBES);
+    k = add(f, k, "lobe_alpha_override", m->lobe_alpha_override);
+    k = add(f, k, "glint_scale", m->glint_scale), k = add(f, k, "caustic_width", m->caustic_width);
+    k = add(f, k, "caustic_fade", m->caustic_fade), k = add(f, k, "caustic_limit", m->caustic_limit);
+    k = add(f, k, "lobes", o->lobes), k = add(f, k, "term", o->term), k = add(f, k, "quality", o->quality);
+    k = add(f, k, "i0", o->i0), k = add(f, k, "pmax", o->pmax), k = add(f, k, "absorption", o->absorption);
+    k = add(f, k, "quadrature_order", o->quadrature_order);
+    k = add(f, k, "detector_tolerance", o->detector_tolerance), k = add(f, k, "r_fresnel", o->r_fresnel);
+    k = add(f, k, "shadowing", o->shadowing), k = add(f, k, "tt_trt", o->tt_trt), k = add(f, k, "tt_panels", o->tt_panels);
+    k = add(f, k, "azimuthal", o->azimuthal);
+    return add(f, k, "table_tolerance", o->table_tolerance);
+}
+
+/* A writer that counts when out is NULL. */
+typedef struct writer {
+    unsigned char *out;
+    size_t at;
+} writer;
+
+static void put(writer *w, const void *bytes, size_t n)
+{
+    if (w->out)
+        memcpy(w->out + w->at, bytes, n);
+    w->at += n;
+}
+
+static void put_uint(writer *w, unsigned long long v, int n)
+{
+    unsigned char b[8];
+    for (int k = 0; k < n; k++)
+        b[k] = (unsigned char)(v >> (8 * k));
+    put(w, b, (size_t)n);
+}
+
+static void put_f64(writer *w, double x)
+{
+    unsigned long long bits;
+    memcpy(&bits, &x, 8);
+    put_uint(w, bits, 8);
+}
+
+static void put_text(writer *w, const char *text, size_t n)
+{
+    char padded[AXIS_BYTES] = { 0 };
+    snprintf(padded, n, "%s", text ? text : "");
+    put(w, padded, n);
+}
+
+size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *v, unsigned char *out)
+{
+    field fields[MAX_FIELDS];
+    int n_fields = plan_fields(plan, fields);
+    writer w = { out, 0 };
+    put(&w, "HBTABLE2", 8);
+    size_t length = 8 + 8 + 2 * TEXT_BYTES + 16 + (size_t)v->axes * (4 + 16 + AXIS_BYTES) + (size_t)v->slots * 4 + 8 + 4 +
+                    (size_t)n_fields * (NAME_BYTES + 8) + 8 + v->count * 4 + 8;
+    put_uint(&w, length, 8);
+    put_text(&w, HB_VERSION_STRING, TEXT_BYTES);
+    put_text(&w, hb_isa_name(plan->isa), TEXT_BYTES);
+    put_uint(&w, (unsigned)v->model, 4), put_uint(&w, (unsigned)v->axes, 4), put_uint(&w, (unsigned)v->slots, 4);
+    put_uint(&w, 3, 4);
+    for (int k = 0; k < v->axes; k++) {
+        put_uint(&w, (unsigned)v->size[k], 4);
+        put_f64(&w, v->lo[k]), put_f64(&w, v->hi[k]);
+        put_text(&w, v->axis[k], AXIS_BYTES);
+    }
+    for (int s = 0; s < v->slots; s++)
+        put_uint(&w, v->slot_lobes[s], 4);
+    put_f64(&w, v->error);
+    put_uint(&w, (unsigned)n_fields, 4);
+    for (int k = 0; k < n_fields; k++) {
+        put(&w, fields[k].name, NAME_BYTES);
+        put_f64(&w, fields[k].value);
+    }
+    put_uint(&w, v->count, 8);
+    for (size_t k = 0; k < v->count; k++) {
+        unsigned bits;
+        memcpy(&bits, &v->values[k], 4);
+        put_uint(&w, bits, 4);
+    }
+    put_uint(&w, out ? hb_xxh64(out, w.at) : 0, 8);
+    return w.at;
+}
+
+/* A reader that refuses to pass the end. */
+typedef struct reader {
+    const unsigned char *at, *end;
+} reader;
+
+static int take(reader *r, void *out, size_t n)
+{
+    if ((size_t)(r->end - r->at) < n)
+        return 0;
+    if (out)
+        memcpy(out, r->at, n);
+    r->at += n;
+    return 1;
+}
+
+static int take_uint(reader *r, unsigned long long *v, int n)
+{
+    unsigned char b[8];
+    if (!take(r, b, (size_t)n))
+        return 0;
+    *v = 0;
+    for (int k = n - 1; k >= 0; k--)
+        *v = *v << 8 | b[k];
+    return 1;
+}
+
+static int take_u32(reader *r, int *v, unsigned limit)
+{
+    unsigned long long x;
+    if (!take_uint(r, &x, 4) || x > limit)
+        return 0;
+    *v = (int)x;
+    return 1;
+}
+
+static int take_f64(reader *r, double *x)
+{
+    unsigned long long bits;
+    if (!take_uint(r, &bits, 8))
+        return 0;
+    memcpy(x, &bits, 8);
+    return 1;
+}
+
+static hb_status refuse(hb_error *error, const char *why)
+{
+    return hb_plan_fail(error, HB_ERR_FILE, "table file: %s", why);
+}
+
+/* The header's text field (NUL-padded), terminated. */
+static int take_text(reader *r, char *text, size_t n)
+{
+    if (!take(r, text, n))
+        return 0;
+    text[n - 1] = '\0';
+    return 1;
+}
+
+static hb_status read_fields(reader *r, const hb_plan *plan, hb_error *error)
+{
+    field own[MAX_FIELDS];
+    int n_own = plan_fields(plan, own), n_file;
+    if (!take_u32(r, &n_file, MAX_FIELDS))
+        return refuse(error, "its field count is damaged");
+    for (int k = 0; k < n_file; k++) {
+        char name[NAME_BYTES];
+        double value;
+        if (!take_text(r, name, sizeof name) || !take_f64(r, &value))
+            return refuse(error, "it ends inside its fields");
+        int j = 0;
+        while (j < n_own && strcmp(own[j].name, name) != 0)
+            j++;
+        if (j == n_own)
+            return hb_plan_fail(error, HB_ERR_FILE, "table file: it names a field '%.23s' this library does not know", name);
+        if (memcmp(&own[j].value, &value, sizeof value) != 0)
+            return hb_plan_fail(error, HB_ERR_FILE,
+                                "table file: baked for %s = %.17g, this plan's is %.17g: bake it for this material and "
+                                "these options", name, value, own[j].value);
+    }
+    if (n_file != n_own)
+        return hb_plan_fail(error, HB_ERR_FILE, "table file: it names %d fields, this library %d", n_file, n_own);
+    return HB_OK;
+}
+
+static const char *const model_names[] = { "marschner", "deon", "huang", "chiang" };
+
+hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error *error)
+{
+    const unsigned char *bytes = plan->options.table_file;
+    size_t size = plan->options.table_file_size;
+    reader r = { bytes, bytes + size };
+    char magic[9] = { 0 }, version[TEXT_BYTES], isa[TEXT_BYTES];
+    if (!take(&r, magic, 8) || memcmp(magic, "HBTABLE", 7) != 0)
+        return refuse(error, "it does not start with HBTABLE: not a hairbsdf table");
+    if (magic[7] != '0' + HB_TABLE_FILE_FORMAT)
+        return hb_plan_fail(error, HB_ERR_FILE, "table file: format '%c', this library reads format %d: bake it again",
+                            magic[7], HB_TABLE_FILE_FORMAT);
+    unsigned long long length;
+    if (size < 16 + 8)
+        return hb_plan_fail(error, HB_ERR_FILE, "table file: %zu bytes, shorter than any table file", size);
+    if (!take_uint(&r, &length, 8) || length != size)
+        return hb_plan_fail(error, HB_ERR_FILE, "table file: %zu bytes where its header says %llu: truncated or padded",
+                            size, length);
+    unsigned long long sum = 0;
+    reader tail = { bytes + size - 8, bytes + size };
+    if (!take_uint(&tail, &sum, 8) || sum != hb_xxh64(bytes, size - 8))
+        return refuse(error, "its checksum does not match its bytes: the file is damaged");
+    r.end = bytes + size - 8;
+    if (!take_text(&r, version, sizeof version) || !take_text(&r, isa, sizeof isa))
+        return refuse(error, "it ends inside its header");
+    if (strcmp(version, HB_VERSION_STRING) != 0)
+        return hb_plan_fail(error, HB_ERR_FILE, "table file: baked by hairbsdf %.15s, this is " HB_VERSION_STRING
+                            ": bake it again with this library", version);
+    hb_table_view *v = &file->layout;
+    *v = (hb_table_view){ 0 };
+    int model, channels;
+    if (!take_u32(&r, &model, 3) || !take_u32(&r, &v->axes, HB_TABLE_MAX_AXES) ||
+        !take_u32(&r, &v->slots, HB_MAX_LOBES + 1) || !take_u32(&r, &channels, 3) || channels != 3 || v->axes < 1)
+        return refuse(error, "its model, axes, slots or channels are out of range");
+    v->model = (hb_model)model;
+    if (v->model != plan->options.model)
+        return hb_plan_fail(error, HB_ERR_FILE, "table file: baked for model %s, this plan's is %s", model_names[model],
+                            model_names[plan->options.model]);
+    for (int k = 0; k < v->axes; k++)
+        if (!take_u32(&r, &v->size[k], 1u << 20) || !take_f64(&r, &v->lo[k]) || !take_f64(&r, &v->hi[k]) ||
+            !take(&r, NULL, AXIS_BYTES))
+            return refuse(error, "it ends inside its axes");
+    for (int s = 0; s < v->slots; s++) {
+        int lobes;
+        if (!take_u32(&r, &lobes, (2u << HB_LOBE_RESIDUAL) - 1))
+            return refuse(error, "a slot's lobe mask is damaged");
+        v->slot_lobes[s] = (unsigned)lobes;
+    }
+    if (!take_f64(&r, &v->error))
+        return refuse(error, "it ends inside its header");
+    hb_status st = read_fields(&r, plan, error);
+    if (st != HB_OK)
+        return st;
+    unsigned long long count;
+    if (!take_uint(&r, &count, 8) || count != (unsigned long long)(r.end - r.at) / 4 || (r.end - r.at) % 4)
+        return refuse(error, "its value count does not match its length");
+    v->count = (size_t)count;
+    file->values = r.at;
+    return HB_OK;
+}
+
+hb_status hb_table_file_values(const hb_table_file *file, const hb_table_view *expected, float *out, hb_error *error)
+{
+    const hb_table_view *v = &file->layout;
+    if (v->axes != expected->axes || v->slots != expected->slots || v->count != expected->count)
+        return hb_plan_fail(error, HB_ERR_FILE,
+                            "table file: %d axes, %d slots and %zu values where this plan's table has %d, %d and %zu",
+                            v->axes, v->slots, v->count, expected->axes, expected->slots, expected->count);
+    for (int k = 0; k < v->axes; k++)
+        if (v->size[k] != expected->size[k] || v->lo[k] != expected->lo[k] || v->hi[k] != expected->hi[k])
+            return hb_plan_fail(error, HB_ERR_FILE,
+                                "table file: axis %d has %d nodes over [%.9g, %.9g] where this plan's has %d over [%.9g, %.9g]",
+                                k, v->size[k], v->lo[k], v->hi[k], expected->size[k], expected->lo[k], expected->hi[k]);
+    for (int s = 0; s < v->slots; s++)
+        if (v->slot_lobes[s] != expected->slot_lobes[s])
+            return hb_plan_fail(error, HB_ERR_FILE, "table file: slot %d sums lobes 0x%x where this plan's sums 0x%x", s,
+                                v->slot_lobes[s], expected->slot_lobes[s]);
+    for (size_t k = 0; k < v->count; k++) {
+        const unsigned char *b = file->values + 4 * k;
+        unsigned bits = (unsigned)b[0] | (unsigned)b[1] << 8 | (unsigned)b[2] << 16 | (unsigned)b[3] << 24;
+        memcpy(&out[k], &bits, 4);
+        if (!(out[k] >= 0.0f && out[k] <= HB_TABLE_VALUE_LIMIT))
+            return hb_plan_fail(error, HB_ERR_FILE, "table file: value %zu is %g, outside [0, %g]", k, (double)out[k],
+                                (double)HB_TABLE_VALUE_LIMIT);
+    }
+    return HB_OK;
+}

@@ -1,0 +1,38 @@
+/* Table files (`.hbt`, docs/engines.md): a plan's table with what it was built for, written by
+ * hb_table_save and read back at plan creation (options.table_file) instead of being rebuilt.
+ * Reading never touches a byte outside the given size; every refusal says why. Internal. */
+#ifndef HB_MODELS_TABLE_FILE_H
+#define HB_MODELS_TABLE_FILE_H
+
+#include "plan.h"
+
+#define HB_TABLE_FILE_FORMAT 2 /* the digit after "HBTABLE" */
+
+/* A file's table after its header was checked against a plan: its layout as hb_table_view gives it
+ * (without axis names) and its values, still little-endian bytes inside the caller's file. */
+typedef struct hb_table_file {
+    hb_table_view layout;
+    const unsigned char *values;
+} hb_table_file;
+
+/* The floats of a table of this layout: the product of its sizes, times slots, times 3. */
+static inline size_t hb_table_count(const hb_table_view *v)
+{
+    size_t count = (size_t)v->slots * 3;
+    for (int k = 0; k < v->axes; k++)
+        count *= (size_t)v->size[k];
+    return count;
+}
+
+/* The file's length for the plan's table view (hb_table_file_write with out NULL), or writes it. */
+size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *view, unsigned char *out);
+
+/* Checks plan->options.table_file: length, format, checksum, library version, model, and every
+ * material and option field the table depends on; fills file on success. */
+hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error *error);
+
+/* The file's values into out (expected->count floats) when its layout is `expected` (axes, sizes,
+ * ranges, slots and their lobes); every value must be in [0, 1e20]. */
+hb_status hb_table_file_values(const hb_table_file *file, const hb_table_view *expected, float *out, hb_error *error);
+
+#endif

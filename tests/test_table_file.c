@@ -1,0 +1,217 @@
+/* Table files (hb_table_save, options.table_file): a plan loaded from a file evaluates bit for bit
+ * as the plan that saved it; a truncated, damaged, other-version, other-format or mismatched file
+ * is refused with a message that names the problem, and never read past its end. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "math/hash.h"
+#include "test.h"
+
+enum { FILE_MAX = 1 << 18, SAMPLES = 1024 };
+
+/* dFH11 with a fast N_p table, and HHH22 with a fast TT/TRT table (rough, so both are small). */
+static void table_material(int huang, hb_material *m, hb_options *o, hb_isa isa)
+{
+    hb_material_default(m);
+    hb_options_default(o);
+    o->quality = HB_QUALITY_FAST, o->isa = isa;
+    m->eumelanin = 0.4;
+    if (huang)
+        o->model = HB_MODEL_HUANG, o->tt_trt = HB_TT_TRT_TABLE, m->roughness = 0.5;
+    else
+        o->azimuthal = HB_AZIMUTHAL_TABLE;
+}
+
+/* The plan's table file into bytes; its length, 0 on failure. */
+static size_t save(hb_test_ctx *t, const hb_plan *plan, unsigned char *bytes)
+{
+    size_t size = 0;
+    CHECK(t, hb_table_save(plan, NULL, 0, &size) == HB_OK && size > 0 && size <= FILE_MAX, "length %zu", size);
+    if (size == 0 || size > FILE_MAX)
+        return 0;
+    size_t short_size;
+    CHECK(t, hb_table_save(plan, bytes, size - 1, &short_size) == HB_ERR_PARAM, "a short buffer is refused");
+    CHECK(t, hb_table_save(plan, bytes, size, &size) == HB_OK, "save");
+    return size;
+}
+
+/* The status of a plan created from bytes; the message into error. */
+static hb_status load(const hb_material *m, const hb_options *given, const void *bytes, size_t size, hb_plan **plan,
+                      hb_error *error)
+{
+    hb_options o = *given;
+    o.table_file = bytes, o.table_file_size = size;
+    *plan = NULL;
+    error->message[0] = '\0';
+    return hb_plan_create(m, &o, plan, error);
+}
+
+static void fix_checksum(unsigned char *bytes, size_t size)
+{
+    unsigned long long sum = hb_xxh64(bytes, size - 8);
+    for (int k = 0; k < 8; k++)
+        bytes[size - 8 + (size_t)k] = (unsigned char)(sum >> (8 * k));
+}
+
+static void test_round_trip(hb_test_ctx *t)
+{
+    static unsigned char bytes[FILE_MAX], again[FILE_MAX];
+    static float ti[SAMPLES], pi[SAMPLES], to[SAMPLES], po[SAMPLES], f[2][3][SAMPLES];
+    for (int k = 0; k < SAMPLES; k++) {
+        ti[k] = (float)hb_test_range(t, -1.5707, 1.5707), to[k] = (float)hb_test_range(t, -1.5707, 1.5707);
+        pi[k] = (float)hb_test_range(t, -M_PI, M_PI), po[k] = (float)hb_test_range(t, -M_PI, M_PI);
+    }
+    hb_angles_soa in = { ti, pi, to, po };
+    for (int huang = 0; huang < 2; huang++) {
+        hb_material m;
+        hb_options o;
+        table_material(huang, &m, &o, t->isa);
+        hb_plan *built, *loaded;
+        hb_error error;
+        CHECK(t, hb_plan_create(&m, &o, &built, &error) == HB_OK, "built: %s", error.message);
+        size_t size = save(t, built, bytes);
+        CHECK(t, load(&m, &o, bytes, size, &loaded, &error) == HB_OK, "loaded: %s", error.message);
+        if (!loaded) {
+            hb_plan_destroy(built);
+            continue;
+        }
+        hb_eval_angles(built, SAMPLES, in, (hb_rgb_soa){ f[0][0], f[0][1], f[0][2] }, NULL);
+        memset(bytes, 0xff, size); /* the plan keeps no pointer into the file */
+        hb_eval_angles(loaded, SAMPLES, in, (hb_rgb_soa){ f[1][0], f[1][1], f[1][2] }, NULL);
+        CHECK(t, memcmp(f[0], f[1], sizeof f[0]) == 0, "%s: the loaded plan's f differs from the saving plan's",
+              huang ? "huang" : "deon");
+        size_t size_again = save(t, loaded, again), size_built = save(t, built, bytes);
+        CHECK(t, size_again == size_built && memcmp(bytes, again, size_built) == 0,
+              "%s: the loaded plan saves the same file", huang ? "huang" : "deon");
+        char text[1024];
+        hb_plan_describe(loaded, text, sizeof text);
+        CHECK(t, strstr(text, "loaded from a table file"), "describe says the table was loaded: %s", text);
+        hb_plan_destroy(built), hb_plan_destroy(loaded);
+    }
+}
+
+/* The plan of (m, o) refuses these bytes with status and a message holding `says`. */
+static void expect_refusal(hb_test_ctx *t, const hb_material *m, const hb_options *o, const unsigned char *bytes,
+                           size_t size, hb_status status, const char *says, const char *what)
+{
+    hb_plan *plan;
+    hb_error error;
+    hb_status st = load(m, o, bytes, size, &plan, &error);
+    CHECK(t, st == status && !plan && strstr(error.message, says), "%s: status %d, message '%s' (expected '%s')", what,
+          (int)st, error.message, says);
+    hb_plan_destroy(plan);
+}
+
+static void test_refusals(hb_test_ctx *t)
+{
+    static unsigned char good[FILE_MAX], bad[FILE_MAX], huang_file[FILE_MAX];
+    hb_material m, hm;
+    hb_options o, ho;
+    table_material(0, &m, &o, t->isa);
+    table_material(1, &hm, &ho, t->isa);
+    hb_plan *plan;
+    hb_error error;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &error) == HB_OK, "%s", error.message);
+    size_t size = save(t, plan, good);
+    hb_plan_destroy(plan);
+    CHECK(t, hb_plan_create(&hm, &ho, &plan, &error) == HB_OK, "%s", error.message);
+    size_t huang_size = save(t, plan, huang_file);
+    hb_plan_destroy(plan);
+    if (!size || !huang_size)
+        return;
+    /* truncated or padded: each length is refused before anything past it is read (ASan checks the
+     * copies, which end exactly at their length) */
+    const size_t lengths[] = { 0, 1, 7, 8, 15, 16, 23, 24, 100, size / 2, size - 8, size - 1 };
+    for (size_t k = 0; k < sizeof lengths / sizeof lengths[0]; k++) {
+        unsigned char *copy = malloc(lengths[k] + 1);
+        memcpy(copy, good, lengths[k]);
+        expect_refusal(t, &m, &o, copy, lengths[k] ? lengths[k] : 1, HB_ERR_FILE, "table file", "truncated");
+        free(copy);
+    }
+    memcpy(bad, good, size), bad[size] = 0;
+    expect_refusal(t, &m, &o, bad, size + 1, HB_ERR_FILE, "truncated or padded", "one byte more");
+    /* any flipped bit: the checksum */
+    for (int k = 0; k < 64; k++) {
+        size_t at = 8 + (size_t)k * (size - 8) / 64;
+        memcpy(bad, good, size);
+        bad[at] ^= (unsigned char)(1u << (k % 8));
+        expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, at < 16 ? "header says" : "checksum", "a flipped bit");
+    }
+    /* well-formed but not this library's or this plan's: each names the difference */
+    memcpy(bad, good, size);
+    bad[7] = '1';
+    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "format '1'", "an older format");
+    memcpy(bad, good, size);
+    memcpy(bad + 16, "0.0.1\0", 6);
+    fix_checksum(bad, size);
+    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "baked by hairbsdf 0.0.1", "another library version");
+    expect_refusal(t, &m, &o, (const unsigned char *)"PNG, not a table file, at all", 30, HB_ERR_FILE,
+                   "not a hairbsdf table", "another kind of file");
+    hb_material other = m;
+    other.eta = 1.5;
+    expect_refusal(t, &other, &o, good, size, HB_ERR_FILE, "baked for eta = 1.55, this plan's is 1.5", "another eta");
+    other = m, other.pheomelanin = 0.1;
+    expect_refusal(t, &other, &o, good, size, HB_ERR_FILE, "pheomelanin", "another pheomelanin");
+    hb_options other_o = o;
+    other_o.quality = HB_QUALITY_BALANCED;
+    expect_refusal(t, &m, &other_o, good, size, HB_ERR_FILE, "quality", "another quality");
+    other_o = o, other_o.pmax = 2;
+    expect_refusal(t, &m, &other_o, good, size, HB_ERR_FILE, "pmax", "another pmax");
+    expect_refusal(t, &m, &o, huang_file, huang_size, HB_ERR_FILE, "baked for model huang, this plan's is deon",
+                   "another model");
+    /* a value that is not finite, behind a valid checksum */
+    memcpy(bad, good, size);
+    const float nan_value = NAN;
+    memcpy(bad + size - 8 - 4 * 7, &nan_value, 4);
+    fix_checksum(bad, size);
+    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "outside [0, 1e+20]", "a NaN value");
+    /* a finite value that would overflow f once multiplied by M_p (the fuzzer found it) */
+    memcpy(bad, good, size);
+    const float huge = 4.25e37f;
+    memcpy(bad + size - 8 - 4 * 11, &huge, 4);
+    fix_checksum(bad, size);
+    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "outside [0, 1e+20]", "a value near FLT_MAX");
+    /* the first axis one node shorter, its value count consistent with the length: no layout of this plan */
+    memcpy(bad, good, size);
+    const size_t first_axis = 8 + 8 + 32 + 16;
+    bad[first_axis] = (unsigned char)(bad[first_axis] - 1);
+    fix_checksum(bad, size);
+    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "table file", "another resolution");
+    /* options that cannot take a file */
+    other_o = o, other_o.azimuthal = HB_AZIMUTHAL_QUADRATURE;
+    expect_refusal(t, &m, &other_o, good, size, HB_ERR_UNSUPPORTED, "no table to load", "a quadrature plan");
+    other_o = o, other_o.tolerance = 1e-2;
+    expect_refusal(t, &m, &other_o, good, size, HB_ERR_UNSUPPORTED, "tolerance", "a tolerance plan");
+    other_o = o, other_o.table_file_size = 100;
+    CHECK(t, hb_plan_create(&m, &other_o, &plan, &error) == HB_ERR_PARAM && strstr(error.message, "table_file"),
+          "a size without bytes: %s", error.message);
+    CHECK(t, hb_table_save(NULL, bad, size, &size) == HB_ERR_NULL, "NULL plan");
+    other_o = o, other_o.azimuthal = HB_AZIMUTHAL_QUADRATURE;
+    CHECK(t, hb_plan_create(&m, &other_o, &plan, NULL) == HB_OK, "quadrature plan");
+    CHECK(t, hb_table_save(plan, NULL, 0, &size) == HB_ERR_UNSUPPORTED, "a plan without a table has no file");
+    hb_plan_destroy(plan);
+}
+
+/* The checksum is XXH64: these values are xxhsum -H64's (Debian's xxhash), an independent implementation. */
+static void test_checksum(hb_test_ctx *t)
+{
+    static const struct {
+        const char *text;
+        unsigned long long xxh64;
+    } vectors[] = { { "", 0xef46db3751d8e999ull }, { "a", 0xd24ec4f1a98c6e5bull }, { "abc", 0x44bc2cf5ad770999ull },
+                    { "0123456789abcdef0123456789abcdef0123456789", 0xa76190c3acf08a1cull },
+                    { "hairbsdf table file checksum, a stripe and a tail!", 0xd4509123eabe8738ull } };
+    for (size_t k = 0; k < sizeof vectors / sizeof vectors[0]; k++) {
+        unsigned long long h = hb_xxh64((const unsigned char *)vectors[k].text, strlen(vectors[k].text));
+        CHECK(t, h == vectors[k].xxh64, "XXH64('%s') = %016llx, xxhsum gives %016llx", vectors[k].text, h,
+              vectors[k].xxh64);
+    }
+}
+
+const hb_test hb_tests_table_file[] = {
+    { "table_file_checksum", test_checksum, 0 },
+    { "table_file_round_trip", test_round_trip, 1 },
+    { "table_file_refusals", test_refusals, 0 },
+    { NULL, NULL, 0 },
+};
