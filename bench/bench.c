@@ -36,7 +36,7 @@ enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
 /* What a row times: hb_eval_angles, hb_sample_angles or hb_pdf_angles, or their near-field forms
  * (hb_eval_near, hb_sample_near, hb_pdf_near) at each sample's h, or f and the pdf in one call
  * (hb_eval_pdf_angles; its error is f's). */
-typedef enum bench_op { OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR, OP_EVAL_PDF } bench_op;
+typedef enum bench_op { OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR, OP_EVAL_PDF, OP_EVAL_ABSORPTION } bench_op;
 
 static int op_is(bench_op op, bench_op far) { return op == far || op == far + OP_EVAL_NEAR; }
 
@@ -55,6 +55,7 @@ static int compare_double(const void *a, const void *b)
 
 static float theta_i[BATCH], phi_i[BATCH], theta_o[BATCH], phi_o[BATCH], offset_h[BATCH];
 static float out[3][BATCH], ref[3][BATCH];
+static float absorption[3][BATCH]; /* per sample (OP_EVAL_ABSORPTION): the blond material's sigma_a */
 static float uniforms[HB_SAMPLE_DIMENSIONS][BATCH], sampled_theta[BATCH], sampled_phi[BATCH], sampled_pdf[BATCH];
 
 /* The configuration's operation on samples [first, first + n) of the batch. For sampling, out holds
@@ -75,6 +76,9 @@ static void run_part(const hb_plan *plan, bench_op op, size_t first, size_t n)
         hb_eval_near(plan, n, near, f, NULL);
     } else if (op == OP_EVAL_PDF) {
         hb_eval_pdf_angles(plan, n, in, f, sampled_pdf + k, NULL);
+    } else if (op == OP_EVAL_ABSORPTION) {
+        hb_eval_angles_absorption(plan, n, in, (hb_absorption_soa){ absorption[0] + k, absorption[1] + k, absorption[2] + k },
+                                  f, NULL);
     } else if (op == OP_SAMPLE) {
         hb_sample_in sample_in = { theta_o + k, phi_o + k, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
         hb_sample_angles(plan, n, sample_in, sampled, NULL);
@@ -103,8 +107,13 @@ static void run_op(const hb_plan *plan, bench_op op, int per_hit)
 }
 
 /* Directions spread over the sphere, half of them near the specular cone where M_p is large. */
-static void make_inputs(double v)
+static void make_inputs(const hb_material *m)
 {
+    double v = m->beta_m * m->beta_m, sigma_a[3];
+    hb_material_absorption(m, sigma_a);
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < BATCH; k++)
+            absorption[c][k] = (float)sigma_a[c];
     srand(12345);
     for (int k = 0; k < BATCH; k++) {
         double u = rand() / (double)RAND_MAX, w = rand() / (double)RAND_MAX;
@@ -246,6 +255,8 @@ static const config configs[] = {
       "dFH11 full, R..TRRT + residual, RGB: fast", 0 },
     { "deon", "full", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "dFH11 full: balanced", 0 },
+    { "deon", "full", "absorption-balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_ABSORPTION, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 full: balanced, absorption per sample (hb_eval_angles_absorption)", 0 },
     { "deon", "full", "high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "dFH11 full: high", 0 },
     { "deon", "full", "order35", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 35, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
@@ -263,6 +274,8 @@ static const config configs[] = {
       "MJC03 longitudinal term alone", 0 },
     { "marschner", "full", "closed-form", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "MJC03 full, R + TT + TRT with caustics, RGB", 0 },
+    { "marschner", "full", "absorption", HB_MODEL_MARSCHNER, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_ABSORPTION, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "MJC03 full, absorption per sample (hb_eval_angles_absorption)", 0 },
     { "huang", "R", "analytic", HB_MODEL_HUANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_NONE, HB_R_INTEGRATION_ANALYTIC, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "HHH22 R, GGX 0.1, App. A closed form (no G)", 0 },
@@ -493,7 +506,7 @@ static void reference_of(const hb_material *m, const config *c)
             hb_pdf_angles(plan, NREF, in, ref[0], NULL);
         memcpy(ref[1], ref[0], sizeof ref[0]);
         memcpy(ref[2], ref[0], sizeof ref[0]);
-    } else if (c->op == OP_EVAL || c->op == OP_EVAL_PDF) {
+    } else if (c->op == OP_EVAL || c->op == OP_EVAL_PDF || c->op == OP_EVAL_ABSORPTION) {
         hb_eval_angles(plan, NREF, in, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
     } else if (c->op == OP_EVAL_NEAR) {
         hb_eval_near(plan, NREF, near, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
@@ -654,7 +667,7 @@ static int run_once(const char *name, long repeats)
             continue;
         hb_material m;
         material_of(&configs[ci], &m);
-        make_inputs(m.beta_m * m.beta_m);
+        make_inputs(&m);
         hb_options o;
         options_of(&configs[ci], &o);
         hb_plan *plan;
@@ -788,7 +801,7 @@ int main(int argc, char **argv)
 
     hb_material m;
     material_of(&configs[0], &m); /* blond */
-    make_inputs(m.beta_m * m.beta_m);
+    make_inputs(&m);
     float *streams[HB_SAMPLE_DIMENSIONS];
     for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
         streams[d] = uniforms[d];

@@ -336,6 +336,28 @@ HB_API hb_status hb_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in,
 HB_API hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out,
                           hb_eval_report *report);
 
+/* Per-sample absorption, for hair whose colour varies per strand in one batch: f as hb_eval_angles
+ * (hb_eval_vectors) gives it, with the material's absorption (sigma_a and melanins) replaced at sample
+ * k by sigma_a.r[k], .g[k], .b[k] per unit radius (hb_melanin_absorption turns concentrations into
+ * it); roughness, eta, tilt, lobes and quality stay the plan's, and so does the fixed work per
+ * sample. A sample is also invalid when an absorption is NaN, negative or infinite. For dFH11
+ * quadrature plans and MJC03 (HB_TERM_FULL); HB_ERR_UNSUPPORTED for the others: dFH11's N_p table
+ * holds the plan's own absorption, HHH22's R lobe does not depend on it (hb_eval_angles) and its
+ * TT and TRT have no per-sample path, CBTB16 has none yet, and reference plans have none (compare
+ * with a reference plan per material). A tolerance or budget plan chose its lobes for its own
+ * material. */
+typedef struct hb_absorption_soa {
+    const float *r, *g, *b;
+} hb_absorption_soa;
+HB_API hb_status hb_eval_angles_absorption(const hb_plan *plan, size_t n, hb_angles_soa in, hb_absorption_soa sigma_a,
+                                           hb_rgb_soa out, hb_eval_report *report);
+HB_API hb_status hb_eval_vectors_absorption(const hb_plan *plan, size_t n, hb_vectors_soa in,
+                                            hb_absorption_soa sigma_a, hb_rgb_soa out, hb_eval_report *report);
+
+/* The absorption of eumelanin and pheomelanin concentrations (dFH11 sec. 6.1), as
+ * hb_material_absorption adds it to sigma_a. */
+HB_API void hb_melanin_absorption(double eumelanin, double pheomelanin, double sigma_a[3]);
+
 /* Near-field evaluation (CBTB16, dFH11): each sample also gives h in [-1, 1], the signed offset
  * across the fibre's width at which w_o's ray meets it (docs/chiang.md: h's sign and pbrt's).
  * hb_eval_angles of the same plan is the far-field f, the mean over h (docs/deon.md for dFH11's

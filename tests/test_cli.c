@@ -598,7 +598,52 @@ static void test_colour_options(hb_test_ctx *t)
     CHECK(t, r.status == 2 && strstr(r.err, "--colour"), "two numbers: %d '%s'", r.status, r.err);
 }
 
+/* Per-sample absorption columns: each row of a melanin or sigma_a header gives what a run with that
+ * material gives (the concentrations rounded to float once on the way: within 1e-6), a bad absorption
+ * is an invalid sample, and models without the path say so. */
+static void test_absorption_columns(hb_test_ctx *t)
+{
+    static const char *const models[] = { "--model deon", "--model marschner" };
+    static const double melanin[3][2] = { { 0.0, 0.0 }, { 1.3, 0.4 }, { 8.0, 4.0 } };
+    for (int mi = 0; mi < 2; mi++) {
+        char input[512] = "theta_i,phi_i,theta_o,phi_o,eumelanin,pheomelanin\n", args[256];
+        for (int k = 0; k < 3; k++)
+            snprintf(input + strlen(input), sizeof input - strlen(input), "0.3,0.1,-0.25,0.6,%g,%g\n", melanin[k][0],
+                     melanin[k][1]);
+        run_result rows, one;
+        if (!hb_test_tool(t))
+            return;
+        snprintf(args, sizeof args, "eval %s", models[mi]);
+        run_tool(t, args, input, &rows);
+        CHECK(t, rows.status == 0, "%s with melanin columns: %d %s", models[mi], rows.status, rows.err);
+        const char *line = rows.out;
+        for (int k = 0; k < 3 && line; k++) {
+            snprintf(args, sizeof args, "eval %s --eumelanin %g --pheomelanin %g", models[mi], melanin[k][0], melanin[k][1]);
+            run_tool(t, args, "0.3,0.1,-0.25,0.6\n", &one);
+            double a[3], b[3];
+            int parsed = sscanf(line, "%lf,%lf,%lf", &a[0], &a[1], &a[2]) == 3 &&
+                         sscanf(one.out, "%lf,%lf,%lf", &b[0], &b[1], &b[2]) == 3;
+            for (int c = 0; c < 3 && parsed; c++)
+                CHECK(t, fabs(a[c] - b[c]) <= 1e-6 * fabs(b[c]) + 1e-12, "%s strand %d channel %d: %.9g per row, %.9g per material",
+                      models[mi], k, c, a[c], b[c]);
+            CHECK(t, parsed, "%s strand %d: '%s' and '%s'", models[mi], k, line, one.out);
+            line = strchr(line, '\n');
+            line = line ? line + 1 : NULL;
+        }
+    }
+    run_result r;
+    run_tool(t, "eval --model marschner",
+             "theta_i,phi_i,theta_o,phi_o,sigma_a_r,sigma_a_g,sigma_a_b\n0.3,0,-0.3,0.5,0.1,0.2,0.3\n0.3,0,-0.3,0.5,-1,0,0\n", &r);
+    CHECK(t, r.status == 0 && atof(r.out) > 0.0 && strstr(r.out, "\n0,0,0\n") && strstr(r.err, "1 invalid sample"),
+          "sigma_a columns with a negative one: %d '%s' %s", r.status, r.out, r.err);
+    run_tool(t, "eval --model huang", "theta_i,phi_i,theta_o,phi_o,sigma_a_r,sigma_a_g,sigma_a_b\n0.3,0,-0.3,0.5,0.1,0.2,0.3\n", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "absorption columns"), "huang refuses them: %d %s", r.status, r.err);
+    run_tool(t, "eval --model marschner", "theta_i,phi_i,theta_o,phi_o,h\n0.3,0,-0.3,0.5,0.1\n", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "near field"), "marschner refuses h: %d %s", r.status, r.err);
+}
+
 const hb_test hb_tests_cli[] = {
+    { "cli_absorption_columns", test_absorption_columns, 0 },
     { "cli_colour_options", test_colour_options, 0 },
     { "cli_deon_commands", test_deon_commands, 0 },
     { "cli_marschner_commands", test_marschner_commands, 0 },

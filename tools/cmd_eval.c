@@ -1,5 +1,6 @@
-/* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o (near-field models: and h) from a file or stdin,
- * f_r,f_g,f_b to a file or stdout
+/* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o (near-field models: and h; per-sample absorption:
+ * and eumelanin,pheomelanin or sigma_a_r,sigma_a_g,sigma_a_b) from a file or stdin, f_r,f_g,f_b to a
+ * file or stdout
  * hairbsdf pdf: the same rows, the sampling pdf of w_i given w_o (docs/sampling.md). */
 #include <errno.h>
 #include <math.h>
@@ -12,33 +13,66 @@
 
 #define BATCH 1024
 
+/* What a row holds after the angles, as its header names it. */
+typedef enum row_kind { ROW_ANGLES, ROW_NEAR, ROW_MELANIN, ROW_SIGMA } row_kind;
+
+static const int row_columns[] = { 4, 5, 6, 7 };
+
+static const char *const row_names[][7] = {
+    { "theta_i", "phi_i", "theta_o", "phi_o" },
+    { "theta_i", "phi_i", "theta_o", "phi_o", "h" },
+    { "theta_i", "phi_i", "theta_o", "phi_o", "eumelanin", "pheomelanin" },
+    { "theta_i", "phi_i", "theta_o", "phi_o", "sigma_a_r", "sigma_a_g", "sigma_a_b" },
+};
+
 typedef struct eval_batch {
-    float in[5][BATCH];
+    float in[7][BATCH]; /* the angles, then h, or sigma_a per channel */
     float out[3][BATCH];
     size_t count;
 } eval_batch;
 
 /* Whether a row is a valid sample as hb_eval_angles defines it (hairbsdf.h): finite angles,
- * |theta| at most the float pi/2, |phi| at most HB_PHI_LIMIT, and |h| <= 1 (near field). */
-static int row_valid(const float *row, int columns)
+ * |theta| at most the float pi/2, |phi| at most HB_PHI_LIMIT, |h| <= 1 (near field), absorptions
+ * and concentrations finite and >= 0. */
+static int row_valid(const float *row, row_kind kind)
 {
-    for (int c = 0; c < columns; c++)
-        if (!(fabsf(row[c]) <= (c == 4 ? 1.0f : c % 2 ? HB_PHI_LIMIT : 1.57079637f)))
+    for (int c = 0; c < row_columns[kind]; c++) {
+        int ok = c < 4 ? fabsf(row[c]) <= (c % 2 ? HB_PHI_LIMIT : 1.57079637f)
+                       : kind == ROW_NEAR ? fabsf(row[c]) <= 1.0f : row[c] >= 0.0f && row[c] <= 3.4e38f;
+        if (!ok)
             return 0;
+    }
     return 1;
 }
 
+/* A row's columns into the batch: concentrations become sigma_a (hb_melanin_absorption). */
+static void batch_row(eval_batch *b, const float *row, row_kind kind)
+{
+    for (int c = 0; c < (kind == ROW_MELANIN ? 4 : row_columns[kind]); c++)
+        b->in[c][b->count] = row[c];
+    if (kind == ROW_MELANIN) {
+        double sigma_a[3];
+        hb_melanin_absorption(row[4], row[5], sigma_a);
+        for (int c = 0; c < 3; c++)
+            b->in[4 + c][b->count] = (float)sigma_a[c];
+    }
+}
+
 /* Evaluates and prints the rows held so far (f, or the pdf) to out; returns the invalid-sample count. */
-static size_t flush(const hb_plan *plan, int pdf, int near, eval_batch *b, FILE *out)
+static size_t flush(const hb_plan *plan, int pdf, row_kind kind, eval_batch *b, FILE *out)
 {
     if (!b->count)
         return 0;
     hb_angles_soa in = { b->in[0], b->in[1], b->in[2], b->in[3] };
     hb_near_soa in_near = { b->in[0], b->in[1], b->in[2], b->in[3], b->in[4] };
+    hb_absorption_soa sigma_a = { b->in[4], b->in[5], b->in[6] };
     hb_rgb_soa rgb = { b->out[0], b->out[1], b->out[2] };
     hb_eval_report report = { 0 };
+    int near = kind == ROW_NEAR;
     if (pdf)
         near ? hb_pdf_near(plan, b->count, in_near, b->out[0], &report) : hb_pdf_angles(plan, b->count, in, b->out[0], &report);
+    else if (kind >= ROW_MELANIN)
+        hb_eval_angles_absorption(plan, b->count, in, sigma_a, rgb, &report);
     else
         near ? hb_eval_near(plan, b->count, in_near, rgb, &report) : hb_eval_angles(plan, b->count, in, rgb, &report);
     for (size_t k = 0; k < b->count; k++)
@@ -56,8 +90,10 @@ static void eval_usage(FILE *to, int pdf)
                 "Reads theta_i,phi_i,theta_o,phi_o (radians) per line from INPUT.csv or stdin, and h (the offset in\n"
                 "[-1, 1]) after them where a header theta_i,phi_i,theta_o,phi_o,h names it (deon, chiang: the near\n"
                 "field at h) or, without a header, for chiang unless --far (its mean over h); writes %s\n"
-                "per line to OUTPUT or stdout. An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1)\n"
-                "gives %s and is reported with its line; with --strict it is an error.\n%s",
+                "per line to OUTPUT or stdout. eval also takes each row's absorption where the header names it:\n"
+                "theta_i,phi_i,theta_o,phi_o,eumelanin,pheomelanin or ...,sigma_a_r,sigma_a_g,sigma_a_b (deon with\n"
+                "the quadrature, marschner). An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1,\n"
+                "a negative absorption) gives %s and is reported with its line; with --strict it is an error.\n%s",
             pdf ? "pdf" : "eval",
             pdf ? "the solid-angle pdf with which 'hairbsdf sample' draws w_i given w_o" : "f_r,f_g,f_b",
             pdf ? "0" : "0,0,0", cli_model_options_help);
@@ -116,8 +152,9 @@ int cmd_eval(int argc, char **argv, int pdf)
     /* A model with a near field answers a call of no samples. A header names the columns: with h, the
      * near field; without, the far field. Without a header CBTB16, a near-field model, reads h. */
     int near_field = !far && hb_eval_near(plan, 0, (hb_near_soa){ 0 }, (hb_rgb_soa){ 0 }, NULL) == HB_OK;
-    int near = near_field && args.options.model == HB_MODEL_CHIANG;
-    int columns = near ? 5 : 4;
+    int absorbing = !pdf && hb_eval_angles_absorption(plan, 0, (hb_angles_soa){ 0 }, (hb_absorption_soa){ 0 },
+                                                      (hb_rgb_soa){ 0 }, NULL) == HB_OK;
+    row_kind kind = near_field && args.options.model == HB_MODEL_CHIANG ? ROW_NEAR : ROW_ANGLES;
     FILE *in = input_path ? fopen(input_path, "r") : stdin;
     FILE *out = output_path ? fopen(output_path, "w") : stdout;
     if (!in || !out) {
@@ -140,45 +177,62 @@ int cmd_eval(int argc, char **argv, int pdf)
         char *s = csv_trim(lineno == 1 ? csv_skip_bom(line) : line);
         if (!*s && !nul)
             continue;
-        float row[5];
+        float row[7];
         char copy[512];
         snprintf(copy, sizeof copy, "%s", s);
-        if (!nul && !seen_content && (csv_is_header(s, 4) || (near_field && csv_is_header(s, 5)))) {
-            near = csv_is_header(s, 5);
-            columns = near ? 5 : 4;
-            seen_content = 1;
-            continue;
+        if (!nul && !seen_content) {
+            int header = -1;
+            for (int k = ROW_SIGMA; k >= ROW_ANGLES && header < 0; k--)
+                if (csv_is_named_header(s, row_names[k], row_columns[k]))
+                    header = k;
+            if (header == ROW_NEAR && !near_field) {
+                fprintf(stderr, "%s: this model has no near field: the h column needs --model deon or chiang\n", name);
+                status = 2;
+                break;
+            }
+            if (header >= ROW_MELANIN && !absorbing) {
+                fprintf(stderr, "%s: absorption columns need eval with deon (quadrature) or marschner\n", name);
+                status = 2;
+                break;
+            }
+            if (header >= 0) {
+                kind = (row_kind)header;
+                seen_content = 1;
+                continue;
+            }
         }
-        int parsed = !nul && csv_parse_row(s, row, columns);
-        if (parsed && !row_valid(row, columns)) {
+        int parsed = !nul && csv_parse_row(s, row, row_columns[kind]);
+        if (parsed && !row_valid(row, kind)) {
             first_invalid = first_invalid ? first_invalid : lineno;
             if (strict) {
-                flush(plan, pdf, near, &batch, out);
-                fprintf(stderr, "%s: line %ld: invalid sample '%s' (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4 or |h| > 1)\n",
-                        name, lineno, copy);
+                flush(plan, pdf, kind, &batch, out);
+                fprintf(stderr, "%s: line %ld: invalid sample '%s' (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1 or "
+                        "a negative absorption)\n", name, lineno, copy);
                 status = 1;
                 break;
             }
         }
         if (!parsed) {
-            invalid += flush(plan, pdf, near, &batch, out);
-            fprintf(stderr, "%s: line %ld: malformed row '%s'%s (want theta_i,phi_i,theta_o,phi_o%s%s)\n", name, lineno,
-                    copy, nul ? " with a NUL byte" : "", near ? ",h" : "", lineno == 1 ? ", or that header" : "");
+            invalid += flush(plan, pdf, kind, &batch, out);
+            fprintf(stderr, "%s: line %ld: malformed row '%s'%s (want ", name, lineno, copy, nul ? " with a NUL byte" : "");
+            for (int c = 0; c < row_columns[kind]; c++)
+                fprintf(stderr, "%s%s", c ? "," : "", row_names[kind][c]);
+            fprintf(stderr, "%s)\n", lineno == 1 ? ", or that header" : "");
             status = 1;
             break;
         }
         seen_content = 1;
-        for (int c = 0; c < columns; c++)
-            batch.in[c][batch.count] = row[c];
+        batch_row(&batch, row, kind);
         if (++batch.count == BATCH)
-            invalid += flush(plan, pdf, near, &batch, out);
+            invalid += flush(plan, pdf, kind, &batch, out);
     }
     if (!status)
-        invalid += flush(plan, pdf, near, &batch, out);
+        invalid += flush(plan, pdf, kind, &batch, out);
     free(line);
     hb_plan_destroy(plan);
     if (invalid)
-        fprintf(stderr, "%s: %zu invalid sample%s (NaN/Inf angle, |theta| > pi/2, |phi| > 1e4 or |h| > 1), the first on line %ld, "
+        fprintf(stderr, "%s: %zu invalid sample%s (NaN/Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1 or a negative "
+                        "absorption), the first on line %ld, "
                         "written as %s\n",
                 name, invalid, invalid == 1 ? "" : "s", first_invalid, pdf ? "0" : "0,0,0");
     int read_failed = ferror(in);

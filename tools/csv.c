@@ -60,10 +60,15 @@ int csv_parse_row(char *line, float *row, int columns)
     return 1;
 }
 
-/* theta_i,phi_i,theta_o,phi_o (and h), each name trimmed of white space. */
 int csv_is_header(const char *line, int columns)
 {
     static const char *const names[5] = { "theta_i", "phi_i", "theta_o", "phi_o", "h" };
+    return csv_is_named_header(line, names, columns);
+}
+
+/* The names, comma-separated, each trimmed of white space. */
+int csv_is_named_header(const char *line, const char *const *names, int columns)
+{
     const char *field = line;
     for (int c = 0; c < columns; c++) {
         while (isspace((unsigned char)*field))

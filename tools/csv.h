@@ -19,6 +19,9 @@ int csv_parse_row(char *line, float *row, int columns);
 /* Whether a (trimmed) line is the header theta_i,phi_i,theta_o,phi_o (and h for columns 5). */
 int csv_is_header(const char *line, int columns);
 
+/* Whether a (trimmed) line is the header of these column names, comma-separated. */
+int csv_is_named_header(const char *line, const char *const *names, int columns);
+
 /* Past a UTF-8 byte-order mark at the start of a line (what some editors write first). */
 char *csv_skip_bom(char *line);
 

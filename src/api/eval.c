@@ -52,6 +52,47 @@ hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_r
     return HB_OK;
 }
 
+/* The per-sample absorption entry points: the model's kernels, where its path takes them. */
+static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_pair_batch *pairs, hb_absorption_soa sigma_a,
+                                 hb_rgb_soa out, hb_eval_report *report)
+{
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    if (!ops->eval_absorption || !plan->kernels)
+        return HB_ERR_UNSUPPORTED;
+    if (n && (!sigma_a.r || !sigma_a.g || !sigma_a.b))
+        return HB_ERR_NULL;
+    hb_absorbing_batch batch = { *pairs, { sigma_a.r, sigma_a.g, sigma_a.b } };
+    size_t invalid = 0;
+    hb_status st = ops->eval_absorption(plan, n, &batch, out, &invalid);
+    if (st == HB_OK)
+        report_invalid(report, invalid);
+    return st;
+}
+
+hb_status hb_eval_angles_absorption(const hb_plan *plan, size_t n, hb_angles_soa in, hb_absorption_soa sigma_a,
+                                    hb_rgb_soa out, hb_eval_report *report)
+{
+    hb_status st = check_out(plan, n, out);
+    if (st != HB_OK)
+        return st;
+    if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o))
+        return HB_ERR_NULL;
+    hb_pair_batch pairs = { .angles = in };
+    return eval_absorption(plan, n, &pairs, sigma_a, out, report);
+}
+
+hb_status hb_eval_vectors_absorption(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_absorption_soa sigma_a,
+                                     hb_rgb_soa out, hb_eval_report *report)
+{
+    hb_status st = check_out(plan, n, out);
+    if (st != HB_OK)
+        return st;
+    if (n && (!in.wi_x || !in.wi_y || !in.wi_z || !in.wo_x || !in.wo_y || !in.wo_z))
+        return HB_ERR_NULL;
+    hb_pair_batch pairs = { .vectors = in };
+    return eval_absorption(plan, n, &pairs, sigma_a, out, report);
+}
+
 static int near_valid(const hb_near_soa *in, size_t k)
 {
     return fabsf(in->theta_i[k]) <= 1.57079637f && fabsf(in->theta_o[k]) <= 1.57079637f &&

@@ -5,6 +5,7 @@
 #ifndef HB_ISA_BATCH_H
 #define HB_ISA_BATCH_H
 
+#include <float.h>
 #include <string.h>
 
 #include "simd/simd.h"
@@ -173,6 +174,25 @@ HB_INLINE vm load_sample(const hb_sample_batch *b, int dims, size_t i, size_t la
 
 /* h in [-1, 1]; false for NaN. */
 HB_INLINE vm offset_valid(vf h) { return vf_le(vf_abs(h), vf_set1(1.0f)); }
+
+/* Direction pairs and three absorption streams: a[4..6] = sigma_a log2(e) per channel, each rounded
+ * from its product in double and capped at 1e30 as a plan's constant is (src/models/derive.h), so that
+ * a sample's absorption gives what a plan of that material gives. A lane is also invalid when an
+ * absorption is NaN, negative or infinite; invalid lanes get zeros. */
+HB_INLINE vm load_absorbing(const hb_absorbing_batch *b, size_t i, size_t lanes, vf a[7])
+{
+    vm valid = load_pairs(&b->pairs, i, lanes, a);
+    load_block(b->sigma_a, 3, i, lanes, 0.0f, a + 4);
+    HB_UNROLL
+    for (int c = 0; c < 3; c++) {
+        valid = vm_and(valid, vm_and(vf_ge(a[4 + c], vf_set1(0.0f)), vf_le(a[4 + c], vf_set1(FLT_MAX))));
+        a[4 + c] = vdw_to_vf(vdw_min(vdw_mul(vdw_from_vf(a[4 + c]), vdw_set1(1.4426950408889634)), vdw_set1(1e30)));
+    }
+    HB_UNROLL
+    for (int k = 0; k < 7; k++)
+        a[k] = vf_keep(valid, a[k]);
+    return valid;
+}
 
 /* An angle batch with h as a fifth stream; invalid lanes get h = 0. */
 HB_INLINE vm load_near(hb_near_soa in, size_t i, size_t lanes, vf a[5])

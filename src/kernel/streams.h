@@ -14,6 +14,12 @@ typedef struct hb_pair_batch {
     hb_vectors_soa vectors;
 } hb_pair_batch;
 
+/* Direction pairs with a per-sample absorption sigma_a[c][k] (hb_eval_angles_absorption). */
+typedef struct hb_absorbing_batch {
+    hb_pair_batch pairs;
+    const float *sigma_a[3];
+} hb_absorbing_batch;
+
 /* A sampling batch: w_o from wo when wo[0] is not NULL, else from in.theta_o and in.phi_o; w_i to
  * wi when wi[0] is not NULL (invalid samples get (0, 0, 0)), else to out.theta_i and out.phi_i. */
 typedef struct hb_sample_batch {

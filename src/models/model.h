@@ -42,6 +42,10 @@ typedef struct hb_model_ops {
      * form both together, else in two (hb_eval_then_pdf). */
     void (*eval_pdf)(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf,
                      size_t *invalid);
+    /* f at each sample's absorption (hb_eval_angles_absorption), by the plan's kernels; NULL when the
+     * model has none, HB_ERR_UNSUPPORTED for plans whose path cannot take it. */
+    hb_status (*eval_absorption)(const hb_plan *plan, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
+                                 size_t *invalid);
     hb_status (*table)(const hb_plan *plan, hb_table_view *view); /* HB_ERR_UNSUPPORTED: no table */
     /* Near-field models: the same at each sample's offset h (plan->kernels != NULL); NULL when the
      * model has no near field. */

@@ -27,10 +27,17 @@ void hb_material_default(hb_material *m)
 static const double eumelanin_rgb[3] = { 0.419, 0.697, 1.37 };
 static const double pheomelanin_rgb[3] = { 0.187, 0.4, 1.05 };
 
-void hb_material_absorption(const hb_material *m, double out[3])
+void hb_melanin_absorption(double eumelanin, double pheomelanin, double sigma_a[3])
 {
     for (int c = 0; c < 3; c++)
-        out[c] = m->sigma_a[c] + m->eumelanin * eumelanin_rgb[c] + m->pheomelanin * pheomelanin_rgb[c];
+        sigma_a[c] = eumelanin * eumelanin_rgb[c] + pheomelanin * pheomelanin_rgb[c];
+}
+
+void hb_material_absorption(const hb_material *m, double out[3])
+{
+    hb_melanin_absorption(m->eumelanin, m->pheomelanin, out);
+    for (int c = 0; c < 3; c++)
+        out[c] += m->sigma_a[c];
 }
 
 hb_status hb_absorption_from_colour(const double rgb[3], double beta_n, double sigma_a[3], hb_error *error)

@@ -78,7 +78,17 @@ typedef struct deon_geometry {
     vf sin2_theta_d; /* theta_d = (theta_o - theta_i)/2 */
     vf cos_theta_d;
     vf cos_half_io;  /* cos of half the angle between w_i and w_o (eq. 12's Fresnel; 1 where unused) */
+    vf absorption[3]; /* sigma_a log2(e) per channel: the plan's, or each sample's (hb_eval_angles_absorption) */
+    int grey;         /* the same absorption in every channel: one channel computed, copied */
 } deon_geometry;
+
+/* The plan's absorption into a sample's geometry. */
+HB_INLINE void deon_plan_absorption(const hb_deon *d, deon_geometry *g)
+{
+    for (int c = 0; c < 3; c++)
+        g->absorption[c] = vf_set1(d->sigma_a_log2e[c]);
+    g->grey = d->channels == 1;
+}
 
 /* What every node of the h quadrature needs from a sample: eta' (sec. 5) and mu_a' (sec. 6). */
 typedef struct deon_medium {
@@ -96,7 +106,7 @@ HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_med
     m->inv_eta_prime = vf_div(g->cos_theta_d, eta_cos_t); /* sec. 5 */
     vf inv_cos_theta_t = vf_div(vf_set1(d->ior.eta), eta_cos_t);
     for (int c = 0; c < channels; c++) /* at most FLT_MAX / 4, so that twice it times a cosine stays finite */
-        m->mu_log2e[c] = vf_min(vf_mul(vf_set1(d->sigma_a_log2e[c]), inv_cos_theta_t), vf_set1(8e37f));
+        m->mu_log2e[c] = vf_min(vf_mul(g->absorption[c], inv_cos_theta_t), vf_set1(8e37f));
 }
 
 /* What the paths through one offset h = sin(gamma_i) share across channels: the Fresnel factor f
@@ -249,11 +259,11 @@ HB_INLINE void azimuthal_deon_shaped(const hb_deon *d, const deon_geometry *g, v
 HB_INLINE void azimuthal_deon(const hb_deon *d, const deon_geometry *g, vf N[HB_MAX_LOBES + 1][3],
                               deon_pdf_terms *pdf)
 {
-    if (d->standard && d->channels == 1)
+    if (d->standard && g->grey)
         azimuthal_deon_shaped(d, g, N, pdf, (deon_shape){ 1, 1, 0 });
     else if (d->standard)
         azimuthal_deon_shaped(d, g, N, pdf, (deon_shape){ 1, 3, 0 });
-    else if (d->channels == 1)
+    else if (g->grey)
         azimuthal_deon_shaped(d, g, N, pdf, (deon_shape){ 0, 1, 0 });
     else
         azimuthal_deon_shaped(d, g, N, pdf, (deon_shape){ 0, 3, 0 });
@@ -278,6 +288,7 @@ HB_INLINE void deon_np_row(const hb_deon *d, float cos_theta_d, size_t n, const 
         g.cos_theta_d = vf_set1(cos_theta_d);
         g.sin2_theta_d = vf_set1(1.0f - cos_theta_d * cos_theta_d);
         g.cos_half_io = vf_set1(1.0f); /* eq. 12's factor: the table is for the offset Fresnel only */
+        deon_plan_absorption(d, &g);
         vf N[HB_MAX_LOBES + 1][3];
         azimuthal_deon(d, &g, N, NULL);
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) /* non-leaders into their group's leader */
@@ -550,11 +561,11 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
                           deon_pdf_terms *pdf)
 {
     int all = d->lobes == HB_STANDARD_LOBES;
-    if (all && d->channels == 1)
+    if (all && g->grey)
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 1, 1 });
     else if (all)
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 1 });
-    else if (d->channels == 1)
+    else if (g->grey)
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 1, 0 });
     else
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
@@ -622,6 +633,7 @@ HB_INLINE void deon_geometry_angles(const hb_deon *d, vf theta_i, vf phi_i, vf t
     }
     g->cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
     g->cos_half_io = vf_set1(1.0f);
+    deon_plan_absorption(d, g);
     if (!d->r_fresnel_offset) { /* two more sine-cosine pairs only for eq. 12 */
         vf si, ci, so, co;
         vf_sincos(theta_i, &si, &ci);
@@ -660,6 +672,7 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     g.sin2_theta_d = vf_max(vf_fnma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f));
     vf dot = vf_mul(vf_mul(inv_i, inv_o), vf_fma(wi[0], wo[0], vf_fma(wi[1], wo[1], vf_mul(wi[2], wo[2]))));
     g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
+    deon_plan_absorption(d, &g);
     vf M[HB_MAX_LOBES + 1];
     longitudinal_deon_groups_vectors(d, wi, wo, i0, M);
     deon_eval(d, &g, M, out);

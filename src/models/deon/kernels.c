@@ -37,6 +37,20 @@ HB_INLINE vf deon_f_pdf_angles(const hb_deon *d, const vf a[4], hb_i0 i0, vf f[3
     return deon_f_pdf(d, M, &g, a[2], f);
 }
 
+/* f by quadrature at each sample's absorption a[4..6] (load_absorbing): the plan's geometry with the
+ * sample's sigma_a in every channel, three channels computed. */
+HB_INLINE void deon_absorbing_angles(const hb_deon *d, const vf a[7], hb_i0 i0, vf f[3])
+{
+    vf M[HB_MAX_LOBES + 1];
+    deon_longitudinal_groups(d, a[0], a[2], i0, M);
+    deon_geometry g;
+    deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
+    for (int c = 0; c < 3; c++)
+        g.absorption[c] = a[4 + c];
+    g.grey = 0;
+    deon_quadrature(d, &g, M, f);
+}
+
 /* Calls of fewer than HB_DEON_ONE_MAX samples on a standard quadrature plan take each sample alone
  * with the quadrature's nodes across the lanes (azimuthal.h, deon_fused_one): a path tracer's call at
  * a hit costs one sample's work instead of a block of HB_W lanes. Measured (make bench, balanced, 10
@@ -125,6 +139,13 @@ HB_INLINE void deon_one_by_one_angles(const hb_deon *d, size_t n, hb_angles_soa 
                  (store_block(pdf, i, lanes, vf_keep(valid, deon_f_pdf_angles(deon, a, i0, f))),          \
                   store_rgb(out, i, lanes, valid, f)));                                                   \
     }                                                                                                     \
+    static void deon_absorbing_##suffix(const hb_deon *deon, size_t n, const hb_absorbing_batch *in,      \
+                                        hb_rgb_soa out, size_t *invalid)                                 \
+    {                                                                                                     \
+        vf f[3];                                                                                          \
+        HB_BATCH(load_absorbing, 7, in, n, invalid,                                                       \
+                 (deon_absorbing_angles(deon, a, i0, f), store_rgb(out, i, lanes, valid, f)));            \
+    }                                                                                                     \
     static void deon_near_##suffix(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out,         \
                                    size_t *invalid)                                                      \
     {                                                                                                     \
@@ -172,6 +193,7 @@ const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
     .sample = { deon_sample_abramowitz, deon_sample_paper },
     .pdf = { deon_pdf_abramowitz, deon_pdf_paper },
     .f_pdf = { deon_f_pdf_abramowitz, deon_f_pdf_paper },
+    .absorbing = { deon_absorbing_abramowitz, deon_absorbing_paper },
     .near = { deon_near_abramowitz, deon_near_paper },
     .pdf_near = { deon_pdf_near_abramowitz, deon_pdf_near_paper },
     .sample_near = { deon_sample_near_abramowitz, deon_sample_near_paper },

@@ -22,6 +22,8 @@ typedef void (*hb_deon_pdf_fn)(const hb_deon *deon, size_t n, const hb_pair_batc
 typedef void (*hb_deon_f_pdf_fn)(const hb_deon *deon, size_t n, const hb_pair_batch *in, hb_rgb_soa out,
                                  float *pdf, size_t *invalid);
 
+typedef void (*hb_deon_absorbing_fn)(const hb_deon *deon, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
+                                     size_t *invalid);
 typedef void (*hb_deon_near_fn)(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);
 typedef void (*hb_deon_pdf_near_fn)(const hb_deon *deon, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
 typedef void (*hb_deon_sample_near_fn)(const hb_deon *deon, size_t n, hb_sample_near_in in, hb_sample_out out,
@@ -37,6 +39,7 @@ typedef struct hb_deon_kernels {
     hb_deon_sample_fn sample[2];
     hb_deon_pdf_fn pdf[2];
     hb_deon_f_pdf_fn f_pdf[2]; /* f (quadrature plans) and pdf in one pass */
+    hb_deon_absorbing_fn absorbing[2]; /* f (quadrature plans) at each sample's absorption */
     hb_deon_near_fn near[2];   /* at each sample's offset h (near.h) */
     hb_deon_pdf_near_fn pdf_near[2];
     hb_deon_sample_near_fn sample_near[2];

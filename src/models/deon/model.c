@@ -68,6 +68,16 @@ static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_
         deon_kernels_for(plan, n, !in->vectors.wi_x)->f_pdf[plan->options.i0](&plan->deon, n, in, out, pdf, invalid);
 }
 
+/* Per-sample absorption by the quadrature: a table holds N_p of the plan's own absorption. */
+static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
+                                 size_t *invalid)
+{
+    if (plan->deon.np_table || plan->options.term != HB_TERM_FULL)
+        return HB_ERR_UNSUPPORTED;
+    ((const hb_deon_kernels *)hb_kernels_for(plan, n))->absorbing[plan->options.i0](&plan->deon, n, in, out, invalid);
+    return HB_OK;
+}
+
 /* The near field at each sample's h (near.h): f by the plan's kernels, HB_TERM_FULL only (the
  * longitudinal term has no h). */
 static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
@@ -170,6 +180,7 @@ const hb_model_ops hb_deon_model = {
     .sample = sample,
     .pdf = pdf,
     .eval_pdf = eval_pdf,
+    .eval_absorption = eval_absorption,
     .eval_near = eval_near,
     .sample_near = sample_near,
     .pdf_near = pdf_near,

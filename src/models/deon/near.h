@@ -82,7 +82,7 @@ HB_INLINE void deon_near_shaped(const hb_deon *d, const deon_geometry *g, const 
 HB_INLINE void deon_near(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf h, vf out[3],
                          vf *pdf)
 {
-    if (d->standard && d->channels == 1)
+    if (d->standard && g->grey)
         deon_near_shaped(d, g, M, h, out, pdf, (deon_shape){ 1, 1, 0 });
     else if (d->standard)
         deon_near_shaped(d, g, M, h, out, pdf, (deon_shape){ 1, 3, 0 });

@@ -188,7 +188,14 @@ typedef struct mjc_geometry {
     vf theta_h, cos_theta_i, cos_theta_d;
     vf phi;         /* phi_o - phi_i in [-pi, pi] */
     vf cos_phi_sum; /* cos(phi_i + phi_o) = cos(2 phi_h), for eta* */
+    vf absorption[3]; /* sigma_a log2(e) per channel: the plan's, or each sample's (hb_eval_angles_absorption) */
 } mjc_geometry;
+
+HB_INLINE void marschner_plan_absorption(const hb_marschner *m, mjc_geometry *g)
+{
+    for (int c = 0; c < 3; c++)
+        g->absorption[c] = vf_set1(m->sigma_a_log2e[c]);
+}
 
 /* f = sum_p M_p N_p cos(theta_i) / cos^2(theta_d) for the plan's lobes. */
 HB_INLINE void marschner_f(const hb_marschner *m, const mjc_geometry *g, vf out[3])
@@ -198,7 +205,7 @@ HB_INLINE void marschner_f(const hb_marschner *m, const mjc_geometry *g, vf out[
     mjc_absorption ab;
     vf inv_cos_theta_t = vf_mul(vf_set1(m->eta), ix.inv_eta_cos_t); /* no cancellation as eta -> 1 */
     for (int c = 0; c < 3; c++)
-        ab.mu_log2e[c] = vf_min(vf_mul(vf_set1(m->sigma_a_log2e[c]), inv_cos_theta_t), vf_set1(8e37f));
+        ab.mu_log2e[c] = vf_min(vf_mul(g->absorption[c], inv_cos_theta_t), vf_set1(8e37f));
     for (int c = 0; c < 3; c++)
         out[c] = vf_set1(0.0f);
     if (m->lobes & 1u) {
@@ -236,14 +243,21 @@ HB_INLINE void marschner_f(const hb_marschner *m, const mjc_geometry *g, vf out[
         out[c] = vf_mul(out[c], projection);
 }
 
+HB_INLINE void marschner_geometry_angles(const hb_marschner *m, vf theta_i, vf phi_i, vf theta_o, vf phi_o,
+                                         mjc_geometry *g)
+{
+    g->theta_h = vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o));
+    g->cos_theta_i = vf_cos(theta_i);
+    g->cos_theta_d = vf_cos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)));
+    g->phi = wrap_angle(vf_sub(phi_o, phi_i));
+    g->cos_phi_sum = m->eccentric ? vf_cos(wrap_angle(vf_add(phi_i, phi_o))) : vf_set1(1.0f);
+    marschner_plan_absorption(m, g);
+}
+
 HB_INLINE void marschner_angles(const hb_marschner *m, vf theta_i, vf phi_i, vf theta_o, vf phi_o, vf out[3])
 {
     mjc_geometry g;
-    g.theta_h = vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o));
-    g.cos_theta_i = vf_cos(theta_i);
-    g.cos_theta_d = vf_cos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)));
-    g.phi = wrap_angle(vf_sub(phi_o, phi_i));
-    g.cos_phi_sum = m->eccentric ? vf_cos(wrap_angle(vf_add(phi_i, phi_o))) : vf_set1(1.0f);
+    marschner_geometry_angles(m, theta_i, phi_i, theta_o, phi_o, &g);
     marschner_f(m, &g, out);
 }
 
@@ -259,6 +273,7 @@ HB_INLINE void marschner_vectors(const hb_marschner *m, const vf wi[3], const vf
     vf planar2 = vf_mul(n.planar_i, n.planar_o);
     vf cos_sum = vf_div(vf_fnma(wi[0], wo[0], vf_mul(wi[2], wo[2])), vf_max(planar2, vf_set1(1e-30f)));
     g.cos_phi_sum = vf_select(vf_gt(planar2, vf_set1(1e-30f)), cos_sum, vf_set1(1.0f));
+    marschner_plan_absorption(m, &g);
     marschner_f(m, &g, out);
 }
 

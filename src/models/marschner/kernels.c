@@ -33,6 +33,18 @@ static void vectors_kernel(const hb_marschner *mjc, size_t n, hb_vectors_soa in,
     HB_BATCH(load_vectors, 6, in, n, invalid, (marschner_vectors(mjc, a, a + 3, f), store_rgb(out, i, lanes, valid, f)));
 }
 
+/* f at each sample's absorption a[4..6] (load_absorbing). */
+static void absorbing_kernel(const hb_marschner *mjc, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
+                             size_t *invalid)
+{
+    vf f[3];
+    mjc_geometry g;
+    HB_BATCH(load_absorbing, 7, in, n, invalid,
+             (marschner_geometry_angles(mjc, a[0], a[1], a[2], a[3], &g), g.absorption[0] = a[4],
+              g.absorption[1] = a[5], g.absorption[2] = a[6], marschner_f(mjc, &g, f),
+              store_rgb(out, i, lanes, valid, f)));
+}
+
 HB_INLINE vm load_marschner_sample(const hb_sample_batch *b, size_t i, size_t lanes, vf *a)
 {
     return load_sample(b, HB_MARSCHNER_SAMPLE_DIMENSIONS, i, lanes, a);
@@ -59,4 +71,5 @@ const hb_marschner_kernels HB_ISA_SYMBOL(marschner_kernels) = {
     .vectors = vectors_kernel,
     .sample = sample_kernel,
     .pdf = pdf_kernel,
+    .absorbing = absorbing_kernel,
 };

@@ -24,6 +24,8 @@ typedef struct hb_marschner_kernels {
     hb_marschner_vectors_fn vectors;
     void (*sample)(const hb_marschner *mjc, size_t n, const hb_sample_batch *b, size_t *invalid);
     void (*pdf)(const hb_marschner *mjc, size_t n, const hb_pair_batch *in, float *pdf, size_t *invalid);
+    void (*absorbing)(const hb_marschner *mjc, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
+                      size_t *invalid); /* f at each sample's absorption */
 } hb_marschner_kernels;
 
 #endif

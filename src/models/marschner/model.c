@@ -51,6 +51,15 @@ static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_
     hb_eval_then_pdf(plan, n, in, out, pdf_out, invalid);
 }
 
+static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
+                                 size_t *invalid)
+{
+    if (plan->options.term != HB_TERM_FULL)
+        return HB_ERR_UNSUPPORTED;
+    ((const hb_marschner_kernels *)hb_kernels_for(plan, n))->absorbing(&plan->marschner, n, in, out, invalid);
+    return HB_OK;
+}
+
 static hb_status table(const hb_plan *plan, hb_table_view *view)
 {
     (void)plan, (void)view;
@@ -100,6 +109,7 @@ const hb_model_ops hb_marschner_model = {
     .sample_dimensions = sample_dimensions,
     .sample = sample,
     .pdf = pdf,
+    .eval_absorption = eval_absorption,
     .eval_pdf = eval_pdf,
     .table = table,
     .describe = describe,
