@@ -283,6 +283,8 @@ install: all
 	ln -sf libhairbsdf.so.$(HB_SO_MAJOR) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(HB_VERSION)|' hairbsdf.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/hairbsdf.pc
 	install -m 755 $(TOOL) $(DESTDIR)$(PREFIX)/bin/
+	install -d $(DESTDIR)$(PREFIX)/share/hairbsdf/shaders
+	install -m 644 shaders/* $(DESTDIR)$(PREFIX)/share/hairbsdf/shaders/
 	$(STRIP) --strip-debug $(DESTDIR)$(PREFIX)/lib/libhairbsdf.a $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so.$(HB_SO_MAJOR) \
 	  $(DESTDIR)$(PREFIX)/bin/$(notdir $(TOOL))
 

@@ -484,6 +484,13 @@ HB_API hb_status hb_plan_table(const hb_plan *plan, hb_table_view *view);
  * bit as the plan that saved it on the same instruction set. */
 HB_API hb_status hb_table_save(const hb_plan *plan, void *bytes, size_t capacity, size_t *size);
 
+/* The constants the shaders of shaders/ read beside the plan's table (docs/engines.md), a block of 16
+ * vec4s. dFH11 table plans: floats 0..3 the table's nodes in sqrt(cos(theta_d)) and in |phi|, its
+ * slots and 0; then slot s's M_p (eq. 7) at 4 + 4 s: 1 / v, log2(e) / v, log2 of eq. 7's norm
+ * (csch(1/v) / (2v) without e^(-1/v)) and its shift alpha_p. HB_ERR_UNSUPPORTED for other plans. */
+#define HB_SHADER_CONSTANTS 64
+HB_API hb_status hb_plan_shader_constants(const hb_plan *plan, float constants[HB_SHADER_CONSTANTS]);
+
 /* White furnace: E(w_o) = integral over the sphere of f(w_i, w_o) dw_i per channel, by
  * quadrature fine enough for the plan's roughness (docs/conventions.md). A lossless fibre with
  * every order gives E = 1 up to the model's approximations. For HB_TERM_LONGITUDINAL the

@@ -1,5 +1,6 @@
 /* hb_plan_table: the view of a plan's table that engines bake, from its model; hb_table_save: that
- * table as a table file (src/models/table_file.c). */
+ * table as a table file (src/models/table_file.c); hb_plan_shader_constants: what the shaders read
+ * beside it. */
 #include "models/model.h"
 #include "models/table_file.h"
 
@@ -30,4 +31,16 @@ hb_status hb_table_save(const hb_plan *plan, void *bytes, size_t capacity, size_
         return HB_ERR_PARAM;
     hb_table_file_write(plan, &v, bytes);
     return HB_OK;
+}
+
+hb_status hb_plan_shader_constants(const hb_plan *plan, float constants[HB_SHADER_CONSTANTS])
+{
+    if (!plan || !constants)
+        return HB_ERR_NULL;
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    if (!ops->shader_constants)
+        return HB_ERR_UNSUPPORTED;
+    for (int k = 0; k < HB_SHADER_CONSTANTS; k++)
+        constants[k] = 0.0f;
+    return ops->shader_constants(plan, constants);
 }

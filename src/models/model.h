@@ -47,6 +47,8 @@ typedef struct hb_model_ops {
     hb_status (*eval_absorption)(const hb_plan *plan, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
                                  size_t *invalid);
     hb_status (*table)(const hb_plan *plan, hb_table_view *view); /* HB_ERR_UNSUPPORTED: no table */
+    /* hb_plan_shader_constants: HB_SHADER_CONSTANTS floats; NULL when the model has no shader. */
+    hb_status (*shader_constants)(const hb_plan *plan, float *constants);
     /* Near-field models: the same at each sample's offset h (plan->kernels != NULL); NULL when the
      * model has no near field. */
     void (*eval_near)(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);

@@ -185,6 +185,7 @@ const hb_model_ops hb_deon_model = {
     .sample_near = sample_near,
     .pdf_near = pdf_near,
     .table = hb_deon_table_view,
+    .shader_constants = hb_deon_shader_constants,
     .describe = describe,
     .furnace_rule = furnace_rule,
     .presets = presets,

@@ -212,3 +212,18 @@ hb_status hb_deon_table_view(const hb_plan *plan, hb_table_view *v)
     v->error = plan->table_error;
     return HB_OK;
 }
+
+/* shaders/hairbsdf_deon_body.inc reads the table's grid and each slot's M_p constants (eq. 7). */
+hb_status hb_deon_shader_constants(const hb_plan *plan, float *k)
+{
+    const hb_deon *d = &plan->deon;
+    if (!plan->deon_table)
+        return HB_ERR_UNSUPPORTED;
+    k[0] = (float)d->table_cd, k[1] = (float)d->table_phi, k[2] = (float)d->table_slots;
+    for (int s = 0; s < d->table_slots; s++) {
+        const hb_longitudinal *l = &d->longitudinal[d->table_leader[s]];
+        k[4 + 4 * s] = l->inv_v_f, k[5 + 4 * s] = l->inv_v_log2e_f, k[6 + 4 * s] = l->log2_norm_f;
+        k[7 + 4 * s] = (float)l->shift;
+    }
+    return HB_OK;
+}
