@@ -269,6 +269,8 @@ static const config configs[] = {
       "dFH11 full, N_p from the table: balanced", 0 },
     { "deon", "full", "table-high", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_TABLE, 0, 0.0,
       "dFH11 full, N_p from the table: high", 0 },
+    { "deon", "full", "colour-table-fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_ABSORPTION, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_COLOUR_TABLE, 0, 0.0,
+      "dFH11 full, N_p from the colour table at each sample's absorption: fast", 0 },
     { "marschner", "longitudinal", "gaussian", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0,
       HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "MJC03 longitudinal term alone", 0 },

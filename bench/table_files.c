@@ -10,15 +10,18 @@ typedef struct table_config {
     const char *name;
     hb_model model;
     hb_quality quality;
+    hb_azimuthal azimuthal; /* dFH11: its own table or the colour table */
 } table_config;
 
 void bench_table_files(const hb_material *m, FILE *report)
 {
     static const table_config configs[] = {
-        { "deon/full/table-balanced", HB_MODEL_DEON, HB_QUALITY_BALANCED },
-        { "deon/full/table-high", HB_MODEL_DEON, HB_QUALITY_HIGH },
-        { "huang/all/table-fast", HB_MODEL_HUANG, HB_QUALITY_FAST },
-        { "huang/all/table-balanced", HB_MODEL_HUANG, HB_QUALITY_BALANCED },
+        { "deon/full/table-balanced", HB_MODEL_DEON, HB_QUALITY_BALANCED, HB_AZIMUTHAL_TABLE },
+        { "deon/full/table-high", HB_MODEL_DEON, HB_QUALITY_HIGH, HB_AZIMUTHAL_TABLE },
+        { "deon/full/colour-table-fast", HB_MODEL_DEON, HB_QUALITY_FAST, HB_AZIMUTHAL_COLOUR_TABLE },
+        { "deon/full/colour-table-balanced", HB_MODEL_DEON, HB_QUALITY_BALANCED, HB_AZIMUTHAL_COLOUR_TABLE },
+        { "huang/all/table-fast", HB_MODEL_HUANG, HB_QUALITY_FAST, HB_AZIMUTHAL_QUADRATURE },
+        { "huang/all/table-balanced", HB_MODEL_HUANG, HB_QUALITY_BALANCED, HB_AZIMUTHAL_QUADRATURE },
     };
     fprintf(report, "Table files (hb_table_save; plan creation that builds the table, then from its file):\n");
     for (size_t k = 0; k < sizeof configs / sizeof configs[0]; k++) {
@@ -26,7 +29,7 @@ void bench_table_files(const hb_material *m, FILE *report)
         hb_options_default(&o);
         o.model = configs[k].model, o.quality = configs[k].quality;
         if (o.model == HB_MODEL_DEON)
-            o.azimuthal = HB_AZIMUTHAL_TABLE;
+            o.azimuthal = configs[k].azimuthal;
         else
             o.tt_trt = HB_TT_TRT_TABLE;
         hb_plan *plan;

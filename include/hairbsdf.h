@@ -204,12 +204,23 @@ typedef enum hb_tt_trt {
 /* How dFH11's azimuthal terms N_p (eq. 10) are evaluated. */
 typedef enum hb_azimuthal {
     HB_AZIMUTHAL_QUADRATURE, /* the plan's Gauss-Legendre rule at every sample (the default) */
-    HB_AZIMUTHAL_TABLE       /* bilinear in a table over (sqrt(cos(theta_d)), |phi|) per group of lobes sharing one M_p
+    HB_AZIMUTHAL_TABLE,      /* bilinear in a table over (sqrt(cos(theta_d)), |phi|) per group of lobes sharing one M_p
                                 (dFH11 sec. 6), built at plan creation with that rule; its resolution is refined
                                 until the interpolation error at cell midpoints is below table_tolerance of each
                                 group's peak (hb_plan_table). Evaluation only: sampling keeps the quadrature.
                                 With the default R Fresnel (HB_R_FRESNEL_OFFSET) only */
+    HB_AZIMUTHAL_COLOUR_TABLE /* one table for every hair colour: N per M_p group for one channel over
+                                (sqrt(cos(theta_d)), |phi|, exp(-sigma_a / 2)) with sigma_a from 0 to
+                                HB_COLOUR_TABLE_SIGMA_MAX (N of a channel depends on that channel's absorption
+                                alone), looked up at each channel's absorption: the plan's, or each sample's
+                                (hb_eval_angles_absorption). Refined until the midpoint error is below
+                                table_tolerance of each group's peak over all absorptions; otherwise as
+                                HB_AZIMUTHAL_TABLE (docs/engines.md) */
 } hb_azimuthal;
+
+/* The colour table's absorption range: black hair (eumelanin 8 and pheomelanin 4) has sigma_a 15.2 in
+ * blue; a larger absorption is looked up as this one. */
+#define HB_COLOUR_TABLE_SIGMA_MAX 16.0
 
 /* Callbacks of a long plan creation (hb_options.progress and .parallel). */
 typedef int (*hb_progress_fn)(void *context, double fraction);
@@ -341,8 +352,8 @@ HB_API hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa i
  * k by sigma_a.r[k], .g[k], .b[k] per unit radius (hb_melanin_absorption turns concentrations into
  * it); roughness, eta, tilt, lobes and quality stay the plan's, and so does the fixed work per
  * sample. A sample is also invalid when an absorption is NaN, negative or infinite. For dFH11
- * quadrature plans and MJC03 (HB_TERM_FULL); HB_ERR_UNSUPPORTED for the others: dFH11's N_p table
- * holds the plan's own absorption, HHH22's R lobe does not depend on it (hb_eval_angles) and its
+ * quadrature and colour-table plans and MJC03 (HB_TERM_FULL); HB_ERR_UNSUPPORTED for the others: a
+ * material's own N_p table (HB_AZIMUTHAL_TABLE) holds the plan's own absorption, HHH22's R lobe does not depend on it (hb_eval_angles) and its
  * TT and TRT have no per-sample path, CBTB16 has none yet, and reference plans have none (compare
  * with a reference plan per material). A tolerance or budget plan chose its lobes for its own
  * material. */
@@ -458,7 +469,8 @@ HB_API void hb_uniforms(unsigned long long seed, unsigned long long first, size_
 
 /* A plan's precomputed table, for engines that bake it into a texture (`hairbsdf bake`, docs/engines.md): dFH11 N_p (HB_AZIMUTHAL_TABLE) or HHH22 f_TT + f_TRT (HB_TT_TRT_TABLE).
  * Nodes are uniform from lo to hi on each axis; values are row-major over the axes, then the slot,
- * then the channel (RGB innermost). The view points into the plan and lives as long as it. */
+ * then the channel (RGB innermost; one channel for the colour table, hb_plan_table_channels). The
+ * view points into the plan and lives as long as it. */
 #define HB_TABLE_MAX_AXES 4
 typedef struct hb_table_view {
     hb_model model;
@@ -469,13 +481,18 @@ typedef struct hb_table_view {
     int slots;                            /* dFH11: one per M_p group; HHH22: 1 */
     unsigned slot_lobes[HB_MAX_LOBES + 1]; /* the lobes (bits (1u << p), HB_LOBE_RESIDUAL) summed in each slot */
     const float *values;
-    size_t count;                         /* floats: product of sizes x slots x 3 */
+    size_t count;                         /* floats: product of sizes x slots x channels */
     double error;  /* dFH11: the largest midpoint interpolation error relative to its slot's peak, measured
                       at build; HHH22: NaN (docs/huang.md gives its measured error) */
 } hb_table_view;
 
 /* HB_ERR_UNSUPPORTED when the plan has no table. */
 HB_API hb_status hb_plan_table(const hb_plan *plan, hb_table_view *view);
+
+/* The floats per node and slot of the plan's table: 3 (RGB) for a material's own table, 1 for dFH11's
+ * colour table (HB_AZIMUTHAL_COLOUR_TABLE, whose last axis is the absorption coordinate); 0 without a
+ * table. hb_table_view.count is the product of the sizes, the slots and this. */
+HB_API int hb_plan_table_channels(const hb_plan *plan);
 
 /* The plan's table as a table file (`.hbt`, docs/engines.md gives the layout), to ship with an engine's
  * data and load with options.table_file: writes at most capacity bytes to bytes and the file's length
@@ -486,8 +503,10 @@ HB_API hb_status hb_table_save(const hb_plan *plan, void *bytes, size_t capacity
 
 /* The constants the shaders of shaders/ read beside the plan's table (docs/engines.md), a block of 16
  * vec4s. dFH11 table plans: floats 0..3 the table's nodes in sqrt(cos(theta_d)) and in |phi|, its
- * slots and 0; then slot s's M_p (eq. 7) at 4 + 4 s: 1 / v, log2(e) / v, log2 of eq. 7's norm
- * (csch(1/v) / (2v) without e^(-1/v)) and its shift alpha_p. HB_ERR_UNSUPPORTED for other plans. */
+ * slots, and its absorption nodes (a colour table; else 0); then slot s's M_p (eq. 7) at 4 + 4 s:
+ * 1 / v, log2(e) / v, log2 of eq. 7's norm (csch(1/v) / (2v) without e^(-1/v)) and its shift alpha_p;
+ * at 40, a colour table's absorption axis: 1 / knee and its nodes per unit of log(1 + sigma_a / knee).
+ * HB_ERR_UNSUPPORTED for other plans. */
 #define HB_SHADER_CONSTANTS 64
 HB_API hb_status hb_plan_shader_constants(const hb_plan *plan, float constants[HB_SHADER_CONSTANTS]);
 

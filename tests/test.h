@@ -80,6 +80,7 @@ extern const hb_test hb_tests_table_file[];
 extern const hb_test hb_tests_table_build[];
 extern const hb_test hb_tests_absorption[];
 extern const hb_test hb_tests_shaders[];
+extern const hb_test hb_tests_colour_table[];
 extern const hb_test hb_tests_plan_select[];
 extern const hb_test hb_tests_corpus[];
 extern const hb_test hb_tests_sample[];

@@ -31,7 +31,8 @@ const char cli_model_options_help[] =
     "  --tt-panels N                  huang TT/TRT: Simpson panels over the entry azimuth (default: from quality)\n"
     "  --seed S                       huang TT/TRT: key of the Monte-Carlo numbers (with the row index; default 0)\n"
     "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
-    "  --azimuthal quadrature|table   dFH11 N_p per sample, or from a table built at plan creation\n"
+    "  --azimuthal quadrature|table|colour-table   dFH11 N_p per sample, or from a table built at plan\n"
+    "                                 creation: the material's, or one for every hair colour\n"
     "  --table-tolerance X            dFH11 N_p table: midpoint error bound (default: from quality)\n"
     "  --table FILE.hbt               load the table of `hairbsdf bake` instead of building it (the same\n"
     "                                 material and options as the bake; implies --azimuthal table or --tt-trt table)\n"
@@ -144,7 +145,7 @@ hb_status cli_plan_create(const cli_model_args *args, const hb_options *options,
     }
     if (o.model == HB_MODEL_HUANG)
         o.tt_trt = HB_TT_TRT_TABLE;
-    else
+    else if (o.azimuthal != HB_AZIMUTHAL_COLOUR_TABLE)
         o.azimuthal = HB_AZIMUTHAL_TABLE;
     st = hb_plan_create(&material, &o, plan, error);
     free((void *)o.table_file);
@@ -260,7 +261,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
     static const char *const r_integrations[] = { "auto", "analytic", "numeric", NULL };
     static const char *const tt_trts[] = { "mc", "reference", "table", NULL };
-    static const char *const azimuthals[] = { "quadrature", "table", NULL };
+    static const char *const azimuthals[] = { "quadrature", "table", "colour-table", NULL };
     static const char *const models[] = { "marschner", "deon", "huang", "chiang", NULL };
     static const char *const terms[] = { "full", "longitudinal", NULL };
     static const char *const qualities[] = { "fast", "balanced", "high", "reference", NULL };
@@ -374,7 +375,8 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     } else if (strcmp(name, "--calibration") == 0) {
         o->calibration = value;
     } else if (strcmp(name, "--azimuthal") == 0) {
-        if ((k = pick(value, azimuthals)) >= 0) o->azimuthal = (hb_azimuthal)k; else expected = "quadrature or table";
+        if ((k = pick(value, azimuthals)) >= 0) o->azimuthal = (hb_azimuthal)k;
+        else expected = "quadrature, table or colour-table";
     } else if (strcmp(name, "--sigma-a") == 0) {
         if (!parse_triple(value, m->sigma_a)) expected = "three finite numbers R,G,B";
     } else if (strcmp(name, "--table") == 0) {

@@ -13,7 +13,9 @@ static void bake_usage(FILE *to)
 {
     fprintf(to, "usage: hairbsdf bake [options] [--table-tolerance X] -o FILE.hbt|FILE.exr\n"
                 "deon: N_p per group of lobes sharing an M_p, over (sqrt(cos(theta_d)), |phi|), refined until the\n"
-                "midpoint interpolation error is below X of each group's peak (default: from --quality);\n"
+                "midpoint interpolation error is below X of each group's peak (default: from --quality); with\n"
+                "--azimuthal colour-table one table for every hair colour, one channel over a third axis,\n"
+                "exp(-sigma_a / 2) (.hbt only);\n"
                 "huang: its TT + TRT table (resolution from --quality and the roughness). Prints the axes.\n"
                 "FILE.hbt: the table file of docs/engines.md (header with the material, options, library version\n"
                 "and a checksum; f32 values, axes row-major, then slot, then RGB), which --table FILE.hbt loads\n"
@@ -86,7 +88,12 @@ int cmd_bake(int argc, char **argv)
     }
     hb_options *o = &args.options;
     if (o->model == HB_MODEL_DEON) {
-        o->azimuthal = HB_AZIMUTHAL_TABLE;
+        if (o->azimuthal != HB_AZIMUTHAL_COLOUR_TABLE)
+            o->azimuthal = HB_AZIMUTHAL_TABLE;
+        if (exr && o->azimuthal == HB_AZIMUTHAL_COLOUR_TABLE) {
+            fprintf(stderr, "hairbsdf bake: the colour table holds one channel per slot: write it as .hbt\n");
+            return 2;
+        }
     } else if (o->model == HB_MODEL_HUANG && o->table_tolerance == 0.0) {
         o->tt_trt = HB_TT_TRT_TABLE;
     } else {

@@ -9,11 +9,19 @@ hb_status hb_plan_table(const hb_plan *plan, hb_table_view *v)
     if (!plan || !v)
         return HB_ERR_NULL;
     *v = (hb_table_view){ .model = plan->options.model };
-    hb_status st = hb_model_ops_of(plan->options.model)->table(plan, v);
+    int channels;
+    hb_status st = hb_model_ops_of(plan->options.model)->table(plan, v, &channels);
     if (st != HB_OK)
         return st;
-    v->count = hb_table_count(v);
+    v->count = hb_table_count(v, channels);
     return HB_OK;
+}
+
+int hb_plan_table_channels(const hb_plan *plan)
+{
+    hb_table_view v;
+    int channels = 0;
+    return plan && hb_model_ops_of(plan->options.model)->table(plan, &v, &channels) == HB_OK ? channels : 0;
 }
 
 hb_status hb_table_save(const hb_plan *plan, void *bytes, size_t capacity, size_t *size)
@@ -24,12 +32,13 @@ hb_status hb_table_save(const hb_plan *plan, void *bytes, size_t capacity, size_
     hb_status st = hb_plan_table(plan, &v);
     if (st != HB_OK)
         return st;
-    *size = hb_table_file_write(plan, &v, NULL);
+    int channels = hb_plan_table_channels(plan);
+    *size = hb_table_file_write(plan, &v, channels, NULL);
     if (!bytes)
         return HB_OK;
     if (capacity < *size)
         return HB_ERR_PARAM;
-    hb_table_file_write(plan, &v, bytes);
+    hb_table_file_write(plan, &v, channels, bytes);
     return HB_OK;
 }
 

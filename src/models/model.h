@@ -46,7 +46,8 @@ typedef struct hb_model_ops {
      * model has none, HB_ERR_UNSUPPORTED for plans whose path cannot take it. */
     hb_status (*eval_absorption)(const hb_plan *plan, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
                                  size_t *invalid);
-    hb_status (*table)(const hb_plan *plan, hb_table_view *view); /* HB_ERR_UNSUPPORTED: no table */
+    /* HB_ERR_UNSUPPORTED: no table; channels gets its floats per node and slot */
+    hb_status (*table)(const hb_plan *plan, hb_table_view *view, int *channels);
     /* hb_plan_shader_constants: HB_SHADER_CONSTANTS floats; NULL when the model has no shader. */
     hb_status (*shader_constants)(const hb_plan *plan, float *constants);
     /* Near-field models: the same at each sample's offset h (plan->kernels != NULL); NULL when the

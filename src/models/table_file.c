@@ -1,6 +1,6 @@
 /* Table files: writing a plan's table with its header, and reading one back against a plan.
  * Layout (little-endian; docs/engines.md): "HBTABLE2", u64 file length, char[16] library version,
- * char[16] ISA that built it, u32 model, axes, slots, channels (3); per axis u32 nodes, f64 lo,
+ * char[16] ISA that built it, u32 model, axes, slots, channels (3, or 1 for a colour table); per axis u32 nodes, f64 lo,
  * f64 hi, char[64] what it is; per slot u32 lobe mask; f64 measured error; u32 field count, then
  * per field char[24] name and f64 value (the material and options the table depends on); u64
  * value count; f32 values (axes row-major, then slot, then RGB); u64 XXH64 (seed 0) of every byte before. */
@@ -42,14 +42,17 @@ static int add_array(field *f, int k, const char *name, const double *v, int n)
     return k;
 }
 
-/* Everything of the material and options a table depends on, by name. */
+/* Everything of the material and options a table depends on, by name: a colour table serves every
+ * absorption, so its file names none. */
 static int plan_fields(const hb_plan *plan, field *f)
 {
     const hb_material *m = &plan->material;
     const hb_options *o = &plan->options;
     int k = add(f, 0, "eta", m->eta);
-    k = add_array(f, k, "sigma_a", m->sigma_a, 3);
-    k = add(f, k, "eumelanin", m->eumelanin), k = add(f, k, "pheomelanin", m->pheomelanin);
+    if (o->azimuthal != HB_AZIMUTHAL_COLOUR_TABLE) {
+        k = add_array(f, k, "sigma_a", m->sigma_a, 3);
+        k = add(f, k, "eumelanin", m->eumelanin), k = add(f, k, "pheomelanin", m->pheomelanin);
+    }
     k = add(f, k, "beta_m", m->beta_m), k = add(f, k, "beta_n", m->beta_n), k = add(f, k, "alpha", m->alpha);
     k = add(f, k, "ndf", m->ndf), k = add(f, k, "roughness", m->roughness), k = add(f, k, "eccentricity", m->eccentricity);
     k = add_array(f, k, "lobe_beta_m", m->lobe_beta_m, HB_MAX_LOBES);
@@ -102,7 +105,7 @@ static void put_text(writer *w, const char *text, size_t n)
     put(w, padded, n);
 }
 
-size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *v, unsigned char *out)
+size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *v, int channels, unsigned char *out)
 {
     field fields[MAX_FIELDS];
     int n_fields = plan_fields(plan, fields);
@@ -114,7 +117,7 @@ size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *v, unsigned
     put_text(&w, HB_VERSION_STRING, TEXT_BYTES);
     put_text(&w, hb_isa_name(plan->isa), TEXT_BYTES);
     put_uint(&w, (unsigned)v->model, 4), put_uint(&w, (unsigned)v->axes, 4), put_uint(&w, (unsigned)v->slots, 4);
-    put_uint(&w, 3, 4);
+    put_uint(&w, (unsigned)channels, 4);
     for (int k = 0; k < v->axes; k++) {
         put_uint(&w, (unsigned)v->size[k], 4);
         put_f64(&w, v->lo[k]), put_f64(&w, v->hi[k]);
@@ -253,9 +256,10 @@ hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error 
                             ": bake it again with this library", version);
     hb_table_view *v = &file->layout;
     *v = (hb_table_view){ 0 };
-    int model, channels;
+    int model;
     if (!take_u32(&r, &model, 3) || !take_u32(&r, &v->axes, HB_TABLE_MAX_AXES) ||
-        !take_u32(&r, &v->slots, HB_MAX_LOBES + 1) || !take_u32(&r, &channels, 3) || channels != 3 || v->axes < 1)
+        !take_u32(&r, &v->slots, HB_MAX_LOBES + 1) || !take_u32(&r, &file->channels, 3) ||
+        (file->channels != 3 && file->channels != 1) || v->axes < 1)
         return refuse(error, "its model, axes, slots or channels are out of range");
     v->model = (hb_model)model;
     if (v->model != plan->options.model)
@@ -284,13 +288,16 @@ hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error 
     return HB_OK;
 }
 
-hb_status hb_table_file_values(const hb_table_file *file, const hb_table_view *expected, float *out, hb_error *error)
+hb_status hb_table_file_values(const hb_table_file *file, const hb_table_view *expected, int channels, float *out,
+                               hb_error *error)
 {
     const hb_table_view *v = &file->layout;
-    if (v->axes != expected->axes || v->slots != expected->slots || v->count != expected->count)
+    if (v->axes != expected->axes || v->slots != expected->slots || v->count != expected->count ||
+        file->channels != channels)
         return hb_plan_fail(error, HB_ERR_FILE,
-                            "table file: %d axes, %d slots and %zu values where this plan's table has %d, %d and %zu",
-                            v->axes, v->slots, v->count, expected->axes, expected->slots, expected->count);
+                            "table file: %d axes, %d slots, %d channels and %zu values where this plan's table has %d, %d, "
+                            "%d and %zu", v->axes, v->slots, file->channels, v->count, expected->axes, expected->slots,
+                            channels, expected->count);
     for (int k = 0; k < v->axes; k++)
         if (v->size[k] != expected->size[k] || v->lo[k] != expected->lo[k] || v->hi[k] != expected->hi[k])
             return hb_plan_fail(error, HB_ERR_FILE,

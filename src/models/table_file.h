@@ -12,20 +12,21 @@
  * (without axis names) and its values, still little-endian bytes inside the caller's file. */
 typedef struct hb_table_file {
     hb_table_view layout;
+    int channels; /* per node and slot: 3, or 1 (a colour table) */
     const unsigned char *values;
 } hb_table_file;
 
-/* The floats of a table of this layout: the product of its sizes, times slots, times 3. */
-static inline size_t hb_table_count(const hb_table_view *v)
+/* The floats of a table of this layout: the product of its sizes, times slots, times channels. */
+static inline size_t hb_table_count(const hb_table_view *v, int channels)
 {
-    size_t count = (size_t)v->slots * 3;
+    size_t count = (size_t)v->slots * (size_t)channels;
     for (int k = 0; k < v->axes; k++)
         count *= (size_t)v->size[k];
     return count;
 }
 
 /* The file's length for the plan's table view (hb_table_file_write with out NULL), or writes it. */
-size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *view, unsigned char *out);
+size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *view, int channels, unsigned char *out);
 
 /* Checks plan->options.table_file: length, format, checksum, library version, model, and every
  * material and option field the table depends on; fills file on success. */
@@ -33,6 +34,7 @@ hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error 
 
 /* The file's values into out (expected->count floats) when its layout is `expected` (axes, sizes,
  * ranges, slots and their lobes); every value must be in [0, 1e20]. */
-hb_status hb_table_file_values(const hb_table_file *file, const hb_table_view *expected, float *out, hb_error *error);
+hb_status hb_table_file_values(const hb_table_file *file, const hb_table_view *expected, int channels, float *out,
+                               hb_error *error);
 
 #endif

@@ -106,7 +106,8 @@ hb_status hb_plan_build(const hb_material *material, const hb_options *options, 
     const hb_model_ops *ops = hb_model_ops_of(options->model);
     hb_status st = ops->derive(plan, error);
     hb_table_view view;
-    if (st == HB_OK && options->table_file && ops->table(plan, &view) != HB_OK)
+    int channels;
+    if (st == HB_OK && options->table_file && ops->table(plan, &view, &channels) != HB_OK)
         st = hb_plan_fail(error, HB_ERR_UNSUPPORTED, "a table file is given but this plan has no table to load (dFH11: "
                           "azimuthal = table; HHH22: tt_trt = table)");
     /* the caller's bytes may be freed: the plan keeps only their length */

@@ -109,7 +109,8 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
     if (o->table_file && (o->tolerance > 0.0 || o->budget_ns > 0.0))
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "a table file fixes the configuration it was baked with: give its "
                     "quality and options, not a tolerance or budget_ns");
-    if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE && o->azimuthal != HB_AZIMUTHAL_TABLE)
+    if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE && o->azimuthal != HB_AZIMUTHAL_TABLE &&
+        o->azimuthal != HB_AZIMUTHAL_COLOUR_TABLE)
         return hb_plan_fail(error, HB_ERR_PARAM, "azimuthal = %d is not a variant", (int)o->azimuthal);
     if (!(o->table_tolerance == 0.0 || in_range(o->table_tolerance, 1e-6, 0.5)))
         return hb_plan_fail(error, HB_ERR_PARAM, "table_tolerance = %g must be 0 (from quality) or in [1e-6, 0.5]",

@@ -57,9 +57,9 @@ static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, 
     kernels_of(plan, n)->pdf_near(&plan->chiang, n, in, out, invalid);
 }
 
-static hb_status table(const hb_plan *plan, hb_table_view *view)
+static hb_status table(const hb_plan *plan, hb_table_view *view, int *channels)
 {
-    (void)plan, (void)view;
+    (void)plan, (void)view, (void)channels;
     return HB_ERR_UNSUPPORTED;
 }
 

@@ -45,7 +45,7 @@ hb_status hb_chiang_validate(const hb_material *m, const hb_options *o, hb_error
                             "(0x%x)", o->lobes, all);
     if (o->term != HB_TERM_FULL)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the longitudinal term is dFH11's and MJC03's; chiang has f only");
-    if (o->azimuthal == HB_AZIMUTHAL_TABLE)
+    if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the N_p table is dFH11's (model deon); chiang has none");
     if (o->i0 != HB_I0_ABRAMOWITZ)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "i0: dFH11's 10-term series is the deon model's option");

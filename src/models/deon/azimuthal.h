@@ -347,10 +347,59 @@ HB_INLINE void deon_table_shaped(const hb_deon *d, const deon_geometry *g, const
         out[1] = out[2] = out[0];
 }
 
+/* The colour table (HB_AZIMUTHAL_COLOUR_TABLE): per channel c, N trilinear in (w = log(1 + sigma_a,c /
+ * knee) scaled, |phi|, sqrt(cos(theta_d))) at the channel's absorption (the plan's, or the sample's),
+ * one value per slot. A cell's two corners along w are 2 slots side by side, read four floats at a
+ * time as the material's table reads its rows. */
+HB_INLINE void deon_colour_table_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
+                                        vf out[3], const int slots)
+{
+    vf frac[3], weight[8], m[HB_MAX_LOBES + 1];
+    vi cell[3];
+    cell[1] = table_cell(vf_mul(vf_abs(g->phi), vf_set1((float)(d->table_phi - 1) / HB_PI_F)), d->table_phi, &frac[1]);
+    cell[2] = table_cell(vf_mul(vf_sqrt(g->cos_theta_d), vf_set1((float)(d->table_cd - 1))), d->table_cd, &frac[2]);
+    int stride[3] = { slots, slots * d->table_absorption, slots * d->table_absorption * d->table_phi }, offset[8];
+    HB_UNROLL
+    for (int s = 0; s < slots; s++)
+        m[s] = M[d->table_leader[s]];
+    const int channels = g->grey ? 1 : 3;
+    for (int c = 0; c < channels; c++) {
+        vf w = vf_log(vf_fma(g->absorption[c], vf_set1(d->table_sigma_scale), vf_set1(1.0f))); /* log(1 + sigma_a / knee) */
+        cell[0] = table_cell(vf_mul(w, vf_set1(d->table_w_scale)), d->table_absorption, &frac[0]);
+        vi base = cell_corners(3, cell, frac, stride, weight, offset);
+        out[c] = vf_set1(0.0f);
+        HB_UNROLL
+        for (int k = 0; k < 8; k += 2) { /* corners k and k + 1 differ along x alone */
+            HB_UNROLL
+            for (int first = 0; first < 2 * slots; first += 4) {
+                vf value[4];
+                vf_gather4(d->np_table + offset[k] + first, base, value);
+                HB_UNROLL
+                for (int j = 0; j < 4; j++) {
+                    int v = first + j;
+                    if (v < 2 * slots)
+                        out[c] = vf_fma(vf_mul(weight[k + v / slots], m[v % slots]), value[j], out[c]);
+                }
+            }
+        }
+    }
+    if (channels == 1)
+        out[1] = out[2] = out[0];
+}
+
 /* The slot counts of the standard shape as constants (R, TT, TRT, TRRT and the residual in up to five
  * M_p groups); more slots take the same body with a run-time count. */
 HB_INLINE void deon_table(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
 {
+    if (d->table_absorption) {
+        switch (d->table_slots) {
+        case 1: deon_colour_table_shaped(d, g, M, out, 1); return;
+        case 2: deon_colour_table_shaped(d, g, M, out, 2); return;
+        case 3: deon_colour_table_shaped(d, g, M, out, 3); return;
+        case 4: deon_colour_table_shaped(d, g, M, out, 4); return;
+        default: deon_colour_table_shaped(d, g, M, out, d->table_slots); return;
+        }
+    }
     int channels = d->channels;
 #define HB_TABLE_SLOTS(n)                                                                             \
     case n:                                                                                           \

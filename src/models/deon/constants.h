@@ -94,6 +94,12 @@ typedef struct hb_deon {
     const float *np_table;
     int table_cd, table_phi, table_slots;
     int table_leader[HB_MAX_LOBES + 1];
+    /* HB_AZIMUTHAL_COLOUR_TABLE (src/models/deon/colour_table.c): one channel per slot over a third axis,
+     * w = log(1 + sigma_a / knee) / log(1 + sigma_max / knee) in [0, 1] in table_absorption nodes,
+     * [cd][phi][w][slot]; 0 nodes for a material's own table */
+    int table_absorption;
+    float table_sigma_scale; /* ln(2) / knee: times sigma_a log2(e), sigma_a / knee */
+    float table_w_scale;     /* (nodes - 1) / log(1 + sigma_max / knee): the node coordinate per unit of the log */
 } hb_deon;
 
 /* Whether lobe p (an order up to pmax, or the residual) is in the plan's dFH11 sum, and whether it

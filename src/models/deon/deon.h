@@ -10,7 +10,9 @@ hb_status hb_deon_derive(hb_plan *plan, hb_error *error);
 void hb_deon_release(hb_plan *plan);
 void hb_deon_derive_sampling(hb_plan *plan);                       /* sample_plan.c */
 hb_status hb_deon_build_table(hb_plan *plan, hb_error *error);    /* table_build.c */
-hb_status hb_deon_table_view(const hb_plan *plan, hb_table_view *view); /* table_build.c */
+hb_status hb_deon_table_view(const hb_plan *plan, hb_table_view *view, int *channels); /* table_build.c */
+hb_status hb_deon_build_colour_table(hb_plan *plan, hb_error *error);                  /* colour_table.c */
+hb_status hb_deon_colour_table_view(const hb_plan *plan, hb_table_view *view, int *channels);
 hb_status hb_deon_shader_constants(const hb_plan *plan, float *constants); /* table_build.c */
 
 #endif

@@ -37,8 +37,8 @@ HB_INLINE vf deon_f_pdf_angles(const hb_deon *d, const vf a[4], hb_i0 i0, vf f[3
     return deon_f_pdf(d, M, &g, a[2], f);
 }
 
-/* f by quadrature at each sample's absorption a[4..6] (load_absorbing): the plan's geometry with the
- * sample's sigma_a in every channel, three channels computed. */
+/* f at each sample's absorption a[4..6] (load_absorbing), by the quadrature or the colour table: the
+ * plan's geometry with the sample's sigma_a in every channel, three channels computed. */
 HB_INLINE void deon_absorbing_angles(const hb_deon *d, const vf a[7], hb_i0 i0, vf f[3])
 {
     vf M[HB_MAX_LOBES + 1];
@@ -48,7 +48,7 @@ HB_INLINE void deon_absorbing_angles(const hb_deon *d, const vf a[7], hb_i0 i0, 
     for (int c = 0; c < 3; c++)
         g.absorption[c] = a[4 + c];
     g.grey = 0;
-    deon_quadrature(d, &g, M, f);
+    deon_eval(d, &g, M, f);
 }
 
 /* Calls of fewer than HB_DEON_ONE_MAX samples on a standard quadrature plan take each sample alone

@@ -68,11 +68,12 @@ static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_
         deon_kernels_for(plan, n, !in->vectors.wi_x)->f_pdf[plan->options.i0](&plan->deon, n, in, out, pdf, invalid);
 }
 
-/* Per-sample absorption by the quadrature: a table holds N_p of the plan's own absorption. */
+/* Per-sample absorption by the quadrature or the colour table: a material's own table holds N_p of
+ * its own absorption. */
 static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
                                  size_t *invalid)
 {
-    if (plan->deon.np_table || plan->options.term != HB_TERM_FULL)
+    if ((plan->deon.np_table && !plan->deon.table_absorption) || plan->options.term != HB_TERM_FULL)
         return HB_ERR_UNSUPPORTED;
     ((const hb_deon_kernels *)hb_kernels_for(plan, n))->absorbing[plan->options.i0](&plan->deon, n, in, out, invalid);
     return HB_OK;
@@ -108,7 +109,13 @@ static void describe(hb_text *t, const hb_plan *plan)
     hb_say(t, "M_p (eq. 7): %s I0; %d distinct M_p per sample (lobes with the same roughness and shift share one%s)\n",
         plan->options.i0 == HB_I0_ABRAMOWITZ ? "A&S 9.8.1/9.8.2" : "the paper's 10-term series for", groups,
         plan->material.alpha == 0.0 ? "; no tilt" : "");
-    if (d->np_table)
+    if (d->table_absorption)
+        hb_say(t, "N_p (eq. 10): per channel, trilinear from one colour table, %d x %d x %d per M_p group over "
+               "sqrt(cos theta_d) x |phi| x log(1 + sigma_a / 0.001) for every absorption up to %g (midpoint error "
+               "%.2g of each group's peak), built with the order-%d Gauss-Legendre rule%s\n", d->table_cd,
+               d->table_phi, d->table_absorption, HB_COLOUR_TABLE_SIGMA_MAX, plan->table_error, d->order,
+               d->mapped ? " (mapped)" : "");
+    else if (d->np_table)
         hb_say(t, "N_p (eq. 10): bilinear from a %d x %d table per M_p group over sqrt(cos theta_d) x |phi| "
                "(midpoint error %.2g of each group's peak), built with the order-%d Gauss-Legendre rule%s\n",
             d->table_cd, d->table_phi, plan->table_error, d->order, d->mapped ? " (mapped)" : "");

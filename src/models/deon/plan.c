@@ -195,7 +195,7 @@ hb_status hb_deon_validate(const hb_material *m, const hb_options *o, hb_error *
     if (m->eccentricity > 0.0)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "eccentricity = %g: the deon model is for circular fibres (dFH11 "
                             "sec. 4); marschner and huang have elliptical ones", m->eccentricity);
-    if (o->azimuthal == HB_AZIMUTHAL_TABLE) {
+    if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE) {
         if (o->term != HB_TERM_FULL || o->quality == HB_QUALITY_REFERENCE)
             return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the N_p table is a float fast path of the full model: not with "
                                 "the longitudinal term or the reference quality");
@@ -212,6 +212,8 @@ hb_status hb_deon_derive(hb_plan *plan, hb_error *error)
     HB_PLAN_SET_KERNELS(plan, kernels_by_isa, plan->options.quality == HB_QUALITY_REFERENCE);
     derive_constants(plan);
     hb_deon_derive_sampling(plan);
+    if (plan->options.azimuthal == HB_AZIMUTHAL_COLOUR_TABLE)
+        return hb_deon_build_colour_table(plan, error);
     return plan->options.azimuthal == HB_AZIMUTHAL_TABLE ? hb_deon_build_table(plan, error) : HB_OK;
 }
 

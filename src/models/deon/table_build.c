@@ -5,19 +5,36 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "deon.h"
 #include "models/build_tasks.h"
 #include "models/table_file.h"
+#include "table.h"
 
-static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
+#define MAX_PHI HB_DEON_TABLE_MAX_PHI
+#define MAX_CD HB_DEON_TABLE_MAX_CD
+#define MAX_WORK HB_DEON_TABLE_MAX_WORK
 
-/* The largest table: 4097 azimuths x 513 values of cos(theta_d) (a beta_n near 0.01 at 1e-4), and the
- * most quadrature-node evaluations one build attempt may make (3 grids of nodes x quadrature nodes):
- * about 0.2 s on one AVX2 core. */
-#define MAX_PHI 4097
-#define MAX_CD 513
-#define MAX_WORK 1e8
-#define HB_TABLE_READ_PAD 4
+void hb_deon_table_slots(hb_deon *d)
+{
+    d->table_slots = 0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        if (hb_deon_group_leader(d, p))
+            d->table_leader[d->table_slots++] = p;
+}
+
+double hb_deon_table_tolerance(const hb_plan *plan)
+{
+    static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
+    return plan->options.table_tolerance > 0.0 ? plan->options.table_tolerance
+                                               : tolerance_of_quality[plan->options.quality];
+}
+
+void hb_deon_slot_lobes(const hb_deon *d, hb_table_view *v)
+{
+    for (int s = 0; s < d->table_slots; s++)
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            if (hb_deon_lobe_on(d, p) && d->m_group[p] == d->table_leader[s])
+                v->slot_lobes[s] |= 1u << p;
+}
 
 /* The rows of one grid: N at cos(theta_d) = cd[j] for the azimuths phi[0..n_phi), row j at out + j * row. */
 typedef struct row_grid {
@@ -44,19 +61,14 @@ static hb_status build_rows(const hb_plan *plan, int n_cd, const double *cd, int
     return hb_build_tasks(&plan->options, n_cd, hb_build_part(n_cd), build_row, &grid, from, to, error);
 }
 
-/* Uniform node coordinates in [0, hi]; with `half`, the midpoints. */
-static void axis_nodes(int n, double hi, int half, double *nodes)
+void hb_deon_axis_nodes(int n, double lo, double hi, int half, double *nodes)
 {
     for (int k = 0; k < n - half; k++)
-        nodes[k] = hi * (k + 0.5 * half) / (n - 1);
+        nodes[k] = lo + (hi - lo) * (k + 0.5 * half) / (n - 1);
 }
 
-/* The largest |interpolated - direct| / peak of the slot and channel, over the midpoints of one
- * axis: mid[a][b] holds direct values at `lines` x `mids` midpoints (row a of `values`, `line_stride`
- * floats long, azimuth node b); the interpolant there is the mean of node (a, b) and the node
- * `step` floats after it (the next azimuth or the next row). */
-static double midpoint_error(const float *values, const float *mid, int lines, int mids, size_t line_stride,
-                             size_t step, size_t mid_line_stride, int texel, const double *peak)
+double hb_deon_midpoint_error(const float *values, const float *mid, int lines, int mids, size_t line_stride,
+                              size_t step, size_t mid_line_stride, int texel, const double *peak, int peaks)
 {
     double worst = 0.0;
     for (int a = 0; a < lines; a++)
@@ -65,7 +77,7 @@ static double midpoint_error(const float *values, const float *mid, int lines, i
                 const float *node = values + (size_t)a * line_stride + (size_t)b * (size_t)texel + (size_t)v;
                 double interpolated = 0.5 * ((double)node[0] + (double)node[step]);
                 double direct = mid[(size_t)a * mid_line_stride + (size_t)b * (size_t)texel + (size_t)v];
-                double e = fabs(interpolated - direct) / fmax(peak[v], 1e-30);
+                double e = fabs(interpolated - direct) / fmax(peak[v % peaks], 1e-30);
                 worst = fmax(worst, e);
             }
     return worst;
@@ -79,11 +91,8 @@ static void layout(const hb_plan *plan, int n_cd, int n_phi, hb_table_view *v)
                           .lo = { 0.0, 0.0 }, .hi = { 1.0, M_PI },
                           .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]" },
                           .slots = d->table_slots };
-    for (int s = 0; s < d->table_slots; s++)
-        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-            if (hb_deon_lobe_on(d, p) && d->m_group[p] == d->table_leader[s])
-                v->slot_lobes[s] |= 1u << p;
-    v->count = hb_table_count(v);
+    hb_deon_slot_lobes(d, v);
+    v->count = hb_table_count(v, 3);
 }
 
 static void install(hb_plan *plan, float *values, int n_cd, int n_phi, double error)
@@ -111,7 +120,7 @@ static hb_status load_table(hb_plan *plan, double tol, hb_error *error)
     float *values = calloc(expected.count + HB_TABLE_READ_PAD, sizeof *values);
     if (!values)
         return hb_plan_fail(error, HB_ERR_NOMEM, "could not allocate the deon N_p table (%d x %d nodes)", n_cd, n_phi);
-    st = hb_table_file_values(&file, &expected, values, error);
+    st = hb_table_file_values(&file, &expected, 3, values, error);
     if (st != HB_OK) {
         free(values);
         return st;
@@ -123,12 +132,8 @@ static hb_status load_table(hb_plan *plan, double tol, hb_error *error)
 hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
 {
     hb_deon *d = &plan->deon;
-    d->table_slots = 0;
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        if (hb_deon_group_leader(d, p))
-            d->table_leader[d->table_slots++] = p;
-    double tol = plan->options.table_tolerance > 0.0 ? plan->options.table_tolerance
-                                                     : tolerance_of_quality[plan->options.quality];
+    hb_deon_table_slots(d);
+    double tol = hb_deon_table_tolerance(plan);
     if (plan->options.table_file)
         return load_table(plan, tol, error);
     int texel = 3 * d->table_slots, n_phi = 33, n_cd = 9;
@@ -152,16 +157,16 @@ hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
             return hb_plan_fail(error, HB_ERR_NOMEM, "could not allocate the deon N_p table (%d x %d nodes)", n_cd,
                               n_phi);
         }
-        axis_nodes(n_cd, 1.0, 0, cd);
-        axis_nodes(n_cd, 1.0, 1, cd + n_cd);
+        hb_deon_axis_nodes(n_cd, 0.0, 1.0, 0, cd);
+        hb_deon_axis_nodes(n_cd, 0.0, 1.0, 1, cd + n_cd);
         /* nodes uniform in sqrt(cos(theta_d)): near theta_d = pi/2 the Fresnel factors rise like
          * cos^2(theta_d) over a narrow range (measured: 4x less error per halving, against 2x in cos) */
         for (int k = 0; k < 2 * n_cd - 1; k++)
             cd[k] *= cd[k];
-        axis_nodes(n_phi, M_PI, 0, angle);
+        hb_deon_axis_nodes(n_phi, 0.0, M_PI, 0, angle);
         for (int k = 0; k < n_phi; k++)
             phi[k] = (float)angle[k];
-        axis_nodes(n_phi, M_PI, 1, angle);
+        hb_deon_axis_nodes(n_phi, 0.0, M_PI, 1, angle);
         for (int k = 0; k + 1 < n_phi; k++)
             phi[n_phi + k] = (float)angle[k];
         /* each attempt at least doubles the work: it takes half of what is left of the progress */
@@ -181,9 +186,9 @@ hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
             for (int v = 0; v < texel; v++)
                 peak[v] = fmax(peak[v], values[k * (size_t)texel + (size_t)v]);
         size_t row = (size_t)n_phi * (size_t)texel;
-        double error_phi = midpoint_error(values, mid_phi, n_cd, n_phi - 1, row, (size_t)texel,
-                                          (size_t)(n_phi - 1) * (size_t)texel, texel, peak);
-        double error_cd = midpoint_error(values, mid_cd, n_cd - 1, n_phi, row, row, row, texel, peak);
+        double error_phi = hb_deon_midpoint_error(values, mid_phi, n_cd, n_phi - 1, row, (size_t)texel,
+                                                  (size_t)(n_phi - 1) * (size_t)texel, texel, peak, texel);
+        double error_cd = hb_deon_midpoint_error(values, mid_cd, n_cd - 1, n_phi, row, row, row, texel, peak, texel);
         free(mid_phi), free(mid_cd), free(phi), free(cd), free(angle), free(peak);
         /* bilinear error at a cell's centre is about the sum of the two axes' midpoint errors */
         if (error_phi + error_cd <= tol) {
@@ -203,10 +208,13 @@ hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
     }
 }
 
-hb_status hb_deon_table_view(const hb_plan *plan, hb_table_view *v)
+hb_status hb_deon_table_view(const hb_plan *plan, hb_table_view *v, int *channels)
 {
     if (!plan->deon_table)
         return HB_ERR_UNSUPPORTED;
+    if (plan->deon.table_absorption)
+        return hb_deon_colour_table_view(plan, v, channels);
+    *channels = 3;
     layout(plan, plan->deon.table_cd, plan->deon.table_phi, v);
     v->values = plan->deon_table;
     v->error = plan->table_error;
@@ -220,6 +228,10 @@ hb_status hb_deon_shader_constants(const hb_plan *plan, float *k)
     if (!plan->deon_table)
         return HB_ERR_UNSUPPORTED;
     k[0] = (float)d->table_cd, k[1] = (float)d->table_phi, k[2] = (float)d->table_slots;
+    if (d->table_absorption) { /* the colour table's axis, for sigma_a itself (the plan keeps sigma_a log2(e)) */
+        k[3] = (float)d->table_absorption;
+        k[40] = (float)(d->table_sigma_scale / M_LN2), k[41] = d->table_w_scale;
+    }
     for (int s = 0; s < d->table_slots; s++) {
         const hb_longitudinal *l = &d->longitudinal[d->table_leader[s]];
         k[4 + 4 * s] = l->inv_v_f, k[5 + 4 * s] = l->inv_v_log2e_f, k[6 + 4 * s] = l->log2_norm_f;

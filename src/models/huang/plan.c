@@ -14,7 +14,7 @@ hb_status hb_huang_validate(const hb_material *m, const hb_options *o, hb_error 
     if (o->lobes != HB_LOBES_DEFAULT && (o->lobes & ~7u))
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the huang model has R, TT and TRT only (HHH22 eq. 3)",
                             o->lobes);
-    if (o->azimuthal == HB_AZIMUTHAL_TABLE)
+    if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the N_p table is dFH11's (model deon); huang tabulates TT/TRT "
                             "with tt_trt = table");
     if (o->term != HB_TERM_FULL)

@@ -85,7 +85,7 @@ static void layout(const hb_plan *plan, hb_table_view *v)
     v->slots = 1;
     v->slot_lobes[0] = plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT);
     v->error = NAN;
-    v->count = hb_table_count(v);
+    v->count = hb_table_count(v, 3);
 }
 
 /* The table of options.table_file, on the grid this plan would build. */
@@ -100,7 +100,7 @@ static hb_status load_table(hb_plan *plan, hb_error *error)
     float *values = malloc(expected.count * sizeof *values);
     if (!values)
         return out_of_memory(error, NULL, NULL, NULL);
-    st = hb_table_file_values(&file, &expected, values, error);
+    st = hb_table_file_values(&file, &expected, 3, values, error);
     if (st != HB_OK) {
         free(values);
         return st;
@@ -184,10 +184,11 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
     return HB_OK;
 }
 
-hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *v)
+hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *v, int *channels)
 {
     if (!plan->huang_table)
         return HB_ERR_UNSUPPORTED;
+    *channels = 3;
     layout(plan, v);
     v->values = plan->huang_table;
     return HB_OK;

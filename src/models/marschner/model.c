@@ -60,9 +60,9 @@ static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbi
     return HB_OK;
 }
 
-static hb_status table(const hb_plan *plan, hb_table_view *view)
+static hb_status table(const hb_plan *plan, hb_table_view *view, int *channels)
 {
-    (void)plan, (void)view;
+    (void)plan, (void)view, (void)channels;
     return HB_ERR_UNSUPPORTED;
 }
 

@@ -11,7 +11,7 @@ hb_status hb_marschner_validate(const hb_material *m, const hb_options *o, hb_er
     (void)m;
     if (o->term == HB_TERM_FULL && o->lobes != HB_LOBES_DEFAULT && (o->lobes & ~7u))
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "lobes = 0x%x: the marschner model has R, TT and TRT only", o->lobes);
-    if (o->azimuthal == HB_AZIMUTHAL_TABLE)
+    if (o->azimuthal != HB_AZIMUTHAL_QUADRATURE)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "the N_p table is dFH11's (model deon); marschner has none");
     return HB_OK;
 }
