@@ -40,13 +40,19 @@ void hb_test_note(hb_test_ctx *t, const char *fmt, ...)
     va_end(ap);
 }
 
+void hb_test_skip(hb_test_ctx *t, const char *reason)
+{
+    t->skipped = 1;
+    snprintf(t->skip_reason, sizeof t->skip_reason, "%s", reason);
+}
+
 const char *hb_test_tool(hb_test_ctx *t)
 {
     const char *tool = getenv("HB_TOOL");
     if (tool && *tool)
         return tool;
 #ifdef _WIN32
-    t->skipped = 1;
+    hb_test_skip(t, "it drives the tool through a POSIX shell");
 #else
     CHECK(t, 0, "HB_TOOL is not set (make test sets it)");
 #endif
@@ -211,10 +217,11 @@ int main(int argc, char **argv)
             int runs = test->per_isa ? nisa : 1;
             char failing[64] = "";
             int skipped_runs = 0;
+            char skip_reason[160] = "";
             double t0 = seconds_now();
             for (int r = 0; r < runs; r++) {
                 hb_test_ctx t = { test->name, test->per_isa ? isas[r] : HB_ISA_AUTO, NULL,
-                                  seed ^ name_hash(test->name), 0, !long_tier, emulated, 0 };
+                                  seed ^ name_hash(test->name), 0, !long_tier, emulated, 0, "" };
                 t.hooks = test->per_isa ? hb_kernel_hooks_for(t.isa) : NULL;
                 test->run(&t);
                 fflush(stdout);
@@ -222,6 +229,7 @@ int main(int argc, char **argv)
                     printf("    ... and %u more failed checks\n", t.failures - MAX_REPORTED_FAILURES);
                 if (t.skipped && !t.failures) {
                     skipped++, skipped_runs++;
+                    snprintf(skip_reason, sizeof skip_reason, "%s", t.skip_reason);
                     continue;
                 }
                 if (t.failures) {
@@ -236,7 +244,7 @@ int main(int argc, char **argv)
             if (*failing)
                 printf("FAIL %s [%s ] %.0f ms\n", test->name, failing, ms);
             else if (skipped_runs == runs)
-                printf("skip %s: it drives the tool through a POSIX shell\n", test->name);
+                printf("skip %s: %s\n", test->name, skip_reason);
             else
                 printf("ok   %s%s %.0f ms\n", test->name, test->per_isa ? " [every ISA]" : "", ms);
             fflush(stdout);

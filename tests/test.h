@@ -21,7 +21,8 @@ typedef struct hb_test_ctx {
     unsigned failures;
     int quick;    /* the quick tier (make test): heavy tests run a subset of their cases; 0: the long tier */
     int emulated; /* running under qemu ($HB_TEST_EMULATED): nothing that needs the native machine (valgrind) */
-    int skipped;  /* set by hb_test_tool: the test could not run here and is counted as skipped */
+    int skipped;  /* set by hb_test_skip: the test could not run here and is counted as skipped */
+    char skip_reason[160];
 } hb_test_ctx;
 
 typedef struct hb_test {
@@ -41,6 +42,8 @@ void hb_test_note(hb_test_ctx *t, const char *fmt, ...) HB_PRINTF_FORMAT(2, 3);
 
 /* The hairbsdf tool the tests drive through a POSIX shell ($HB_TOOL, which make test sets). On
  * Windows, where it is not set, the test is skipped; elsewhere a missing HB_TOOL fails it. */
+/* Marks the test as skipped here, for the reason the runner prints. */
+void hb_test_skip(hb_test_ctx *t, const char *reason);
 const char *hb_test_tool(hb_test_ctx *t);
 
 /* A whole file, NUL-terminated (its size without the NUL in *size, which may be NULL); malloc'd,
