@@ -6,7 +6,9 @@
 #ifndef HAIRBSDF_DEON_GLSL
 #define HAIRBSDF_DEON_GLSL
 
+#ifndef HB_CONST
 #define HB_CONST const
+#endif
 
 #include "hairbsdf_deon_body.inc"
 

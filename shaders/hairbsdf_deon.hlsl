@@ -6,9 +6,11 @@
 #ifndef HAIRBSDF_DEON_HLSL
 #define HAIRBSDF_DEON_HLSL
 
+#ifndef HB_CONST
 #define HB_CONST static const
 #define vec3 float3
 #define vec4 float4
+#endif
 
 #include "hairbsdf_deon_body.inc"
 

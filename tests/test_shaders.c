@@ -49,38 +49,67 @@ typedef struct shader_material {
     double beta_m, beta_n, eta, alpha;
 } shader_material;
 
-static void test_shaders_match_cpu(hb_test_ctx *t)
+/* The Vulkan device and both kernels compiled, or NULL with the test skipped (or failed) saying why. */
+static hb_gpu *open_kernels(hb_test_ctx *t, const char *glsl, const char *hlsl, uint32_t *code[2], size_t sizes[2],
+                            char *name, size_t name_size)
 {
-    char name[256] = "", why[256] = "";
+    char why[256] = "";
 #ifdef HB_SANITIZED
     const int sanitized = 1; /* the sanitizers would instrument this program, not Mesa's JIT-compiled shaders */
 #else
     const int sanitized = 0;
 #endif
+    code[0] = code[1] = NULL;
     if (t->emulated || sanitized || system("glslangValidator --version > /dev/null 2>&1") != 0) {
         hb_test_skip(t, t->emulated ? "emulated" : sanitized ? "a sanitizer build (Mesa's JIT is not instrumented)"
                                                              : "no glslangValidator (Debian's glslang-tools)");
-        return;
+        return NULL;
     }
-    hb_gpu *gpu = hb_gpu_open(name, sizeof name, why, sizeof why);
+    hb_gpu *gpu = hb_gpu_open(name, name_size, why, sizeof why);
     if (!gpu) {
         hb_test_skip(t, why);
-        return;
+        return NULL;
     }
-    size_t sizes[2] = { 0, 0 };
-    uint32_t *code[2] = { compile("tests/shaders/deon_eval.comp", 0, &sizes[0], why, sizeof why),
-                          compile("tests/shaders/deon_eval.hlsl", 1, &sizes[1], why, sizeof why) };
+    code[0] = compile(glsl, 0, &sizes[0], why, sizeof why);
+    code[1] = compile(hlsl, 1, &sizes[1], why, sizeof why);
     CHECK(t, code[0] && code[1], "%s", why);
-    static const shader_material materials[] = {
-        { "default", 0.1, 0.3, 1.55, 0.035 },
-        { "smooth", 0.05, 0.15, 1.55, 0.05 },
-        { "rough, eta 1.3", 0.3, 0.6, 1.3, 0.02 },
-        { "untilted, eta 1.9", 0.15, 0.4, 1.9, 0.0 },
-    };
-    static const double colours[3][2] = { { 0.1, 0.05 }, { 1.3, 0.4 }, { 3.0, 0.2 } }; /* blond, brown, dark brown */
-    static float angles[4 * DIRECTIONS], gpu_f[3 * DIRECTIONS], cpu_f[3][DIRECTIONS], params[PARAMS];
-    static float sigma_a[3 * DIRECTIONS];
-    for (int k = 0; k < DIRECTIONS; k++) { /* a quarter on the specular cone, a tenth grazing */
+    return gpu;
+}
+
+/* The largest |GPU - CPU| / peak of the CPU's f over a dispatch of both kernels, into worst[language]. */
+static void compare_kernels(hb_test_ctx *t, hb_gpu *gpu, uint32_t *const code[2], const size_t sizes[2], int buffers,
+                            float *const *data, const size_t *counts, const float (*cpu_f)[DIRECTIONS], const char *what,
+                            double worst[2])
+{
+    static float gpu_f[3 * DIRECTIONS];
+    char why[256];
+    double peak = 0.0;
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < DIRECTIONS; k++)
+            peak = fmax(peak, cpu_f[c][k]);
+    float *bound[8];
+    for (int b = 0; b < buffers; b++)
+        bound[b] = b == 3 ? gpu_f : data[b]; /* buffer 3 is the output */
+    for (int lang = 0; lang < 2; lang++) {
+        memset(gpu_f, 0, sizeof gpu_f);
+        if (hb_gpu_run(gpu, code[lang], sizes[lang], buffers, bound, counts, DIRECTIONS / GROUP, why, sizeof why) != 0) {
+            CHECK(t, 0, "%s: %s", lang ? "HLSL" : "GLSL", why);
+            continue;
+        }
+        double err = 0.0;
+        for (int c = 0; c < 3; c++)
+            for (int k = 0; k < DIRECTIONS; k++)
+                err = fmax(err, fabs((double)gpu_f[c * DIRECTIONS + k] - cpu_f[c][k]) / peak);
+        CHECK(t, err <= 1e-4, "%s, %s: shader differs from the CPU by %.3g of the peak %.3g", lang ? "HLSL" : "GLSL",
+              what, err, peak);
+        worst[lang] = fmax(worst[lang], err);
+    }
+}
+
+/* Directions for the shader tests: a quarter on the specular cone, a tenth grazing. */
+static void shader_directions(hb_test_ctx *t, float *angles)
+{
+    for (int k = 0; k < DIRECTIONS; k++) {
         float ti = (float)hb_test_range(t, -1.55, 1.55);
         float to = k % 4 == 0 ? -ti + (float)hb_test_range(t, -0.1, 0.1) : (float)hb_test_range(t, -1.55, 1.55);
         if (k % 10 == 1)
@@ -89,6 +118,27 @@ static void test_shaders_match_cpu(hb_test_ctx *t)
         angles[2 * DIRECTIONS + k] = fmaxf(-1.5707f, fminf(1.5707f, to));
         angles[3 * DIRECTIONS + k] = (float)hb_test_range(t, -M_PI, M_PI);
     }
+}
+
+static void test_shaders_match_cpu(hb_test_ctx *t)
+{
+    char name[256] = "";
+    size_t sizes[2] = { 0, 0 };
+    uint32_t *code[2];
+    hb_gpu *gpu = open_kernels(t, "tests/shaders/deon_eval.comp", "tests/shaders/deon_eval.hlsl", code, sizes, name,
+                               sizeof name);
+    if (!gpu)
+        return;
+    static const shader_material materials[] = {
+        { "default", 0.1, 0.3, 1.55, 0.035 },
+        { "smooth", 0.05, 0.15, 1.55, 0.05 },
+        { "rough, eta 1.3", 0.3, 0.6, 1.3, 0.02 },
+        { "untilted, eta 1.9", 0.15, 0.4, 1.9, 0.0 },
+    };
+    static const double colours[3][2] = { { 0.1, 0.05 }, { 1.3, 0.4 }, { 3.0, 0.2 } }; /* blond, brown, dark brown */
+    static float angles[4 * DIRECTIONS], cpu_f[3][DIRECTIONS], params[PARAMS];
+    static float sigma_a[3 * DIRECTIONS];
+    shader_directions(t, angles);
     double worst[2][2] = { { 0.0, 0.0 }, { 0.0, 0.0 } }; /* [strand colours][language] */
     for (int k = 0; k < DIRECTIONS; k++) { /* each direction's strand: blond, brown or black */
         static const double strand[3][2] = { { 0.1, 0.05 }, { 1.3, 0.4 }, { 8.0, 0.0 } };
@@ -126,26 +176,11 @@ static void test_shaders_match_cpu(hb_test_ctx *t)
                                           (hb_rgb_soa){ cpu_f[0], cpu_f[1], cpu_f[2] }, NULL);
             else
                 hb_eval_angles(plan, DIRECTIONS, in, (hb_rgb_soa){ cpu_f[0], cpu_f[1], cpu_f[2] }, NULL);
-            double peak = 0.0;
-            for (int c = 0; c < 3; c++)
-                for (int k = 0; k < DIRECTIONS; k++)
-                    peak = fmax(peak, cpu_f[c][k]);
-            for (int lang = 0; lang < 2; lang++) {
-                float *data[5] = { params, (float *)v.values, angles, gpu_f, sigma_a };
-                size_t counts[5] = { PARAMS, v.count, 4 * DIRECTIONS, 3 * DIRECTIONS, 3 * DIRECTIONS };
-                memset(gpu_f, 0, sizeof gpu_f);
-                if (hb_gpu_run(gpu, code[lang], sizes[lang], 5, data, counts, DIRECTIONS / GROUP, why, sizeof why) != 0) {
-                    CHECK(t, 0, "%s: %s", lang ? "HLSL" : "GLSL", why);
-                    continue;
-                }
-                double err = 0.0;
-                for (int c = 0; c < 3; c++)
-                    for (int k = 0; k < DIRECTIONS; k++)
-                        err = fmax(err, fabs((double)gpu_f[c * DIRECTIONS + k] - cpu_f[c][k]) / peak);
-                CHECK(t, err <= 1e-4, "%s, %s, %s: shader differs from the CPU table path by %.3g of the peak %.3g",
-                      lang ? "HLSL" : "GLSL", s->name, strands ? "strand colours" : "one colour", err, peak);
-                worst[strands][lang] = fmax(worst[strands][lang], err);
-            }
+            float *data[5] = { params, (float *)v.values, angles, NULL, sigma_a };
+            size_t counts[5] = { PARAMS, v.count, 4 * DIRECTIONS, 3 * DIRECTIONS, 3 * DIRECTIONS };
+            char what[96];
+            snprintf(what, sizeof what, "%s, %s", s->name, strands ? "strand colours" : "one colour");
+            compare_kernels(t, gpu, code, sizes, 5, data, counts, (const float(*)[DIRECTIONS])cpu_f, what, worst[strands]);
             hb_plan_destroy(plan);
         }
     hb_test_note(t, "%s: largest difference from the CPU table path, of each material's peak: own tables GLSL %.2g, "
@@ -156,7 +191,63 @@ static void test_shaders_match_cpu(hb_test_ctx *t)
     hb_gpu_close(gpu);
 }
 
+/* HHH22: the App. A R lobe and the TT/TRT table, 4 materials x 3 colours (each its own plan). */
+static void test_huang_shader(hb_test_ctx *t)
+{
+    char name[256] = "";
+    size_t sizes[2] = { 0, 0 };
+    uint32_t *code[2];
+    hb_gpu *gpu = open_kernels(t, "tests/shaders/huang_eval.comp", "tests/shaders/huang_eval.hlsl", code, sizes, name,
+                               sizeof name);
+    if (!gpu)
+        return;
+    static const struct {
+        const char *name;
+        double roughness, eta, alpha;
+    } materials[] = { { "GGX 0.1", 0.1, 1.55, 0.035 }, { "GGX 0.3, eta 1.3", 0.3, 1.3, 0.0 },
+                      { "GGX 0.2, tilt 0.06", 0.2, 1.55, 0.06 }, { "GGX 0.5, eta 1.9", 0.5, 1.9, 0.02 } };
+    static const double colours[3][2] = { { 0.1, 0.05 }, { 1.3, 0.4 }, { 3.0, 0.2 } };
+    static float angles[4 * DIRECTIONS], cpu_f[3][DIRECTIONS], params[PARAMS];
+    shader_directions(t, angles);
+    double worst[2] = { 0.0, 0.0 };
+    for (size_t mi = 0; code[0] && code[1] && mi < sizeof materials / sizeof materials[0]; mi++)
+        for (int ci = 0; ci < 3; ci++) {
+            hb_material m;
+            hb_options o;
+            hb_material_default(&m);
+            hb_options_default(&o);
+            m.roughness = materials[mi].roughness, m.eta = materials[mi].eta, m.alpha = materials[mi].alpha;
+            m.eumelanin = colours[ci][0], m.pheomelanin = colours[ci][1];
+            o.model = HB_MODEL_HUANG, o.quality = HB_QUALITY_FAST, o.tt_trt = HB_TT_TRT_TABLE;
+            o.shadowing = HB_SHADOWING_NONE; /* App. A's closed form is without G */
+            hb_plan *plan;
+            hb_error error;
+            hb_table_view v;
+            if (hb_plan_create(&m, &o, &plan, &error) != HB_OK || hb_plan_table(plan, &v) != HB_OK ||
+                hb_plan_shader_constants(plan, params) != HB_OK) {
+                CHECK(t, 0, "%s: %s", materials[mi].name, error.message);
+                continue;
+            }
+            params[HB_SHADER_CONSTANTS] = (float)DIRECTIONS;
+            hb_eval_angles(plan, DIRECTIONS,
+                           (hb_angles_soa){ angles, angles + DIRECTIONS, angles + 2 * DIRECTIONS, angles + 3 * DIRECTIONS },
+                           (hb_rgb_soa){ cpu_f[0], cpu_f[1], cpu_f[2] }, NULL);
+            float *data[4] = { params, (float *)v.values, angles, NULL };
+            size_t counts[4] = { PARAMS, v.count, 4 * DIRECTIONS, 3 * DIRECTIONS };
+            char what[96];
+            snprintf(what, sizeof what, "%s, colour %d", materials[mi].name, ci);
+            compare_kernels(t, gpu, code, sizes, 4, data, counts, (const float(*)[DIRECTIONS])cpu_f, what, worst);
+            hb_plan_destroy(plan);
+        }
+    hb_test_note(t, "%s: HHH22 R + TT/TRT, largest difference from the CPU, of each material's peak: GLSL %.2g, HLSL %.2g",
+                 name, worst[0], worst[1]);
+    free(code[0]);
+    free(code[1]);
+    hb_gpu_close(gpu);
+}
+
 const hb_test hb_tests_shaders[] = {
     { "shaders_match_cpu_table_path", test_shaders_match_cpu, 0 },
+    { "shaders_huang_match_cpu", test_huang_shader, 0 },
     { NULL, NULL, 0 },
 };

@@ -136,6 +136,7 @@ const hb_model_ops hb_huang_model = {
     .pdf = pdf,
     .eval_pdf = eval_pdf,
     .table = hb_huang_table_view,
+    .shader_constants = hb_huang_shader_constants,
     .describe = describe,
     .furnace_rule = furnace_rule,
     .rekey = rekey,

@@ -193,3 +193,24 @@ hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *v, int *channe
     v->values = plan->huang_table;
     return HB_OK;
 }
+
+/* shaders/hairbsdf_huang_body.inc reads the R lobe's App. A constants, eta, the tilt and the TT/TRT
+ * table's grid: circular fibres whose R lobe is analytic (or absent) and whose TT and TRT come from
+ * the table (or are absent). */
+hb_status hb_huang_shader_constants(const hb_plan *plan, float *k)
+{
+    const hb_huang *h = &plan->huang;
+    int r = h->lobes >> HB_LOBE_R & 1u, internal = (h->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)) != 0;
+    if (h->elliptical || (r && !h->analytic) || (internal && !h->table.values) || !plan->kernels)
+        return HB_ERR_UNSUPPORTED;
+    const hb_huang_table *t = &h->table;
+    k[0] = (float)r, k[1] = (float)internal, k[2] = h->ior.eta, k[3] = h->ior.eta2_minus_1;
+    k[4] = h->ior.inv_eta2, k[5] = h->c_rough, k[6] = h->one_minus_c, k[7] = h->roughness2 * 0.25f * (float)M_1_PI;
+    k[8] = h->cos_tilt, k[9] = h->sin_tilt, k[10] = (float)h->tilted;
+    if (internal) {
+        k[12] = (float)t->n_theta_i, k[13] = (float)t->n_sum, k[14] = (float)t->n_delta;
+        k[16] = t->u_lo, k[17] = t->u_scale, k[18] = t->delta_lo, k[19] = t->delta_scale;
+        k[20] = t->sum_centre, k[21] = t->inv_sum_width;
+    }
+    return HB_OK;
+}
