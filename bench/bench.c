@@ -4,15 +4,14 @@
  * is what the budget applies to, the median is printed beside it. */
 #include <math.h>
 #include <pthread.h>
-#include <sched.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "hairbsdf.h"
 #include "plot.h"
 #include "clock.h"
+#include "platform.h"
 #include "readme.h"
 #include "table_files.h"
 
@@ -544,7 +543,6 @@ static void cpu_name(char *name, size_t size)
 typedef struct region {
     FILE *f;
     char *text;
-    size_t size;
     char cpu[256], date[32];
 } region;
 
@@ -554,16 +552,15 @@ static int region_open(region *r)
     time_t now = time(NULL);
     strftime(r->date, sizeof r->date, "%Y-%m-%d", gmtime(&now));
     r->text = NULL;
-    r->size = 0;
-    r->f = open_memstream(&r->text, &r->size);
+    r->f = bench_text_open();
     return r->f != NULL;
 }
 
 /* Closes the text and writes it between the marker lines begin and end of the file at path. */
 static void region_write(region *r, const char *path, const char *begin, const char *end)
 {
-    fclose(r->f);
-    if (!bench_update_region(path, begin, end, r->text))
+    r->text = bench_text_close(r->f);
+    if (r->text && !bench_update_region(path, begin, end, r->text))
         printf("wrote %s ... %s of %s\n", begin, end, path);
     free(r->text);
 }
@@ -591,7 +588,7 @@ static void write_report(const char *path, const row *rows, int nrows, const cha
                "|f - f_ref| / max(|f_ref|, 1e-3 peak) against the double reference of the same configuration\n"
                "([conventions.md](conventions.md)), on the first ISA shown; speed-up: that ISA against scalar. Written by\n"
                "`make bench` itself.\n\n| what |",
-            date, cpu, sysconf(_SC_NPROCESSORS_ONLN), HB_COMPILER, BATCH, NREF);
+            date, cpu, bench_cores(), HB_COMPILER, BATCH, NREF);
     for (int c = 0; c < NCOLUMNS; c++)
         if (present[c])
             fprintf(f, " ns/sample %s |", hb_isa_name(columns[c]));
@@ -714,7 +711,7 @@ static void scaling(const hb_material *m, FILE *report)
     hb_plan *plan;
     if (hb_plan_create(m, &o, &plan, NULL) != HB_OK)
         return;
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    long cores = bench_cores();
     cores = cores < 1 ? 1 : cores > MAX_THREADS ? MAX_THREADS : cores;
     double one = 0.0;
     fprintf(report, "Multi-core scaling (dFH11 full model, balanced, %s, %d batches of %d per thread):\n",
@@ -722,18 +719,10 @@ static void scaling(const hb_material *m, FILE *report)
     for (long n = 1; n <= cores; n++) {
         pthread_t threads[MAX_THREADS];
         double t0 = now_ns();
-        for (long k = 0; k < n; k++) { /* each thread starts on its core: pinned in its attributes, not by
-                                          * itself, which it could only do once core 0 (main's) let it run */
-            cpu_set_t set;
-            CPU_ZERO(&set);
-            CPU_SET((int)k, &set);
-            pthread_attr_t attr;
-            pthread_attr_init(&attr);
-            pthread_attr_setaffinity_np(&attr, sizeof set, &set);
-            pthread_create(&threads[k], &attr, worker_run, plan);
-            pthread_attr_destroy(&attr);
-        }
-        for (long k = 0; k < n; k++)
+        long started = 0;
+        while (started < n && bench_thread_start(&threads[started], (int)started, worker_run, plan) == 0)
+            started++;
+        for (long k = 0; k < started; k++)
             pthread_join(threads[k], NULL);
         double rate = (double)n * SCALING_REPEATS * BATCH / ((now_ns() - t0) * 1e-9) / 1e6;
         one = n == 1 ? rate : one;
@@ -795,10 +784,7 @@ int main(int argc, char **argv)
     }
     if (once)
         return run_once(once, repeats);
-    cpu_set_t one;
-    CPU_ZERO(&one);
-    CPU_SET(0, &one);
-    if (sched_setaffinity(0, sizeof one, &one) != 0)
+    if (bench_pin_self(0) != 0)
         fprintf(stderr, "bench: could not pin to core 0; timings may be noisier\n");
 
     hb_material m;
@@ -880,15 +866,12 @@ int main(int argc, char **argv)
         else
             printf("wrote %s and %s\n", csv, svg);
     }
-    char *scaling_text = NULL, *budget_text = NULL;
-    size_t scaling_size = 0, budget_size = 0;
-    FILE *scaling_out = open_memstream(&scaling_text, &scaling_size);
+    FILE *scaling_out = bench_text_open();
     if (!partial && scaling_out)
         scaling(&m, scaling_out);
     if ((!partial || !strcmp(only, "table-files")) && scaling_out)
         bench_table_files(&m, scaling_out);
-    if (scaling_out)
-        fclose(scaling_out);
+    char *scaling_text = bench_text_close(scaling_out);
     printf("%s", scaling_text ? scaling_text : "");
     if (results_dir && !partial) { /* what tolerance and budget plans choose from (options.calibration) */
         char path[512];
@@ -905,10 +888,9 @@ int main(int argc, char **argv)
         else
             printf("wrote %s\n", path);
     }
-    FILE *budget_out = open_memstream(&budget_text, &budget_size);
+    FILE *budget_out = bench_text_open();
     int over = budgets && budget_out ? check_budgets(budgets, rows, nrows, budget_out) : 0;
-    if (budget_out)
-        fclose(budget_out);
+    char *budget_text = bench_text_close(budget_out);
     printf("%s", budget_text ? budget_text : "");
     if (report && !partial)
         write_report(report, rows, nrows, scaling_text ? scaling_text : "", budget_text ? budget_text : "");
