@@ -40,15 +40,36 @@ void hb_test_note(hb_test_ctx *t, const char *fmt, ...) HB_PRINTF_FORMAT(2, 3);
             hb_test_fail((t), __FILE__, __LINE__, __VA_ARGS__);     \
     } while (0)
 
-/* The hairbsdf tool the tests drive through a POSIX shell ($HB_TOOL, which make test sets). On
- * Windows, where it is not set, the test is skipped; elsewhere a missing HB_TOOL fails it. */
 /* Marks the test as skipped here, for the reason the runner prints. */
 void hb_test_skip(hb_test_ctx *t, const char *reason);
+
+/* The hairbsdf tool's command ($HB_TOOL, which make test sets; under qemu it starts with the
+ * emulator); a missing HB_TOOL fails the test and gives NULL. */
 const char *hb_test_tool(hb_test_ctx *t);
+
+/* The system's temporary directory ($TMPDIR, Windows' own, else /tmp), without a final separator. */
+const char *hb_test_temp_dir(void);
+
+/* Creates a new empty file named hb_XXXXXX<suffix> in it; 0 with its path, or -1. */
+int hb_test_temp_file(char *path, size_t capacity, const char *suffix);
+
+/* What a run of the tool printed (text, truncated to the buffers) and its exit status. */
+typedef struct hb_tool_run {
+    int status;
+    char out[16384], err[4096];
+} hb_tool_run;
+
+/* Runs the tool with `args` (quoted with double quotes only) and `input_size` bytes on stdin;
+ * 0 when it could not be run (the test has failed). */
+int hb_test_run_tool(hb_test_ctx *t, const char *args, const void *input, size_t input_size, hb_tool_run *r);
 
 /* A whole file, NUL-terminated (its size without the NUL in *size, which may be NULL); malloc'd,
  * NULL when it cannot be read. */
 char *hb_test_read_file(const char *path, size_t *size);
+
+/* At most capacity - 1 bytes of a text file, NUL-terminated (empty when it cannot be read);
+ * Windows' CRLF read back as LF. */
+void hb_test_read_text(const char *path, char *text, size_t capacity);
 
 /* Uniform double in [0, 1) and in [lo, hi) (splitmix64). */
 double hb_test_uniform(hb_test_ctx *t);

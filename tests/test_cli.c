@@ -8,53 +8,9 @@
 #include "portable.h"
 #include "test.h"
 
-typedef struct run_result {
-    int status;
-    char out[8192], err[2048];
-} run_result;
-
-static void slurp(const char *path, char *buf, size_t cap)
+static int run_tool(hb_test_ctx *t, const char *args, const char *input, hb_tool_run *r)
 {
-    FILE *f = fopen(path, "r");
-    size_t n = f ? fread(buf, 1, cap - 1, f) : 0;
-    buf[n] = '\0';
-    if (f)
-        fclose(f);
-}
-
-/* Runs "$HB_TOOL args" with `size` bytes of input on stdin. Returns 0 when HB_TOOL is not set. */
-static int run_tool_bytes(hb_test_ctx *t, const char *args, const char *input, size_t size, run_result *r)
-{
-    const char *tool = hb_test_tool(t);
-    if (!tool)
-        return 0;
-    char dir[] = "/tmp/hb_cli_XXXXXX";
-    if (!mkdtemp(dir)) {
-        CHECK(t, 0, "mkdtemp failed");
-        return 0;
-    }
-    char in_path[64], out_path[64], err_path[64], cmd[1024];
-    snprintf(in_path, sizeof in_path, "%s/in", dir);
-    snprintf(out_path, sizeof out_path, "%s/out", dir);
-    snprintf(err_path, sizeof err_path, "%s/err", dir);
-    FILE *f = fopen(in_path, "wb");
-    fwrite(input, 1, size, f);
-    fclose(f);
-    snprintf(cmd, sizeof cmd, "%s %s < %s > %s 2> %s", tool, args, in_path, out_path, err_path);
-    int st = system(cmd);
-    r->status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    slurp(out_path, r->out, sizeof r->out);
-    slurp(err_path, r->err, sizeof r->err);
-    unlink(in_path);
-    unlink(out_path);
-    unlink(err_path);
-    rmdir(dir);
-    return 1;
-}
-
-static int run_tool(hb_test_ctx *t, const char *args, const char *input, run_result *r)
-{
-    return run_tool_bytes(t, args, input, strlen(input), r);
+    return hb_test_run_tool(t, args, input, strlen(input), r);
 }
 
 static void test_eval_matches_library(hb_test_ctx *t)
@@ -77,7 +33,7 @@ static void test_eval_matches_library(hb_test_ctx *t)
     o.isa = HB_ISA_SCALAR;
     for (int quality = 0; quality < 2; quality++) {
         o.quality = quality ? HB_QUALITY_REFERENCE : HB_QUALITY_BALANCED;
-        run_result r;
+        hb_tool_run r;
         char args[256];
         snprintf(args, sizeof args, "eval --model deon --term longitudinal --beta-m 0.05 --alpha=0.02 --isa scalar%s",
                  quality ? " --quality reference" : "");
@@ -106,7 +62,7 @@ static void test_eval_matches_library(hb_test_ctx *t)
 
 static void test_eval_errors(hb_test_ctx *t)
 {
-    run_result r;
+    hb_tool_run r;
     if (!run_tool(t, "eval --term longitudinal", "0.1,0,0.2,0\n0.2,0,0.1,0\n\n0.1,0,0.2\n0.3,0,0.3,0\n", &r))
         return;
     CHECK(t, r.status != 0, "malformed row accepted");
@@ -154,7 +110,7 @@ static void test_eval_errors(hb_test_ctx *t)
     run_tool(t, "eval --model chiang --far", "0.1,0.2,-0.3,0.4\n", &r);
     CHECK(t, r.status == 0 && atof(r.out) > 0.0, "chiang far field: %d %s %s", r.status, r.out, r.err);
     /* a header decides: dFH11 at h where it names h, its far field where it does not or without one */
-    run_result near, far, plain;
+    hb_tool_run near, far, plain;
     run_tool(t, "eval --model deon", "theta_i,phi_i,theta_o,phi_o,h\n0.1,0.2,-0.3,0.4,0.5\n", &near);
     run_tool(t, "eval --model deon", "theta_i,phi_i,theta_o,phi_o\n0.1,0.2,-0.3,0.4\n", &far);
     run_tool(t, "eval --model deon", "0.1,0.2,-0.3,0.4\n", &plain);
@@ -178,7 +134,7 @@ static void test_eval_errors(hb_test_ctx *t)
 
 static void test_help(hb_test_ctx *t)
 {
-    run_result r;
+    hb_tool_run r;
     if (!run_tool(t, "--help", "", &r))
         return;
     CHECK(t, r.status == 0 && strstr(r.out, "eval") && strstr(r.out, "isa") && strstr(r.out, "--beta-m"),
@@ -192,7 +148,7 @@ static void test_help(hb_test_ctx *t)
 /* The full dFH11 model's options reach the library, and furnace prints energies. */
 static void test_deon_commands(hb_test_ctx *t)
 {
-    run_result r;
+    hb_tool_run r;
     if (!run_tool(t, "eval --pmax 5 --lobes R,TT,4,residual --absorption paper --r-fresnel half-angle --quadrature 40 "
                      "--detector-tolerance 1e-6 --sigma-a 0.1,0.2,0.3",
                   "0.3,0,-0.37,0.5\n", &r))
@@ -243,7 +199,7 @@ static void test_deon_commands(hb_test_ctx *t)
  * double reference by --quality reference; the full-model furnace runs. */
 static void test_marschner_commands(hb_test_ctx *t)
 {
-    run_result r;
+    hb_tool_run r;
     if (!run_tool(t, "eval --model marschner --lobes R,TT,TRT --eta 1.6 --sigma-a 0.2,0.3,0.5 --beta-m 0.12 "
                      "--alpha 0.05 --eccentricity 0.4 --glint-scale 2 --caustic-width 0.2 --caustic-fade 0.25 "
                      "--caustic-limit 0.4 --absorption paper --lobe-beta-m 2=0.3 --lobe-alpha 1=0.02",
@@ -311,7 +267,7 @@ static void test_marschner_commands(hb_test_ctx *t)
  * for the plan (m, o), and `hairbsdf pdf <args>` the pdf of one of them. */
 static void check_sample_rows(hb_test_ctx *t, const char *args, const hb_material *m, const hb_options *o)
 {
-    run_result r;
+    hb_tool_run r;
     char command[256];
     snprintf(command, sizeof command, "sample %s --theta-o 0.5 --phi-o 0.2 --count 3 --seed 9", args);
     if (!run_tool(t, command, "", &r))
@@ -343,7 +299,7 @@ static void check_sample_rows(hb_test_ctx *t, const char *args, const hb_materia
 
 static void test_sample_commands(hb_test_ctx *t)
 {
-    run_result r;
+    hb_tool_run r;
     hb_material m;
     hb_options o;
     hb_material_default(&m);
@@ -429,13 +385,16 @@ static int polyline_points(const char *svg, int k, double *x, double *y, int max
  * bench results file draws each ISA's Pareto front only; furnace --svg plots what it prints. */
 static void test_plot_commands(hb_test_ctx *t)
 {
-    char svg_path[] = "/tmp/hb_plot_XXXXXX.svg", args[256], svg[65536];
-    close(mkstemps(svg_path, 4));
-    run_result r;
-    snprintf(args, sizeof args, "plot - -o %s --title lines", svg_path);
+    char svg_path[600], args[1024], svg[65536];
+    if (hb_test_temp_file(svg_path, sizeof svg_path, ".svg") != 0) {
+        CHECK(t, 0, "no temporary file in %s", hb_test_temp_dir());
+        return;
+    }
+    hb_tool_run r;
+    snprintf(args, sizeof args, "plot - -o \"%s\" --title lines", svg_path);
     if (!run_tool(t, args, "fibre,x,line,square\na,0,-1,0\na,1,1,1\na,2,3,4\nb,0,5,0\nb,3,5,9\n", &r))
         return;
-    slurp(svg_path, svg, sizeof svg);
+    hb_test_read_text(svg_path, svg, sizeof svg);
     CHECK(t, r.status == 0 && count_of(svg, "<polyline") == 4 && strstr(svg, "a line") && strstr(svg, "b square"),
           "two columns for two fibres: %d polylines, %s", count_of(svg, "<polyline"), r.err);
     double x[8], y[8];
@@ -446,21 +405,21 @@ static void test_plot_commands(hb_test_ctx *t)
         CHECK(t, fabs(slope0 - slope1) < 1e-2 * fabs(slope0), "y = 2x - 1 is straight in pixels: %g vs %g", slope0,
               slope1);
     }
-    snprintf(args, sizeof args, "plot - -o %s", svg_path);
+    snprintf(args, sizeof args, "plot - -o \"%s\"", svg_path);
     run_tool(t, args, "configuration,isa,ns_per_sample,max_error\nfast,avx2,10,1e-2\nslow,avx2,20,1e-4\n"
                       "dominated,avx2,30,1e-3\nfast,scalar,80,1e-2\n", &r);
-    slurp(svg_path, svg, sizeof svg);
+    hb_test_read_text(svg_path, svg, sizeof svg);
     CHECK(t, r.status == 0 && count_of(svg, "<polyline") == 2, "bench file: one front per ISA (%s)", r.err);
     CHECK(t, polyline_points(svg, 0, x, y, 8) == 2, "the dominated configuration is off avx2's front");
     CHECK(t, count_of(svg, "<circle") == 4 + 2, "every configuration is marked, plus a legend dot per ISA");
-    run_tool(t, "plot - -o /tmp/hb_never.svg", "a,b\nx,y\n", &r);
+    run_tool(t, args, "a,b\nx,y\n", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "numeric"), "a table without numbers is refused: %s", r.err);
 
-    snprintf(args, sizeof args, "furnace --model deon --by-lobe --theta-o 0,0.5,1 --svg %s", svg_path);
+    snprintf(args, sizeof args, "furnace --model deon --by-lobe --theta-o 0,0.5,1 --svg \"%s\"", svg_path);
     run_tool(t, args, "", &r);
-    run_result plain;
+    hb_tool_run plain;
     run_tool(t, "furnace --model deon --by-lobe --theta-o 0,0.5,1", "", &plain);
-    slurp(svg_path, svg, sizeof svg);
+    hb_test_read_text(svg_path, svg, sizeof svg);
     CHECK(t, r.status == 0 && strcmp(r.out, plain.out) == 0, "--svg prints the same table");
     CHECK(t, count_of(svg, "<polyline") == 7 && count_of(svg, "<circle") == 21,
           "7 columns of 3 rows: %d polylines, %d points", count_of(svg, "<polyline"), count_of(svg, "<circle"));
@@ -471,7 +430,7 @@ static void test_plot_commands(hb_test_ctx *t)
  * the library through every command. */
 static void test_plan_commands(hb_test_ctx *t)
 {
-    run_result r;
+    hb_tool_run r;
     if (!run_tool(t, "plan --eumelanin 8 --tolerance 1e-2", "", &r))
         return;
     CHECK(t, r.status == 0 && strstr(r.out, "lobes: R\n") && strstr(r.out, "TT: largest value") &&
@@ -501,7 +460,7 @@ static void test_plan_commands(hb_test_ctx *t)
  * say so; options out of their range are refused with the option and its range named. */
 static void test_input_edges(hb_test_ctx *t)
 {
-    run_result r;
+    hb_tool_run r;
     if (!run_tool(t, "eval --term longitudinal", "\xef\xbb\xbftheta_i,phi_i,theta_o,phi_o\n0.1,0,0.2,0\n", &r))
         return;
     CHECK(t, r.status == 0 && strchr(r.out, '\n') == strrchr(r.out, '\n'), "header after a byte-order mark: %d '%s' %s",
@@ -511,7 +470,7 @@ static void test_input_edges(hb_test_ctx *t)
     run_tool(t, "eval --term longitudinal", "theta_x,phi_i,theta_o,phi_o\n0.1,0,0.2,0\n", &r);
     CHECK(t, r.status != 0 && strstr(r.err, "line 1"), "a first line that is not the header: %d %s", r.status, r.err);
     static const char nul_row[] = "0.1,0,0.2,0\n0.1,0,0.2,0\0junk\n";
-    run_tool_bytes(t, "eval --term longitudinal", nul_row, sizeof nul_row - 1, &r);
+    hb_test_run_tool(t, "eval --term longitudinal", nul_row, sizeof nul_row - 1, &r);
     CHECK(t, r.status != 0 && strstr(r.err, "line 2") && strstr(r.err, "NUL"), "a row with a NUL byte: %d %s", r.status,
           r.err);
     run_tool(t, "sample --theta-o 0.3 --count 2 --seed 18446744073709551616", "", &r);
@@ -522,13 +481,15 @@ static void test_input_edges(hb_test_ctx *t)
     CHECK(t, r.status != 0 && strstr(r.err, "eta") && !strstr(r.err, "finite"), "a subnormal eta: %d %s", r.status, r.err);
     run_tool(t, "furnace --theta-o 2", "", &r);
     CHECK(t, r.status != 0 && strstr(r.err, "--theta-o 2"), "furnace at theta_o 2: %d %s", r.status, r.err);
-    run_tool(t, "furnace --theta-o ''", "", &r);
+    run_tool(t, "furnace --theta-o \"\"", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "--theta-o"), "furnace with an empty angle list: %d %s", r.status, r.err);
     run_tool(t, "--version", "", &r);
     CHECK(t, r.status == 0 && strncmp(r.out, "hairbsdf ", 9) == 0, "--version: %d '%s'", r.status, r.out);
+#ifndef _WIN32 /* a device that is always full */
     run_tool(t, "eval --term longitudinal -o /dev/full", "0.1,0,0.2,0\n", &r);
     CHECK(t, r.status == 1 && strstr(r.err, "cannot write") && strstr(r.err, "space"), "a failed write: %d %s", r.status,
           r.err);
+#endif
     run_tool(t, "eval --term longitudinal", "0.1,0,0.2,0\nnan,0,0,0\n0.1,0,0.2,0\n", &r);
     CHECK(t, r.status == 0 && strstr(r.err, "line 2"), "the first invalid sample's line: %d %s", r.status, r.err);
     run_tool(t, "eval --term longitudinal --strict", "0.1,0,0.2,0\n0.1,0,3,0\n0.1,0,0.2,0\n", &r);
@@ -580,7 +541,7 @@ static void test_colour_options(hb_test_ctx *t)
             CHECK(t, hb_absorption_from_colour(colour, b, sigma, NULL) == HB_OK, "sigma_a");
             snprintf(resolved, sizeof resolved, "--sigma-a %.17g,%.17g,%.17g", sigma[0], sigma[1], sigma[2]);
         }
-        run_result from_colour, from_numbers;
+        hb_tool_run from_colour, from_numbers;
         snprintf(args, sizeof args, "eval --model %s%s --beta-n 0.3 --%scolour 0.3,0.18,0.1", cases[k].model, near,
                  cases[k].melanin ? "melanin-" : "");
         if (!run_tool(t, args, input, &from_colour))
@@ -591,7 +552,7 @@ static void test_colour_options(hb_test_ctx *t)
               "case %d: '%s' (%s) against '%s' (%s)", k, from_colour.out, from_colour.err, from_numbers.out,
               from_numbers.err);
     }
-    run_result r;
+    hb_tool_run r;
     run_tool(t, "eval --colour 0.3,0,0.1", input, &r);
     CHECK(t, r.status == 2 && strstr(r.err, "rgb.g = 0"), "a zero channel: %d '%s'", r.status, r.err);
     run_tool(t, "eval --colour 0.3,0.2", input, &r);
@@ -610,7 +571,7 @@ static void test_absorption_columns(hb_test_ctx *t)
         for (int k = 0; k < 3; k++)
             snprintf(input + strlen(input), sizeof input - strlen(input), "0.3,0.1,-0.25,0.6,%g,%g\n", melanin[k][0],
                      melanin[k][1]);
-        run_result rows, one;
+        hb_tool_run rows, one;
         if (!hb_test_tool(t))
             return;
         snprintf(args, sizeof args, "eval %s", models[mi]);
@@ -631,7 +592,7 @@ static void test_absorption_columns(hb_test_ctx *t)
             line = line ? line + 1 : NULL;
         }
     }
-    run_result r;
+    hb_tool_run r;
     run_tool(t, "eval --model marschner",
              "theta_i,phi_i,theta_o,phi_o,sigma_a_r,sigma_a_g,sigma_a_b\n0.3,0,-0.3,0.5,0.1,0.2,0.3\n0.3,0,-0.3,0.5,-1,0,0\n", &r);
     CHECK(t, r.status == 0 && atof(r.out) > 0.0 && strstr(r.out, "\n0,0,0\n") && strstr(r.err, "1 invalid sample"),

@@ -100,35 +100,21 @@ static void test_table_refusals(hb_test_ctx *t)
     CHECK(t, hb_plan_create(&m, &o, &plan, &error) == HB_ERR_PARAM, "not a variant");
 }
 
-/* The whole output of a command, or NULL. */
-static char *command_output(const char *cmd)
-{
-    FILE *p = popen(cmd, "r");
-    if (!p)
-        return NULL;
-    static char out[2][4096];
-    static int which;
-    char *text = out[which ^= 1];
-    size_t n = fread(text, 1, sizeof out[0] - 1, p);
-    text[n] = '\0';
-    return pclose(p) == 0 ? text : NULL;
-}
-
 /* hairbsdf bake: the .hbt file is the plan's table file (hb_table_save) byte for byte, `eval --table`
  * from it prints what the plan that baked it prints, and the EXR holds the same floats, slots stacked. */
 static void test_bake_files(hb_test_ctx *t)
 {
-    const char *tool = hb_test_tool(t);
-    if (!tool)
+    if (!hb_test_tool(t))
         return;
     static const char *const models[] = { "--model deon --eumelanin 0.3 --table-tolerance 1e-2",
                                           "--model huang --quality fast --roughness 0.3" };
     static const char *const built[] = { "--azimuthal table", "--tt-trt table" };
     for (int which = 0; which < 2; which++) {
-        char path[] = "/tmp/hb_bake_XXXXXX.hbt", cmd[512];
-        close(mkstemps(path, 4));
-        snprintf(cmd, sizeof cmd, "%s bake %s -o %s > /dev/null", tool, models[which], path);
-        CHECK(t, system(cmd) == 0, "bake failed: %s", cmd);
+        char path[600], args[1024];
+        hb_tool_run run;
+        CHECK(t, hb_test_temp_file(path, sizeof path, ".hbt") == 0, "no temporary file");
+        snprintf(args, sizeof args, "bake %s -o \"%s\"", models[which], path);
+        CHECK(t, hb_test_run_tool(t, args, "", 0, &run) && run.status == 0, "%s: %s", args, run.err);
         hb_material m;
         hb_options o;
         hb_material_default(&m);
@@ -148,24 +134,24 @@ static void test_bake_files(hb_test_ctx *t)
             fclose(f);
         CHECK(t, hb_table_save(plan, saved, sizeof saved, &size) == HB_OK && n == size && memcmp(data, saved, n) == 0,
               "the baked file (%zu bytes) is not the plan's table file (%zu bytes)", n, size);
-        char *from_file, *from_plan;
-        snprintf(cmd, sizeof cmd, "printf '0.3,0.1,-0.2,2.0\\n0.5,1,0.1,-3\\n-1.2,0,1.1,0.2\\n' | %s eval %s --table %s",
-                 tool, models[which], path);
-        from_file = command_output(cmd);
-        snprintf(cmd, sizeof cmd, "printf '0.3,0.1,-0.2,2.0\\n0.5,1,0.1,-3\\n-1.2,0,1.1,0.2\\n' | %s eval %s %s", tool,
-                 models[which], built[which]);
-        from_plan = command_output(cmd);
-        CHECK(t, from_file && from_plan && strcmp(from_file, from_plan) == 0, "eval --table printed '%s', the plan '%s'",
-              from_file ? from_file : "(failed)", from_plan ? from_plan : "(failed)");
-        snprintf(cmd, sizeof cmd, "echo 0,0,0,0 | %s eval %s --eta 1.4 --table %s 2>&1 >/dev/null", tool, models[which], path);
-        char *refusal = command_output(cmd);
-        CHECK(t, refusal == NULL, "eval --table of another material must fail");
+        static const char rows[] = "0.3,0.1,-0.2,2.0\n0.5,1,0.1,-3\n-1.2,0,1.1,0.2\n";
+        static hb_tool_run from_file, from_plan;
+        snprintf(args, sizeof args, "eval %s --table \"%s\"", models[which], path);
+        hb_test_run_tool(t, args, rows, sizeof rows - 1, &from_file);
+        snprintf(args, sizeof args, "eval %s %s", models[which], built[which]);
+        hb_test_run_tool(t, args, rows, sizeof rows - 1, &from_plan);
+        CHECK(t, from_file.status == 0 && from_plan.status == 0 && strcmp(from_file.out, from_plan.out) == 0,
+              "eval --table printed '%s' (%s), the plan '%s'", from_file.out, from_file.err, from_plan.out);
+        snprintf(args, sizeof args, "eval %s --eta 1.4 --table \"%s\"", models[which], path);
+        hb_test_run_tool(t, args, "0,0,0,0\n", 8, &run);
+        CHECK(t, run.status != 0 && strstr(run.err, "eta"), "eval --table of another material must fail: %d %s",
+              run.status, run.err);
         unlink(path);
         if (image_exr_available()) {
-            char exr[] = "/tmp/hb_bake_XXXXXX.exr";
-            close(mkstemps(exr, 4));
-            snprintf(cmd, sizeof cmd, "%s bake %s -o %s > /dev/null", tool, models[which], exr);
-            CHECK(t, system(cmd) == 0, "bake failed: %s", cmd);
+            char exr[600];
+            CHECK(t, hb_test_temp_file(exr, sizeof exr, ".exr") == 0, "no temporary file");
+            snprintf(args, sizeof args, "bake %s -o \"%s\"", models[which], exr);
+            CHECK(t, hb_test_run_tool(t, args, "", 0, &run) && run.status == 0, "%s: %s", args, run.err);
             int w = 0, h = 0;
             float *rgb = image_read_exr(exr, &w, &h);
             int width = v.size[v.axes - 1], lines = (int)(v.count / (size_t)(3 * v.slots * width));

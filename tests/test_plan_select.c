@@ -148,8 +148,8 @@ static void test_select_refusals(hb_test_ctx *t)
     CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED && strstr(e.message, "below every calibrated"),
           "huang R + TT + TRT: the bench's relative error where f is small exceeds any tolerance: %s", e.message);
     /* a calibration file: table-fast made slow, so a 40 ns budget on any ISA picks nothing of it */
-    char path[] = "/tmp/hb_calibration_XXXXXX";
-    close(mkstemp(path));
+    char path[600];
+    CHECK(t, hb_test_temp_file(path, sizeof path, ".csv") == 0, "no temporary file");
     FILE *f = fopen(path, "w");
     fprintf(f, "model,configuration,isa,ns_per_sample,max_error\n");
     static const char *const isas[] = { "scalar", "sse4.1", "avx2", "avx512", "neon" };
@@ -179,9 +179,11 @@ static void test_select_refusals(hb_test_ctx *t)
 static double instructions(hb_test_ctx *t, const char *args)
 {
     const char *tool = getenv("HB_TOOL");
-    char rows[] = "/tmp/hb_rows_XXXXXX", out[] = "/tmp/hb_callgrind_XXXXXX", cmd[1024];
-    close(mkstemp(rows));
-    close(mkstemp(out));
+    char rows[600], out[600], cmd[2048];
+    if (hb_test_temp_file(rows, sizeof rows, ".csv") != 0 || hb_test_temp_file(out, sizeof out, ".out") != 0) {
+        CHECK(t, 0, "no temporary files in %s", hb_test_temp_dir());
+        return 0.0;
+    }
     FILE *f = fopen(rows, "w");
     for (int k = 0; k < 1024; k++)
         fprintf(f, "%.4f,0,%.4f,%.4f\n", -1.4 + 2.8 * (k % 37) / 36.0, 1.3 - 2.6 * (k % 29) / 28.0, 0.1 * (k % 63) - 3.1);

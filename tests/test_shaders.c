@@ -18,13 +18,11 @@ enum { DIRECTIONS = 4096, GROUP = 64, PARAMS = HB_SHADER_CONSTANTS + 2 }; /* the
 /* Compiles a test kernel to SPIR-V with glslangValidator; returns its words (free them) or NULL. */
 static uint32_t *compile(const char *source, int hlsl, size_t *size, char *why, size_t why_size)
 {
-    char path[] = "/tmp/hb_shader_XXXXXX", cmd[1024];
-    int fd = mkstemp(path);
-    if (fd < 0) {
-        snprintf(why, why_size, "no temporary file");
+    char path[600], cmd[2048];
+    if (hb_test_temp_file(path, sizeof path, "") != 0) {
+        snprintf(why, why_size, "no temporary file in %s", hb_test_temp_dir());
         return NULL;
     }
-    close(fd);
     snprintf(cmd, sizeof cmd, "glslangValidator -V --target-env vulkan1.0 %s -Ishaders -o %s %s > %s.log 2>&1",
              hlsl ? "-D -S comp -e main" : "", path, source, path);
     int st = system(cmd);
@@ -38,7 +36,7 @@ static uint32_t *compile(const char *source, int hlsl, size_t *size, char *why, 
         *size = code ? fread(code, 1, (size_t)n, f) : 0;
         fclose(f);
     } else {
-        snprintf(why, why_size, "glslangValidator failed on %s (see %s.log)", source, path);
+        snprintf(why, why_size, "glslangValidator failed on %.80s (see %.130s.log)", source, path);
     }
     unlink(path);
     return code;
