@@ -162,8 +162,9 @@ static void test_properties(hb_test_ctx *t)
             memset(here, 0, sizeof here);
             if (!pm->monte_carlo) {
                 eval(plan, &mirrored, g);
-                /* HHH22's S diverges as 1 / cos(theta_o) at the pole (eq. 28: the width the fibre shows to
-                 * w_o vanishes; f there is 1e4 times its value at theta_o = 1.5707), and at the float pole
+                /* HHH22's S grows as 1 / cos(theta_o) toward the pole down to the plan's floor (eq. 28: the
+                 * width the fibre shows to w_o vanishes; the floor is 1e-8 for an untilted fibre with G,
+                 * where f there is 1e4 times its value at theta_o = 1.5707), and at the float pole
                  * it is the ratio of two quantities of the size of cos(theta_o) = -4e-8, each with the
                  * absolute rounding of the float directions: 1e-5 relative there, 10x the bound */
                 for (int j = 0; j < N; j++) {

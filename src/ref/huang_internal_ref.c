@@ -179,7 +179,7 @@ static int setup_of(const hb_plan *plan, double theta_i, double phi_i, double th
         s->wo[k] = wo[k];
     }
     s->half = hb_ref_huang_half_width(theta_i, plan->huang_tilt);
-    s->scale = 1.0 / (2.0 * sqrt(1.0 - e * e * sin(phi_o) * sin(phi_o)) * fmax(ct_o, HB_REF_HUANG_COS_FLOOR));
+    s->scale = hb_ref_huang_width(plan, theta_i, theta_o) / (2.0 * sqrt(1.0 - e * e * sin(phi_o) * sin(phi_o)));
     return s->half > 0.0;
 }
 

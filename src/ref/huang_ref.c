@@ -59,6 +59,16 @@ double hb_ref_huang_lambda(hb_ndf ndf, double r, double cos_w)
     return 0.5 * (sqrt(1.0 + r * r * tan_w * tan_w) - 1.0);
 }
 
+double hb_ref_huang_width(const hb_plan *plan, double theta_i, double theta_o)
+{
+    const hb_material *m = &plan->material;
+    double scales = M_PI * fabs(sin(plan->huang_tilt)) / 2.0;
+    double grazing_width = m->ndf == HB_NDF_BECKMANN ? m->roughness / (2.0 * sqrt(M_PI)) : m->roughness / 2.0;
+    double rough = plan->options.shadowing == HB_SHADOWING_SMITH ? 0.0 : M_PI * grazing_width / 2.0;
+    double floor = fmax(1e-8, fmax(scales, rough));
+    return fmin(1.0, fmax(cos(theta_i), 0.0) / floor) / fmax(cos(theta_o), floor);
+}
+
 static double smith_g1(hb_ndf ndf, double r, double cos_w)
 {
     return cos_w > 0.0 ? 1.0 / (1.0 + hb_ref_huang_lambda(ndf, r, cos_w)) : 0.0;
@@ -312,7 +322,7 @@ void hb_ref_huang(const hb_plan *plan, double theta_i, double phi_i, double thet
     double cos_half = sqrt(fmax(0.0, 0.5 * (1.0 + dot3(wi, wo)))); /* w_o . w_h */
     double fresnel = hb_ref_fresnel(m->eta, cos_half);
     double projected = sqrt(1.0 - m->eccentricity * m->eccentricity * sin(phi_o) * sin(phi_o)); /* eq. 27 */
-    double value = fresnel * integral / (8.0 * fmax(cos(theta_o), HB_REF_HUANG_COS_FLOOR) * projected); /* eqs. 12, 28 */
+    double value = fresnel * integral * hb_ref_huang_width(plan, theta_i, theta_o) / (8.0 * projected); /* eqs. 12, 28 */
     for (int c = 0; c < 3; c++)
         f[c] += value;
 }

@@ -74,9 +74,12 @@ double hb_ref_huang_r_integral(const hb_plan *plan, double theta_i, double phi_i
 /* The same without G for GGX and a circular fibre from App. A, eq. 43 as printed. */
 double hb_ref_huang_r_integral_analytic(const hb_plan *plan, double theta_i, double phi_i, double theta_o,
                                         double phi_o);
+/* Eq. 10's 1 / cos(theta_o), with cos(theta_o) kept above a floor (half the larger of the scales'
+ * pi |sin tau| and, without G, the rough surface's grazing width; at least 1e-8), times
+ * min(1, cos(theta_i) / floor) for reciprocity (docs/huang.md, "At the poles"). */
+double hb_ref_huang_width(const hb_plan *plan, double theta_i, double theta_o);
 /* HHH22 f = S_R cos(theta_i) (eqs. 12, 28) with the plan's NDF, shadowing and fibre, integrated
- * numerically; cos(theta_o) floored at HB_REF_HUANG_COS_FLOOR as in the kernels. */
-#define HB_REF_HUANG_COS_FLOOR 1e-8
+ * numerically. */
 void hb_ref_huang(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
 
 /* HHH22 R lobe sampling (docs/sampling.md): the mesonormal azimuths w_o sees, phi_o +- *half,

@@ -18,6 +18,8 @@ typedef struct hb_huang_table {
     int n_theta_i, n_phi_i, n_sum, n_delta;
     float sum_centre, inv_sum_width, u_lo, u_scale; /* u node k at u_lo + k / u_scale */
     float delta_lo, delta_scale;                    /* delta node l at delta_lo + l / delta_scale */
+    float cos_floor, inv_cos_floor; /* the least cos(theta) the lookup divides by: the plan's, at least half
+                                       a theta_i step (each theta_i node reads the sum at a theta_o that far off) */
 } hb_huang_table;
 
 /* What the table builder needs besides the plan's constants: the grid of one row (s and delta at
@@ -52,6 +54,7 @@ typedef struct hb_huang {
     float c_rough;       /* C = sqrt(1 - r^2) of App. A */
     float one_minus_c;   /* 1 - C = r^2 / (1 + C) */
     float cos_tilt, sin_tilt; /* the mesonormal's inclination tau (sec. 3.2, eq. 39) */
+    float cos_floor, inv_cos_floor; /* the least cos(theta) in eq. 10's projected width 2 cos(theta) (docs/huang.md) */
     hb_dielectric ior;
     float e2, b, b2;     /* eccentricity^2, the minor semi-axis b = sqrt(1 - e^2) and b^2 */
     /* TT and TRT by eqs. 31, 32: Simpson panels over the entry window, the counter-based

@@ -288,10 +288,11 @@ HB_STAGE void huang_internal(const hb_huang *h, const huang_directions *d, vi in
                 sum[c] = vf_fma(leave, exits[l].weight[c], sum[c]);
         }
     }
-    vf den = vf_mul(vf_set1(2.0f), vf_max(d->cos_to, vf_set1(HB_HUANG_COS_FLOOR)));
+    vf den = vf_set1(2.0f);
     if (h->elliptical)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), d->sin2_phi_o, vf_set1(1.0f))));
-    vf scale = vf_select(e.seen, vf_div(vf_mul(e.step, vf_set1(1.0f / 3.0f)), den), zero);
+    vf width = huang_width_factor(h, d->cos_ti, d->cos_to);
+    vf scale = vf_select(e.seen, vf_div(vf_mul(vf_mul(e.step, vf_set1(1.0f / 3.0f)), width), den), zero);
     for (int c = 0; c < 3; c++)
         out[c] = vf_mul(sum[c], scale);
 }

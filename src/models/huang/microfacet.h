@@ -10,6 +10,20 @@
 #define HB_INV_PI_F 0.318309886f
 #define HB_INV_SQRT_PI_F 0.564189584f
 
+/* f's 1 / cos(theta_o) of eq. 10's projected width with cos(theta_o) kept above the plan's floor,
+ * times min(1, cos(theta_i) / floor), the same floor for w_i, which keeps S = f / cos(theta_i)
+ * reciprocal (docs/huang.md, "At the poles"). 1 / cos(theta_o) away from the poles. */
+HB_INLINE vf huang_width_factor_floored(vf cos_ti, vf cos_to, float floor, float inv_floor)
+{
+    vf incident = vf_min(vf_set1(1.0f), vf_mul(cos_ti, vf_set1(inv_floor)));
+    return vf_div(incident, vf_max(cos_to, vf_set1(floor)));
+}
+
+HB_INLINE vf huang_width_factor(const hb_huang *h, vf cos_ti, vf cos_to)
+{
+    return huang_width_factor_floored(cos_ti, cos_to, h->cos_floor, h->inv_cos_floor);
+}
+
 /* GGX's D as numerator / denominator, for callers that fold several divisions into one: the
  * denominator ((1 - x^2) + r^2 x^2)^2 lies in [r^4, 1]. */
 HB_INLINE void ndf_ggx_ratio(const hb_huang *h, vf one_minus_x, vf *num, vf *den)

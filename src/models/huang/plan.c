@@ -62,6 +62,19 @@ static int huang_tt_panels(const hb_options *o, double roughness)
     return (int)fmin(fmax(panels, 4.0), HB_MAX_TT_PANELS);
 }
 
+/* Eq. 10's projected width 2 cos(theta_o) is the macrosurface's; the paper keeps it for the tilted
+ * mesosurface and without G, whose projected widths stay finite at the pole: the scales' pi |sin tau|
+ * and, without G, the rough surface's pi r / 2 (GGX; r / (2 sqrt(pi)) per unit for Beckmann: the
+ * grazing limit of (1 + Lambda) cos). cos(theta_o) is kept above half of the larger, so the energy
+ * near the poles stays bounded, and so is cos(theta_i), so S stays reciprocal; elsewhere f is the
+ * paper's. */
+static double huang_cos_floor(double tilt, double roughness, int beckmann, int shadowing)
+{
+    double scales = 0.5 * M_PI * fabs(sin(tilt));
+    double rough = shadowing ? 0.0 : 0.25 * M_PI * roughness * (beckmann ? 1.0 / sqrt(M_PI) : 1.0);
+    return fmax(1e-8, fmax(scales, rough));
+}
+
 /* The mesonormal's inclination tau = -alpha, so that, as in dFH11 and MJC03, alpha > 0 moves the R
  * highlight toward the root (theta_o = -theta_i - 2 alpha at phi = 0); lobe_alpha[R] sets tau itself. */
 static void derive_constants(hb_plan *plan)
@@ -95,6 +108,9 @@ static void derive_constants(hb_plan *plan)
     h->one_minus_c = (float)(r * r / (1.0 + c));
     h->cos_tilt = (float)cos(plan->huang_tilt);
     h->sin_tilt = (float)sin(plan->huang_tilt);
+    double cos_floor = huang_cos_floor(plan->huang_tilt, r, h->beckmann, h->shadowing);
+    h->cos_floor = (float)cos_floor;
+    h->inv_cos_floor = (float)(1.0 / cos_floor);
     h->ior = hb_dielectric_of(m->eta);
     h->e2 = (float)(m->eccentricity * m->eccentricity);
     h->b = (float)sqrt(1.0 - m->eccentricity * m->eccentricity);

@@ -10,10 +10,6 @@
 #include "microfacet.h"
 #include "models/fresnel.h"
 
-/* cos(theta_o) is floored so S_R's 1 / cos(theta_o) stays finite at a grazing w_o (without G the
- * lobe grows like 1 / cos(theta_o) there; the float nearest pi/2 has cos = -4.4e-8). */
-#define HB_HUANG_COS_FLOOR 1e-8f
-
 /* The two directions: inclinations and the azimuth between them, and for elliptical fibres
  * their absolute azimuths (the fibre's orientation). cos(theta) >= 0. */
 typedef struct huang_directions {
@@ -322,10 +318,11 @@ HB_INLINE vf huang_r(const hb_huang *h, const huang_directions *d)
     vf integral = h->analytic ? r_integral_ggx_analytic(h, &g)
                   : h->step_rule ? r_integral_steps(h, d, &g) : r_integral_mapped(h, d, &g);
     vf fresnel = fresnel_dielectric(vf_min(g.cos_half, vf_set1(1.0f)), &h->ior);
-    vf den = vf_mul(vf_set1(8.0f), vf_max(d->cos_to, vf_set1(HB_HUANG_COS_FLOOR)));
+    vf den = vf_set1(8.0f);
     if (h->elliptical)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), d->sin2_phi_o, vf_set1(1.0f))));
-    vf f = vf_div(vf_mul(fresnel, vf_max(integral, vf_set1(0.0f))), den);
+    vf width = huang_width_factor(h, d->cos_ti, d->cos_to);
+    vf f = vf_div(vf_mul(vf_mul(fresnel, vf_max(integral, vf_set1(0.0f))), width), den);
     return vf_keep(g.visible, f);
 }
 

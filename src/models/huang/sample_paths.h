@@ -237,19 +237,20 @@ HB_INLINE void huang_path_sample(const hb_huang *h, vf theta_o, vf phi_o, const 
     d.z = vf_select(is_tt, path.dir[PATH_TT].z, vf_select(is_r, path.dir[PATH_R].z, d.z));
     vf chosen = vf_select(is_r, mean[PATH_R], vf_select(is_tt, mean[PATH_TT], mean[PATH_TRT]));
     /* W / (2 a cos(theta_o) cos(psi)): the entry point's density against the eval's measure */
-    vf den = vf_mul(vf_mul(vf_set1(2.0f), vf_max(cto, vf_set1(HB_HUANG_COS_FLOOR))), vf_max(cos_psi, vf_set1(1e-6f)));
+    vf planar = vf_sqrt(vf_fma(d.x, d.x, vf_mul(d.z, d.z))); /* cos(theta_i) */
+    vf den = vf_mul(vf_set1(2.0f), vf_max(cos_psi, vf_set1(1e-6f)));
     if (h->elliptical)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), vf_mul(spo, spo), one)));
     /* every lobe's throughput carries w_o . w_m1, which vanishes with cos(psi) without tilt; at the
      * window's very ends (probability ~1e-12) the ratio is rounding, and the sample is dropped */
-    vf scale = vf_mul(vf_div(total, vf_max(chosen, vf_set1(1e-30f))), vf_div(w.projected, den));
+    vf scale = vf_mul(vf_div(total, vf_max(chosen, vf_set1(1e-30f))),
+                      vf_div(vf_mul(w.projected, huang_width_factor(h, planar, cto)), den));
     vm some = vm_and(vm_and(w.seen, vf_gt(total, zero)), vm_or(is_r, vm_or(is_tt, is_trt)));
     some = vm_and(some, vf_ge(cos_psi, vf_set1(1e-6f)));
     for (int c = 0; c < 3; c++) {
         vf lobe = vf_select(is_r, path.weight[PATH_R][c], vf_select(is_tt, path.weight[PATH_TT][c], path.weight[PATH_TRT][c]));
         weight[c] = vf_select(some, vf_mul(lobe, scale), zero);
     }
-    vf planar = vf_sqrt(vf_fma(d.x, d.x, vf_mul(d.z, d.z)));
     *theta_i = vf_select(some, vf_atan2(d.y, planar), zero);
     *phi_i = vf_select(some, wrap_angle(vf_atan2(d.x, d.z)), zero);
     *pdf = vf_select(some, huang_path_pdf(h, *theta_i, *phi_i, theta_o, phi_o, index), zero);

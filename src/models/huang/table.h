@@ -40,9 +40,9 @@ HB_INLINE huang_table_angles huang_table_angles_of(const hb_huang *h, const huan
 
 /* f_TT + f_TRT per channel from the table, multilinear over `axes` axes: theta_i, (phi_i on an
  * elliptical fibre,) the warped sum theta_i + theta_o and the azimuth difference; cos(theta_o) and
- * sin^2(phi_o) (elliptical only) for eqs. 31, 32's 1 / (2 a cos(theta_o)). */
-HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a, vf cos_to, vf sin2_phi_o, vf out[3],
-                                  int axes)
+ * sin^2(phi_o) (elliptical only) for eqs. 31, 32's 1 / (2 a cos(theta_o)), cos(theta_i) for its floor. */
+HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a, vf cos_ti, vf cos_to, vf sin2_phi_o,
+                                  vf out[3], int axes)
 {
     const hb_huang_table *t = &h->table;
     vf delta = a->phi, phi_i = a->phi_i;
@@ -80,20 +80,21 @@ HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a
         for (int c = 0; c < 3; c++)
             sum[c] = vf_fma(weight[corner], vf_gather(t->values + c, index), sum[c]);
     }
-    vf den = vf_mul(vf_set1(2.0f), vf_max(cos_to, vf_set1(HB_HUANG_COS_FLOOR)));
+    vf den = vf_set1(2.0f);
     if (axes == 4)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), sin2_phi_o, vf_set1(1.0f))));
-    vf inv_den = vf_div(vf_set1(1.0f), den);
+    vf inv_den = vf_div(huang_width_factor_floored(cos_ti, cos_to, t->cos_floor, t->inv_cos_floor), den);
     for (int c = 0; c < 3; c++)
         out[c] = vf_mul(vf_max(sum[c], zero), inv_den);
 }
 
-HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_table_angles *a, vf cos_to, vf sin2_phi_o, vf out[3])
+HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_table_angles *a, vf cos_ti, vf cos_to, vf sin2_phi_o,
+                                  vf out[3])
 {
     if (h->elliptical)
-        huang_table_shaped(h, a, cos_to, sin2_phi_o, out, 4);
+        huang_table_shaped(h, a, cos_ti, cos_to, sin2_phi_o, out, 4);
     else
-        huang_table_shaped(h, a, cos_to, sin2_phi_o, out, 3);
+        huang_table_shaped(h, a, cos_ti, cos_to, sin2_phi_o, out, 3);
 }
 
 /* The R4 additive sequence (M. Roberts 2018): point l is frac(shift + l alpha) with alpha_k =

@@ -65,6 +65,9 @@ static void choose_grid(hb_plan *plan)
     t->n_sum = nodes_for(u_hi - u_lo, res->u_step, 9, 513);
     t->u_lo = (float)u_lo;
     t->u_scale = (float)((t->n_sum - 1) / (u_hi - u_lo));
+    double cos_floor = fmax(h->cos_floor, 0.5 * M_PI / (t->n_theta_i - 1));
+    t->cos_floor = (float)cos_floor;
+    t->inv_cos_floor = (float)(1.0 / cos_floor);
 }
 
 /* The table's layout from its grid (the view without values). */
@@ -206,9 +209,9 @@ hb_status hb_huang_shader_constants(const hb_plan *plan, float *k)
     const hb_huang_table *t = &h->table;
     k[0] = (float)r, k[1] = (float)internal, k[2] = h->ior.eta, k[3] = h->ior.eta2_minus_1;
     k[4] = h->ior.inv_eta2, k[5] = h->c_rough, k[6] = h->one_minus_c, k[7] = h->roughness2 * 0.25f * (float)M_1_PI;
-    k[8] = h->cos_tilt, k[9] = h->sin_tilt, k[10] = (float)h->tilted;
+    k[8] = h->cos_tilt, k[9] = h->sin_tilt, k[10] = (float)h->tilted, k[11] = h->cos_floor;
     if (internal) {
-        k[12] = (float)t->n_theta_i, k[13] = (float)t->n_sum, k[14] = (float)t->n_delta;
+        k[12] = (float)t->n_theta_i, k[13] = (float)t->n_sum, k[14] = (float)t->n_delta, k[15] = t->cos_floor;
         k[16] = t->u_lo, k[17] = t->u_scale, k[18] = t->delta_lo, k[19] = t->delta_scale;
         k[20] = t->sum_centre, k[21] = t->inv_sum_width;
     }
