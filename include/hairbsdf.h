@@ -180,7 +180,8 @@ typedef enum hb_r_fresnel {
 /* HHH22 shadowing-masking at the microsurface (eq. 12's G). */
 typedef enum hb_shadowing {
     HB_SHADOWING_SMITH, /* separable Smith G = G1(w_i) G1(w_o), each relative to the mesonormal (the default) */
-    HB_SHADOWING_NONE   /* G = 1: what HHH22 App. A integrates in closed form */
+    HB_SHADOWING_NONE   /* G = 1 in the R lobe, what HHH22 App. A integrates in closed form; TT and TRT
+                           keep G at their interfaces, where G = 1 makes their integrals diverge */
 } hb_shadowing;
 
 /* How HHH22's R lobe integrates over the azimuth phi_m of the macro/mesonormal (eq. 12). */

@@ -391,6 +391,7 @@ static void pole_energy(hb_test_ctx *t)
         { "GGX 0.02, tilted, no G, R", HB_NDF_GGX, 0.02, 0.035, 0.0, HB_SHADOWING_NONE, 1u, 1.35 },
         { "GGX 0.02, untilted, no G, R", HB_NDF_GGX, 0.02, 0.0, 0.0, HB_SHADOWING_NONE, 1u, 1.35 },
         { "Beckmann 0.02, tilted, no G, R", HB_NDF_BECKMANN, 0.02, -0.1, 0.0, HB_SHADOWING_NONE, 1u, 1.35 },
+        { "GGX 0.2, tilted, no G, all", HB_NDF_GGX, 0.2, 0.035, 0.0, HB_SHADOWING_NONE, 7u, 1.35 },
     };
     static const double thetas[] = { 1.57079637f, 1.5707963f, 1.569, 1.56, 1.54, 1.52, 1.5 };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {

@@ -299,6 +299,31 @@ static void test_internal_hard_cases(hb_test_ctx *t)
     }
 }
 
+/* Without G in the plan, TT and TRT keep G at their interfaces: every sample's estimate is bounded.
+ * With G = 1 inside, one sample of this direction (the default tilt) weighed 1e25 (1 / G1 of a grazing
+ * internal path). */
+static void test_internal_no_g_bounded(hb_test_ctx *t)
+{
+    internal_case c = { HB_NDF_GGX, 0.1, 0.035 * 180.0 / M_PI, 0.0, 0, 0.0, -0.81, 0.0, 0.5, 2.21 };
+    hb_plan *plan = internal_plan(t, &c, TT_TRT, t->isa, 0);
+    if (!plan)
+        return;
+    enum { N = 1024 };
+    static float ti[N], pi[N], to[N], po[N], f[3][N];
+    for (int k = 0; k < N; k++)
+        ti[k] = (float)c.theta_i, pi[k] = (float)c.phi_i, to[k] = (float)c.theta_o, po[k] = (float)c.phi_o;
+    hb_eval_angles(plan, N, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+    double most = 0.0, mean = 0.0;
+    for (int k = 0; k < N; k++) {
+        CHECK(t, isfinite(f[0][k]) && f[0][k] >= 0.0f, "sample %d: f = %g", k, f[0][k]);
+        most = fmax(most, f[0][k]);
+        mean += f[0][k] / N;
+    }
+    CHECK(t, most <= 100.0 * mean + 1.0, "largest estimate %g against the mean %g", most, mean);
+    hb_test_note(t, "no G: the largest of %d estimates %.3g, their mean %.3g", N, most, mean);
+    hb_plan_destroy(plan);
+}
+
 /* HHH22 Fig. 16's random walk (hb_furnace_orders): its R, TT and TRT agree with hb_furnace of each
  * lobe (quadrature of the table's f over w_i, alpha = 0 so the model is reciprocal) within 4 of the
  * walk's standard errors plus 3% (the table's error integrated: docs/huang.md); a lossless fibre
@@ -372,5 +397,6 @@ const hb_test hb_tests_huang_internal[] = {
     { "huang_internal_orders", test_internal_orders, 0 },
     { "huang_internal_seed", test_internal_seed, 1 },
     { "huang_internal_hard_cases", test_internal_hard_cases, 1 },
+    { "huang_internal_no_g_bounded", test_internal_no_g_bounded, 1 },
     { 0 },
 };

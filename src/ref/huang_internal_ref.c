@@ -64,15 +64,6 @@ static double g1(const hb_plan *plan, double c)
                    : 0.0;
 }
 
-/* c / G1(c), finite as c -> 0 (GGX r / 2, Beckmann r sqrt(pi) / 2). */
-static double cos_over_g1(const hb_plan *plan, double c)
-{
-    double r = plan->material.roughness;
-    if (c < 1e-12)
-        return plan->material.ndf == HB_NDF_BECKMANN ? 0.5 * r * sqrt(M_PI) : 0.5 * r;
-    return c * (1.0 + hb_ref_huang_lambda(plan->material.ndf, r, fmin(c, 1.0)));
-}
-
 /* A visible normal of `toward` on the outer (side 1) or inner (side -1) side at q. */
 static void micronormal(const hb_plan *plan, const point *q, const double toward[3], double side, double u1, double u2,
                         double h[3])
@@ -98,8 +89,7 @@ static double exit_value(const hb_plan *plan, const point *q, const double w[3],
     if (!(cos_in > 0.0 && cos_out > 0.0 && dot3(wo, q->macro) > 0.0 && wo_m > 0.0 && w_m > 0.0 && h_m > 0.0))
         return 0.0;
     double value = (1.0 - hb_ref_fresnel(m->eta, fmin(cos_out, 1.0))) * hb_ref_huang_ndf(m->ndf, m->roughness, h_m);
-    if (plan->options.shadowing == HB_SHADOWING_SMITH)
-        value *= g1(plan, w_m) * g1(plan, wo_m);
+    value *= g1(plan, w_m) * g1(plan, wo_m); /* G at every interface of TT and TRT, also without G for R */
     return value * cos_in * cos_out / (w_m * len2);
 }
 
@@ -116,7 +106,6 @@ static void internal_path(const hb_plan *plan, unsigned lobes, double phi_m1, co
                           const double u[4], double tt[3], double trt[3])
 {
     const hb_material *m = &plan->material;
-    int shadowing = plan->options.shadowing == HB_SHADOWING_SMITH;
     double eta = m->eta, h1[3], wt[3], length;
     for (int c = 0; c < 3; c++)
         tt[c] = trt[c] = 0.0;
@@ -129,8 +118,7 @@ static void internal_path(const hb_plan *plan, unsigned lobes, double phi_m1, co
     double wi_m = fmax(dot3(wi, p.meso), 0.0), wt_m = -dot3(wt, p.meso); /* >= 0 up to rounding */
     if (!(wt_m > 0.0 && dot3(wt, p.macro) < 0.0))
         return;
-    double entry = (1.0 - hb_ref_fresnel(eta, fmin(c1, 1.0))) *
-                   (shadowing ? wi_m * g1(plan, wt_m) : cos_over_g1(plan, fmax(wi_m, 0.0)));
+    double entry = (1.0 - hb_ref_fresnel(eta, fmin(c1, 1.0))) * wi_m * g1(plan, wt_m);
     chord_exit(plan, &p, wt, &q, &length);
     double a[3];
     for (int c = 0; c < 3; c++)
@@ -147,10 +135,10 @@ static void internal_path(const hb_plan *plan, unsigned lobes, double phi_m1, co
     double c2 = fmax(-dot3(wt, h2), 0.0);
     for (int k = 0; k < 3; k++)
         wtr[k] = wt[k] + 2.0 * c2 * h2[k];
-    double wt_m2 = dot3(wt, q.meso), wtr_m2 = -dot3(wtr, q.meso);
+    double wtr_m2 = -dot3(wtr, q.meso);
     if (!(wtr_m2 > 0.0 && dot3(wtr, q.macro) < 0.0))
         return;
-    double bounce = fresnel_inside(eta, c2) * (shadowing ? g1(plan, wtr_m2) : 1.0 / fmax(g1(plan, wt_m2), 1e-300));
+    double bounce = fresnel_inside(eta, c2) * g1(plan, wtr_m2);
     chord_exit(plan, &q, wtr, &r, &length2);
     double leave = entry * bounce * exit_value(plan, &r, wtr, wo);
     for (int c = 0; c < 3; c++)
@@ -288,7 +276,8 @@ void hb_ref_huang_internal(const hb_plan *plan, double theta_i, double phi_i, do
 }
 
 /* The visible-normal sample's weight through an interface besides Fresnel (Heitz 2014): G1 of
- * the outgoing direction with shadowing, 1 / G1 of the incoming one without. */
+ * the outgoing direction with shadowing, 1 / G1 of the incoming one without. The R reflection's;
+ * the internal interfaces keep G (g1 of the outgoing direction), as in internal_path. */
 static double sampled_shadowing(const hb_plan *plan, double cos_in, double cos_out)
 {
     if (plan->options.shadowing == HB_SHADOWING_SMITH)
@@ -344,7 +333,7 @@ void hb_ref_huang_orders(const hb_plan *plan, double theta, long paths, unsigned
         double wt_m = -dot3(wt, p.meso), weight[3];
         if (wt_m > 0.0 && dot3(wt, p.macro) < 0.0) {
             for (int c = 0; c < 3; c++)
-                weight[c] = weight0 * (1.0 - f1) * sampled_shadowing(plan, wa_m, wt_m);
+                weight[c] = weight0 * (1.0 - f1) * g1(plan, wt_m);
             for (int order = 1; order < WALK_ORDERS; order++) {
                 double length, h[3], minus_w[3] = { -wt[0], -wt[1], -wt[2] };
                 chord_exit(plan, &p, wt, &q, &length);
@@ -360,7 +349,7 @@ void hb_ref_huang_orders(const hb_plan *plan, double theta, long paths, unsigned
                         d[k] = eta * wt[k] - (cos_out - eta * c_in) * h[k];
                     d_m = dot3(d, q.meso);
                     if (d_m > 0.0 && dot3(d, q.macro) > 0.0) {
-                        double leave = (1.0 - hb_ref_fresnel(eta, fmin(cos_out, 1.0))) * sampled_shadowing(plan, w_m, d_m);
+                        double leave = (1.0 - hb_ref_fresnel(eta, fmin(cos_out, 1.0))) * g1(plan, d_m);
                         int group = order < HB_ORDER_GROUPS - 1 ? order : HB_ORDER_GROUPS - 1;
                         for (int c = 0; c < 3; c++)
                             path[group][c] += weight[c] * leave;
@@ -372,7 +361,7 @@ void hb_ref_huang_orders(const hb_plan *plan, double theta, long paths, unsigned
                 double back_m = -dot3(wt, q.meso);
                 if (!(c_in > 0.0 && back_m > 0.0 && dot3(wt, q.macro) < 0.0))
                     break;
-                double bounce = fresnel_inside(eta, c_in) * sampled_shadowing(plan, w_m, back_m), largest = 0.0;
+                double bounce = fresnel_inside(eta, c_in) * g1(plan, back_m), largest = 0.0;
                 for (int c = 0; c < 3; c++) {
                     weight[c] *= bounce;
                     largest = fmax(largest, weight[c]);

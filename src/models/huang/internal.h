@@ -117,7 +117,9 @@ HB_INLINE vf fresnel_from_inside(const hb_huang *h, vf cos_in)
 
 /* The weight of a visible-normal sample through an interface: what its BSDF times the outgoing
  * cosine over the sample's density leaves besides the Fresnel factor (Heitz 2014): G1 of the
- * outgoing direction with shadowing, 1 / G1 of the incoming one without. */
+ * outgoing direction with shadowing, 1 / G1 of the incoming one without. TT and TRT keep G at every
+ * interface (docs/huang.md): with G = 1 their integrals diverge as a path grazes the mesosurface,
+ * so this serves the R reflection; the internal interfaces use G1 of the outgoing direction. */
 HB_INLINE vf sampled_shadowing(const hb_huang *h, vf cos_in, vf cos_out)
 {
     if (h->shadowing)
@@ -148,8 +150,7 @@ HB_INLINE vf exit_value(const hb_huang *h, const fibre_point *q, v3 w, v3 wo)
     ok = vm_and(ok, vm_and(vf_gt(v3_dot(wo, q->macro), zero), vf_gt(wo_m, zero)));
     ok = vm_and(ok, vm_and(vf_gt(w_m, zero), vf_gt(v3_dot(wh, q->meso), zero)));
     vf value = vf_mul(fresnel_transmittance(h, cos_out), ndf_huang(h, v3_one_minus_dot(wh, q->meso)));
-    if (h->shadowing)
-        value = vf_mul(value, vf_mul(smith_g1_huang(h, w_m), smith_g1_huang(h, wo_m)));
+    value = vf_mul(value, vf_mul(smith_g1_huang(h, w_m), smith_g1_huang(h, wo_m)));
     value = vf_div(vf_mul(value, vf_mul(cos_in, cos_out)), vf_max(vf_mul(w_m, len2), vf_set1(1e-30f)));
     return vf_select(ok, value, zero);
 }
@@ -187,8 +188,7 @@ HB_INLINE void internal_exits(const hb_huang *h, const fibre_point *p, v3 wi, co
     v3 wt = v3_axpy(vf_fnma(vf_set1(h->ior.eta), cos_t, c1), v3_scale(inv_eta, h1), v3_scale(vf_neg(inv_eta), wi));
     vf wi_m = vf_max(v3_dot(wi, p->meso), zero), wt_m = vf_neg(v3_dot(wt, p->meso)); /* >= 0 up to rounding at the window's ends */
     vm inside = vm_and(vf_gt(wt_m, zero), vf_lt(v3_dot(wt, p->macro), zero));
-    vf entry = vf_mul(fresnel_transmittance(h, c1),
-                      h->shadowing ? vf_mul(wi_m, smith_g1_huang(h, wt_m)) : vf_div(one, smith_g1_over_cos(h, wi_m)));
+    vf entry = vf_mul(fresnel_transmittance(h, c1), vf_mul(wi_m, smith_g1_huang(h, wt_m)));
     entry = vf_select(inside, entry, zero);
     vf length, a[3];
     exits[0].q = chord_exit(h, p, wt, &length);
@@ -210,9 +210,9 @@ HB_INLINE void internal_exits(const hb_huang *h, const fibre_point *p, v3 wi, co
     }
     vf c2 = vf_max(vf_neg(v3_dot(wt, h2)), zero);
     v3 wtr = v3_axpy(vf_add(c2, c2), h2, wt);
-    vf wt_m2 = v3_dot(wt, q->meso), wtr_m2 = vf_neg(v3_dot(wtr, q->meso));
+    vf wtr_m2 = vf_neg(v3_dot(wtr, q->meso));
     vm back = vm_and(vf_gt(wtr_m2, zero), vf_lt(v3_dot(wtr, q->macro), zero));
-    vf bounce_factor = vf_mul(fresnel_from_inside(h, c2), sampled_shadowing(h, wt_m2, wtr_m2));
+    vf bounce_factor = vf_mul(fresnel_from_inside(h, c2), smith_g1_huang(h, wtr_m2));
     bounce_factor = vf_select(back, vf_mul(entry, bounce_factor), zero);
     vf length2, a2[3];
     exits[1].q = chord_exit(h, q, wtr, &length2);

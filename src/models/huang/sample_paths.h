@@ -59,7 +59,7 @@ HB_INLINE vf exit_factor(const hb_huang *h, const fibre_point *q, v3 w, v3 n, v3
     vf w_m = v3_dot(w, q->meso), d_m = v3_dot(d, q->meso);
     vm ok = vm_and(vm_and(vf_gt(cos_in, zero), vf_lt(sin2_out, vf_set1(1.0f))), vm_and(vf_gt(cos_out, zero), vf_gt(w_m, zero)));
     ok = vm_and(ok, vm_and(vm_and(vf_gt(d_m, zero), vf_gt(v3_dot(d, q->macro), zero)), vf_gt(v3_dot(n, q->meso), zero)));
-    return vf_select(ok, vf_mul(fresnel_transmittance(h, cos_out), sampled_shadowing(h, w_m, d_m)), zero);
+    return vf_select(ok, vf_mul(fresnel_transmittance(h, cos_out), smith_g1_huang(h, d_m)), zero);
 }
 
 /* Leaving an exit toward the fixed direction d: the factor, and the density of d given the path
