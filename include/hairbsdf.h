@@ -197,9 +197,12 @@ typedef enum hb_tt_trt {
                            the entry azimuth, one internal path per node from a counter-based generator keyed
                            by the seed and the sample's index in the batch; unbiased for Simpson's sum */
     HB_TT_TRT_REFERENCE, /* nested quadrature in double (slow: for tests and accuracy tables) */
-    HB_TT_TRT_TABLE      /* deterministic and real-time: interpolated from a table of f_TT + f_TRT that plan
+    HB_TT_TRT_TABLE,     /* deterministic and real-time: interpolated from a table of f_TT + f_TRT that plan
                             creation builds for the material (3D, 4D for elliptical fibres; HHH22 sec. 3.4.2),
                             its resolution and build cost from quality and roughness (docs/huang.md gives both and the error); not with HB_QUALITY_REFERENCE */
+    HB_TT_TRT_AUTO       /* hb_options_default's: the table below HB_QUALITY_REFERENCE where its build is within
+                            the limit (deterministic), else the Monte-Carlo estimator; the nested quadrature at
+                            HB_QUALITY_REFERENCE. hb_plan_describe names the choice */
 } hb_tt_trt;
 
 /* How dFH11's azimuthal terms N_p (eq. 10) are evaluated. */

@@ -548,6 +548,7 @@ static void test_chiang_api(hb_test_ctx *t)
     hb_plan_destroy(plan);
     o.model = HB_MODEL_HUANG;
     o.lobes = HB_LOBES_DEFAULT;
+    o.tt_trt = HB_TT_TRT_MC; /* no table to build for a refusal */
     CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "huang: %s", err.message);
     float x = 0.1f, r, g, b;
     CHECK(t, hb_eval_near(plan, 1, (hb_near_soa){ &x, &x, &x, &x, &x }, (hb_rgb_soa){ &r, &g, &b }, NULL) ==

@@ -113,6 +113,7 @@ static hb_plan *row_plan(const corpus_row *r, const corpus_term *term, unsigned 
         m.ndf = term->ndf;
         o.shadowing = term->shadowing;
         o.r_integration = term->analytic ? HB_R_INTEGRATION_ANALYTIC : HB_R_INTEGRATION_AUTO;
+        o.tt_trt = HB_TT_TRT_MC; /* the estimator's hard cases (the table's: test_huang_table.c) */
     }
     if (r->eccentricity > 0.0 && circular_only(term))
         return NULL;

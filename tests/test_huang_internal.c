@@ -31,6 +31,7 @@ static hb_plan *internal_plan(hb_test_ctx *t, const internal_case *c, unsigned l
     for (int k = 0; k < 3; k++)
         m.sigma_a[k] = c->sigma_a * (1 << k);
     o.model = HB_MODEL_HUANG;
+    o.tt_trt = HB_TT_TRT_MC; /* the estimator itself */
     o.lobes = lobes;
     o.shadowing = c->shadowing ? HB_SHADOWING_SMITH : HB_SHADOWING_NONE;
     o.isa = isa;
@@ -280,6 +281,7 @@ static void test_internal_hard_cases(hb_test_ctx *t)
         o.isa = t->isa;
         o.shadowing = hard[k].shadowing ? HB_SHADOWING_SMITH : HB_SHADOWING_NONE;
         o.lobes = TT_TRT;
+        o.tt_trt = HB_TT_TRT_MC;
         o.tt_panels = 64; /* the hard cases are about the path, not the node count */
         hb_plan *plan = NULL;
         hb_error err;

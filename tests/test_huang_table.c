@@ -195,7 +195,52 @@ static void test_table_refusals(hb_test_ctx *t)
     CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_UNSUPPORTED && !plan, "reference quality: %s", err.message);
 }
 
+/* hb_options_default's HB_TT_TRT_AUTO: the table where it builds in about a second (the default
+ * material at balanced), so a direction gives the same f in every call and at every position of a
+ * batch; where it would not (high quality at roughness 0.1), the estimator, and the description
+ * says why. */
+static void test_default_deterministic(hb_test_ctx *t)
+{
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    o.model = HB_MODEL_HUANG;
+    hb_plan *plan;
+    hb_error e;
+    CHECK(t, o.tt_trt == HB_TT_TRT_AUTO && hb_plan_create(&m, &o, &plan, &e) == HB_OK, "default plan: %s", e.message);
+    if (!plan)
+        return;
+    char text[4096];
+    hb_plan_describe(plan, text, sizeof text);
+    CHECK(t, strstr(text, "interpolated from a table") != NULL, "the default at balanced is the table:\n%s", text);
+    enum { N = 19 };
+    float ti[N], pi[N], to[N], po[N], f[3][N], first = 0.0f;
+    for (int k = 0; k < N; k++)
+        ti[k] = 0.4f, pi[k] = 0.0f, to[k] = -0.45f, po[k] = 3.0f;
+    static const size_t counts[] = { 1, 5, 19 };
+    for (int call = 0; call < 3; call++) {
+        hb_eval_angles(plan, counts[call], (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+        for (size_t k = 0; k < counts[call]; k++) {
+            if (call == 0 && k == 0)
+                first = f[0][0];
+            CHECK(t, f[0][k] == first && first > 0.0f, "call %d, position %zu: %.9g against %.9g", call, k, f[0][k],
+                  first);
+        }
+    }
+    hb_plan_destroy(plan);
+    o.quality = HB_QUALITY_HIGH;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_OK, "high: %s", e.message);
+    if (!plan)
+        return;
+    hb_plan_describe(plan, text, sizeof text);
+    CHECK(t, strstr(text, "tt_trt auto: the table would take more than a second") != NULL,
+          "high at roughness 0.1 falls back to the estimator and says so:\n%s", text);
+    hb_plan_destroy(plan);
+}
+
 const hb_test hb_tests_huang_table[] = {
+    { "huang_default_deterministic", test_default_deterministic, 0 },
     { "huang_table_refusals", test_table_refusals, 0 },
     { "huang_table_matches_estimator", test_table_matches_estimator, 1 },
     { "huang_table_matches_reference", test_table_matches_reference, 0 },

@@ -73,6 +73,7 @@ static hb_plan *plan_for(hb_test_ctx *t, const hb_material *m, const property_mo
     o.model = pm->model;
     o.lobes = pm->lobes;
     o.quality = HB_QUALITY_FAST; /* the cheapest level must hold every property too */
+    o.tt_trt = HB_TT_TRT_MC;      /* HHH22: its estimator over random materials (the table's: test_huang_table.c) */
     o.isa = isa;
     hb_plan *plan = NULL;
     hb_error err;

@@ -42,6 +42,7 @@ static hb_plan *case_plan(hb_test_ctx *t, const plan_case *c)
     o.quality = c->quality;
     o.lobes = c->lobes;
     o.azimuthal = c->azimuthal;
+    o.tt_trt = HB_TT_TRT_MC; /* HHH22's estimated pdf */
     o.isa = c->quality == HB_QUALITY_REFERENCE ? HB_ISA_AUTO : t->isa;
     hb_plan *plan = NULL;
     hb_error err;

@@ -32,6 +32,7 @@ static hb_plan *huang_plan(hb_test_ctx *t, const huang_case *c, hb_quality quali
     if (c->eta > 0.0)
         m.eta = c->eta;
     o.model = HB_MODEL_HUANG;
+    o.tt_trt = HB_TT_TRT_MC; /* the traced paths' f, which their weights estimate */
     for (int k = 0; k < 3; k++)
         m.sigma_a[k] = c->sigma_a;
     o.lobes = c->lobes ? c->lobes : 1u << HB_LOBE_R;

@@ -27,8 +27,10 @@ const char cli_model_options_help[] =
     "  --r-integration auto|analytic|numeric  huang R lobe: App. A closed form (GGX, no G, circular) or Simpson\n"
     "  --r-panels N                   huang: Simpson panels in the peak-following variable (default: from quality)\n"
     "  --r-step X                     huang: the paper's rule instead, steps of X * roughness in phi_m (HHH22: 0.7)\n"
-    "  --tt-trt mc|table|reference    huang TT and TRT: Monte-Carlo/Simpson (eqs. 31, 32; default), a table built\n"
-    "                                 at plan creation (deterministic, real-time), or nested quadrature (slow)\n"
+    "  --tt-trt auto|mc|table|reference  huang TT and TRT: a table built at plan creation (deterministic,\n"
+    "                                 real-time), Monte-Carlo/Simpson (eqs. 31, 32), or nested quadrature (slow);\n"
+    "                                 auto (default): the table, mc where its build passes the limit, reference\n"
+    "                                 at --quality reference\n"
     "  --tt-panels N                  huang TT/TRT: Simpson panels over the entry azimuth (default: from quality)\n"
     "  --seed S                       huang TT/TRT: key of the Monte-Carlo numbers (with the row index; default 0)\n"
     "  --lobe-beta-m P=X  --lobe-beta-n P=X  --lobe-alpha P=X   per-lobe overrides for order P (repeatable)\n"
@@ -261,7 +263,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     static const char *const absorptions[] = { "corrected", "paper", NULL };
     static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
     static const char *const r_integrations[] = { "auto", "analytic", "numeric", NULL };
-    static const char *const tt_trts[] = { "mc", "reference", "table", NULL };
+    static const char *const tt_trts[] = { "mc", "reference", "table", "auto", NULL };
     static const char *const azimuthals[] = { "quadrature", "table", "colour-table", NULL };
     static const char *const models[] = { "marschner", "deon", "huang", "chiang", NULL };
     static const char *const terms[] = { "full", "longitudinal", NULL };
@@ -363,7 +365,7 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
     } else if (strcmp(name, "--r-panels") == 0) {
         if (!parse_int(value, 2, HB_MAX_R_PANELS, &o->r_panels) || o->r_panels % 2) expected = "an even panel count";
     } else if (strcmp(name, "--tt-trt") == 0) {
-        if ((k = pick(value, tt_trts)) >= 0) o->tt_trt = (hb_tt_trt)k; else expected = "mc, table or reference";
+        if ((k = pick(value, tt_trts)) >= 0) o->tt_trt = (hb_tt_trt)k; else expected = "auto, mc, table or reference";
     } else if (strcmp(name, "--tt-panels") == 0) {
         if (!parse_int(value, 2, HB_MAX_TT_PANELS, &o->tt_panels) || o->tt_panels % 2) expected = "an even panel count";
     } else if (strcmp(name, "--seed") == 0) {

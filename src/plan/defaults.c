@@ -106,4 +106,5 @@ void hb_options_default(hb_options *o)
     o->i0 = HB_I0_ABRAMOWITZ;
     o->pmax = 3;
     o->absorption = HB_ABSORPTION_CORRECTED;
+    o->tt_trt = HB_TT_TRT_AUTO;
 }

@@ -73,7 +73,7 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
 {
     if (!hb_model_ops_of(o->model))
         return hb_plan_fail(error, HB_ERR_PARAM, "model = %d is not a model", (int)o->model);
-    if ((unsigned)o->tt_trt > HB_TT_TRT_TABLE)
+    if ((unsigned)o->tt_trt > HB_TT_TRT_AUTO)
         return hb_plan_fail(error, HB_ERR_PARAM, "tt_trt = %d is not a TT/TRT evaluation method", (int)o->tt_trt);
     if (o->tt_panels < 0 || o->tt_panels > HB_MAX_TT_PANELS || o->tt_panels % 2)
         return hb_plan_fail(error, HB_ERR_PARAM, "tt_panels = %d must be 0 (from quality) or even, in [2, %d]", o->tt_panels,

@@ -64,7 +64,9 @@ static void describe(hb_text *t, const hb_plan *plan)
                 h->table.n_phi_i, h->table.n_sum, h->table.n_delta);
         else if (plan->kernels)
             hb_say(t, "TT + TRT (eqs. 31, 32): Simpson over %d panels of the entry azimuth, one random internal path per "
-                   "node (seed %llu)\n", h->tt_panels, plan->options.seed);
+                   "node (seed %llu)%s\n", h->tt_panels, plan->options.seed,
+                   h->table_too_costly ? "; tt_trt auto: the table would take more than a second to build "
+                                         "(tt_trt = table builds it)" : "");
         else
             hb_say(t, "TT + TRT: nested quadrature in double\n");
     }
@@ -120,7 +122,7 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
     if (lobe_mask == 1u && analytic(m, o))
         return 1;
     return p->quality == o->quality && p->quadrature_order == o->quadrature_order && p->azimuthal == o->azimuthal &&
-           (lobe_mask == 1u || p->tt_trt == o->tt_trt);
+           (lobe_mask == 1u || p->tt_trt == (o->tt_trt == HB_TT_TRT_AUTO ? HB_TT_TRT_TABLE : o->tt_trt));
 }
 
 const hb_model_ops hb_huang_model = {

@@ -121,10 +121,18 @@ static void derive_constants(hb_plan *plan)
 hb_status hb_huang_derive(hb_plan *plan, hb_error *error)
 {
     HB_PER_ISA(hb_huang_kernels, huang_kernels, kernels_by_isa);
-    const hb_options *o = &plan->options;
+    hb_options *o = &plan->options;
+    unsigned lobes = o->lobes == HB_LOBES_DEFAULT ? 7u : o->lobes;
+    int with_tt_trt = (lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)) != 0;
+    if (o->tt_trt == HB_TT_TRT_AUTO && (o->quality == HB_QUALITY_REFERENCE || !with_tt_trt))
+        o->tt_trt = o->quality == HB_QUALITY_REFERENCE ? HB_TT_TRT_REFERENCE : HB_TT_TRT_MC;
     int reference = o->quality == HB_QUALITY_REFERENCE || o->tt_trt == HB_TT_TRT_REFERENCE;
     HB_PLAN_SET_KERNELS(plan, kernels_by_isa, reference);
     derive_constants(plan);
+    if (o->tt_trt == HB_TT_TRT_AUTO) { /* the table, unless its build would take more than about a second */
+        plan->huang.table_too_costly = !o->table_file && !hb_huang_table_fits(plan);
+        o->tt_trt = plan->huang.table_too_costly ? HB_TT_TRT_MC : HB_TT_TRT_TABLE;
+    }
     if (o->tt_trt == HB_TT_TRT_TABLE && (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)))
         return hb_huang_build_table(plan, error);
     return HB_OK;
