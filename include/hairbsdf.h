@@ -200,9 +200,9 @@ typedef enum hb_tt_trt {
     HB_TT_TRT_TABLE,     /* deterministic and real-time: interpolated from a table of f_TT + f_TRT that plan
                             creation builds for the material (3D, 4D for elliptical fibres; HHH22 sec. 3.4.2),
                             its resolution and build cost from quality and roughness (docs/huang.md gives both and the error); not with HB_QUALITY_REFERENCE */
-    HB_TT_TRT_AUTO       /* hb_options_default's: the table below HB_QUALITY_REFERENCE where its build is within
-                            the limit (deterministic), else the Monte-Carlo estimator; the nested quadrature at
-                            HB_QUALITY_REFERENCE. hb_plan_describe names the choice */
+    HB_TT_TRT_AUTO       /* hb_options_default's: below HB_QUALITY_REFERENCE the table (deterministic) on the
+                            finest grid up to the quality's that builds in about a second, else the Monte-Carlo
+                            estimator; the nested quadrature at HB_QUALITY_REFERENCE. hb_plan_describe names it */
 } hb_tt_trt;
 
 /* How dFH11's azimuthal terms N_p (eq. 10) are evaluated. */

@@ -195,10 +195,10 @@ static void test_table_refusals(hb_test_ctx *t)
     CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_UNSUPPORTED && !plan, "reference quality: %s", err.message);
 }
 
-/* hb_options_default's HB_TT_TRT_AUTO: the table where it builds in about a second (the default
- * material at balanced), so a direction gives the same f in every call and at every position of a
- * batch; where it would not (high quality at roughness 0.1), the estimator, and the description
- * says why. */
+/* hb_options_default's HB_TT_TRT_AUTO: the table on the finest grid that builds in about a second
+ * (the default material's own at balanced), so a direction gives the same f in every call and at
+ * every position of a batch; high quality at roughness 0.1 takes a coarser grid, roughness 0.01 the
+ * estimator, and the description says which and why. */
 static void test_default_deterministic(hb_test_ctx *t)
 {
     hb_material m;
@@ -206,9 +206,10 @@ static void test_default_deterministic(hb_test_ctx *t)
     hb_material_default(&m);
     hb_options_default(&o);
     o.model = HB_MODEL_HUANG;
-    hb_plan *plan;
+    hb_plan *plan = NULL;
     hb_error e;
-    CHECK(t, o.tt_trt == HB_TT_TRT_AUTO && hb_plan_create(&m, &o, &plan, &e) == HB_OK, "default plan: %s", e.message);
+    CHECK(t, o.tt_trt == HB_TT_TRT_AUTO, "hb_options_default's tt_trt is %d", (int)o.tt_trt);
+    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_OK, "default plan: %s", e.message);
     if (!plan)
         return;
     char text[4096];
@@ -229,14 +230,23 @@ static void test_default_deterministic(hb_test_ctx *t)
         }
     }
     hb_plan_destroy(plan);
-    o.quality = HB_QUALITY_HIGH;
-    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_OK, "high: %s", e.message);
-    if (!plan)
-        return;
-    hb_plan_describe(plan, text, sizeof text);
-    CHECK(t, strstr(text, "tt_trt auto: the table would take more than a second") != NULL,
-          "high at roughness 0.1 falls back to the estimator and says so:\n%s", text);
-    hb_plan_destroy(plan);
+    static const struct {
+        hb_quality quality;
+        double roughness;
+        const char *says;
+    } costly[] = { { HB_QUALITY_HIGH, 0.1, "a coarser grid than the quality's" },
+                   { HB_QUALITY_BALANCED, 0.01, "even the fast table would take more than a second" } };
+    for (int k = 0; k < 2; k++) {
+        o.quality = costly[k].quality, m.roughness = costly[k].roughness;
+        CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_OK, "quality %d, roughness %g: %s", (int)o.quality,
+              m.roughness, e.message);
+        if (!plan)
+            continue;
+        hb_plan_describe(plan, text, sizeof text);
+        CHECK(t, strstr(text, costly[k].says) != NULL, "quality %d, roughness %g: '%s' missing from\n%s",
+              (int)o.quality, m.roughness, costly[k].says, text);
+        hb_plan_destroy(plan);
+    }
 }
 
 const hb_test hb_tests_huang_table[] = {

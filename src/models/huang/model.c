@@ -60,13 +60,15 @@ static void describe(hb_text *t, const hb_plan *plan)
     }
     if (h->lobes & 6u) {
         if (h->table.values)
-            hb_say(t, "TT + TRT: interpolated from a table (%d theta_i x %d phi_i x %d x %d)\n", h->table.n_theta_i,
-                h->table.n_phi_i, h->table.n_sum, h->table.n_delta);
+            hb_say(t, "TT + TRT: interpolated from a table (%d theta_i x %d phi_i x %d x %d)%s\n", h->table.n_theta_i,
+                h->table.n_phi_i, h->table.n_sum, h->table.n_delta,
+                h->table_quality < plan->options.quality ? "; tt_trt auto: a coarser grid than the quality's, whose "
+                                                           "build would take more than a second" : "");
         else if (plan->kernels)
             hb_say(t, "TT + TRT (eqs. 31, 32): Simpson over %d panels of the entry azimuth, one random internal path per "
                    "node (seed %llu)%s\n", h->tt_panels, plan->options.seed,
-                   h->table_too_costly ? "; tt_trt auto: the table would take more than a second to build "
-                                         "(tt_trt = table builds it)" : "");
+                   h->table_too_costly ? "; tt_trt auto: even the fast table would take more than a second to "
+                                         "build (tt_trt = table builds it)" : "");
         else
             hb_say(t, "TT + TRT: nested quadrature in double\n");
     }

@@ -51,7 +51,7 @@ static void choose_grid(hb_plan *plan)
 {
     hb_huang *h = &plan->huang;
     hb_huang_table *t = &h->table;
-    const table_resolution *res = &resolutions[plan->options.quality];
+    const table_resolution *res = &resolutions[plan->huang.table_quality];
     double r = plan->material.roughness;
     t->n_theta_i = res->theta_i;
     t->n_phi_i = h->elliptical ? res->phi_i : 1;
@@ -144,7 +144,7 @@ static double table_connections(hb_plan *plan)
     choose_grid(plan);
     const hb_huang_table *t = &plan->huang.table;
     double rows = (double)t->n_theta_i * t->n_phi_i, nodes = (double)t->n_sum * t->n_delta;
-    double exits = 2.0 * resolutions[plan->options.quality].lattice * (plan->huang.tt_panels + 1);
+    double exits = 2.0 * resolutions[plan->huang.table_quality].lattice * (plan->huang.tt_panels + 1);
     return rows * exits * nodes;
 }
 
@@ -161,7 +161,7 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
         return load_table(plan, error);
     hb_huang *h = &plan->huang;
     hb_huang_table *t = &h->table;
-    const table_resolution *res = &resolutions[plan->options.quality];
+    const table_resolution *res = &resolutions[plan->huang.table_quality];
     double r = plan->material.roughness;
     double delta_range = h->elliptical ? 2.0 * M_PI : M_PI;
     double u_lo = asinh(-M_PI / r), u_hi = asinh(M_PI / r);
