@@ -14,6 +14,7 @@
 #include "platform.h"
 #include "readme.h"
 #include "table_files.h"
+#include "huang_table.h"
 
 enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
 
@@ -871,6 +872,8 @@ int main(int argc, char **argv)
         scaling(&m, scaling_out);
     if ((!partial || !strcmp(only, "table-files")) && scaling_out)
         bench_table_files(&m, scaling_out);
+    if ((!partial || !strcmp(only, "huang-table")) && scaling_out)
+        bench_huang_table(scaling_out);
     char *scaling_text = bench_text_close(scaling_out);
     printf("%s", scaling_text ? scaling_text : "");
     if (results_dir && !partial) { /* what tolerance and budget plans choose from (options.calibration) */

@@ -255,8 +255,9 @@ typedef struct hb_options {
     int r_panels;
     double r_step;
     /* HHH22 TT and TRT. tt_panels: Simpson panels over the entry window (even; 0 = from quality and
-     * roughness, docs/huang.md); seed: keys the Monte-Carlo numbers, so the same seed and
-     * sample index give the same value on every ISA (change it per frame to accumulate). */
+     * roughness, for the table twice as many at fast and balanced: docs/huang.md); seed: keys the
+     * Monte-Carlo numbers, so the same seed and sample index give the same value on every ISA
+     * (change it per frame to accumulate), and the table's lattice shifts. */
     hb_tt_trt tt_trt;
     int tt_panels;
     unsigned long long seed;

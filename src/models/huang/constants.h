@@ -20,14 +20,18 @@ typedef struct hb_huang_table {
     float delta_lo, delta_scale;                    /* delta node l at delta_lo + l / delta_scale */
     float cos_floor, inv_cos_floor; /* the least cos(theta) the lookup divides by: the plan's, at least half
                                        a theta_i step (each theta_i node reads the sum at a theta_o that far off) */
+    int panels; /* the builder's Simpson panels over the entry window */
 } hb_huang_table;
 
 /* What the table builder needs besides the plan's constants: the grid of one row (s and delta at
- * every node), the lattice points per Simpson node, and scratch for the row's internal paths. */
+ * every node), the rank-1 lattice of internal paths per Simpson node (its point count and
+ * generating vector), and scratch for the row's internal paths. */
 typedef struct hb_huang_table_build {
     const float *sums, *deltas;
     int lattice;
-    float *scratch; /* HB_HUANG_EXIT_FLOATS * 2 * lattice * (tt_panels + 1) floats */
+    int generator[4];
+    int row; /* the row's index: it keys the lattice's shifts */
+    float *scratch; /* HB_HUANG_EXIT_FLOATS * 2 * lattice * (table panels + 1) floats */
 } hb_huang_table_build;
 #define HB_HUANG_EXIT_FLOATS 11
 

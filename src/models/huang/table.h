@@ -1,8 +1,9 @@
 /* HHH22 TT and TRT from a table built at plan creation (HHH22 sec. 3.4.2 suggests "precomputing
- * them and storing the result in a 3D table (4D for elliptical cross-sections)"; docs/huang.md). The builder integrates eqs. 31, 32 deterministically: Simpson over the entry
- * azimuth phi_m1 as at evaluation, and at each node `lattice` internal paths whose visible normals
- * come from a shifted R4 low-discrepancy sequence instead of one random path; every path is traced
- * once per row and connected to every w_o of the row. Lookup is multilinear interpolation. */
+ * them and storing the result in a 3D table (4D for elliptical cross-sections)"; docs/huang.md).
+ * The builder integrates eqs. 31, 32 deterministically: Simpson over the entry azimuth phi_m1 on
+ * the table's panels, and at each node `lattice` internal paths whose visible normals are the
+ * points of a rank-1 lattice (randomly shifted per node and row) instead of one random path; every
+ * path is traced once per row and connected to every w_o of the row. Lookup is multilinear interpolation. */
 #ifndef HB_HUANG_TABLE_H
 #define HB_HUANG_TABLE_H
 
@@ -97,8 +98,7 @@ HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_table_angles *a
         huang_table_shaped(h, a, cos_ti, cos_to, sin2_phi_o, out, 3);
 }
 
-/* The R4 additive sequence (M. Roberts 2018): point l is frac(shift + l alpha) with alpha_k =
- * 1 / phi_4^(k + 1), phi_4 the real root of x^5 = x + 1; low discrepancy in 4D for any count. */
+/* The fractional part of x, in [0, 1]. */
 HB_INLINE vf unit_fraction(vf x)
 {
     vf f = vf_sub(x, vf_round(x));
@@ -108,11 +108,10 @@ HB_INLINE vf unit_fraction(vf x)
 /* Traces the row's internal paths and stores their exits with weight (Simpson weight times rho
  * times step / 3 / lattice, times the path's own weight): HB_HUANG_EXIT_FLOATS floats each,
  * those of zero weight left out. Returns how many. */
-HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, int lattice, float *store)
+HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, const hb_huang_table_build *b,
+                              float *store)
 {
-    static const float r4_alpha[4] = { 0.8566748838545029f, 0.733891856627126f, 0.6287067210378087f,
-                                       0.5385972572236101f };
-    int panels = h->tt_panels, count = 0;
+    int lattice = b->lattice, panels = h->table.panels, count = 0;
     vf sin_ti, cos_ti, sin_pi, cos_pi;
     vf_sincos(vf_set1(theta_i), &sin_ti, &cos_ti);
     vf_sincos(vf_set1(phi_i), &sin_pi, &cos_pi);
@@ -125,11 +124,12 @@ HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, int
         vf weight;
         fibre_point p = entry_node(h, &e, j, panels, &weight);
         weight = vf_keep(e.seen, vf_mul(weight, scale));
-        vi stream = rng_stream(h->rng_key, vi_set1(j)); /* the node's shift of the sequence */
+        vi stream = rng_stream(h->rng_key, vi_set1(j + (panels + 1) * b->row)); /* the node's shift of the lattice */
         for (int first = 0; first < lattice; first += HB_W) {
             vf index = vf_add(vf_set1((float)first), vf_loadu(lane_of)), u[4];
-            for (int k = 0; k < 4; k++)
-                u[k] = unit_fraction(vf_fma(index, vf_set1(r4_alpha[k]), rng_uniform(stream, h->rng_key2, k)));
+            for (int k = 0; k < 4; k++) /* point l: frac(l z_k / N + shift_k) */
+                u[k] = unit_fraction(vf_fma(index, vf_set1((float)b->generator[k] / (float)lattice),
+                                            rng_uniform(stream, h->rng_key2, k)));
             internal_exit exits[2];
             internal_exits(h, &p, e.wi, u, exits, h->lobes >> HB_LOBE_TRT & 1u, NULL, NULL);
             for (int l = 0; l < 2; l++) {
@@ -161,7 +161,7 @@ HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, int
 HB_INLINE void huang_table_row(const hb_huang *h, float theta_i, float phi_i, const hb_huang_table_build *b, float *row)
 {
     const hb_huang_table *t = &h->table;
-    int exits = table_row_exits(h, theta_i, phi_i, b->lattice, b->scratch);
+    int exits = table_row_exits(h, theta_i, phi_i, b, b->scratch);
     vf zero = vf_set1(0.0f);
     for (int k = 0; k < t->n_sum; k++)
         for (int first = 0; first < t->n_delta; first += HB_W) {

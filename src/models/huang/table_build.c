@@ -11,22 +11,27 @@
 
 /* Per quality (fast, balanced, high): nodes in theta_i and in phi_i (elliptical), the delta step
  * and the step of u = asinh(s / roughness) (near s = 0 that is the step in s over the roughness),
- * and the internal paths per Simpson node. */
+ * Simpson's step over the entry azimuth in roughnesses (half the estimator's at fast and balanced:
+ * the paper's 0.7 puts a TT peak 3% off on a circle, 3-7% on an ellipse of e = 0.8), and the
+ * internal paths per Simpson node: a rank-1 lattice of N points, N a Fibonacci number, whose first
+ * two coordinates (the entry's visible normal, all TT needs) are the Fibonacci lattice and whose
+ * last two (the bounce's) are the same lattice at point k l, k minimising the P2 discrepancy of
+ * the four together. */
 typedef struct table_resolution {
     int theta_i, phi_i;
-    double delta_step, u_step;
-    int lattice;
+    double delta_step, u_step, simpson_step;
+    int lattice, generator[4];
 } table_resolution;
 
 static const table_resolution resolutions[] = {
-    [HB_QUALITY_FAST] = { 17, 5, 1.0, 0.5, 8 },
-    [HB_QUALITY_BALANCED] = { 33, 9, 0.5, 0.25, 32 },
-    [HB_QUALITY_HIGH] = { 49, 13, 0.35, 0.18, 64 },
+    [HB_QUALITY_FAST] = { 17, 5, 1.0, 0.5, 0.7, 13, { 1, 8, 2, 3 } },
+    [HB_QUALITY_BALANCED] = { 33, 9, 0.5, 0.25, 0.35, 21, { 1, 13, 16, 19 } },
+    [HB_QUALITY_HIGH] = { 49, 13, 0.35, 0.18, 0.35, 89, { 1, 55, 86, 13 } },
 };
 
-/* The most exit-to-node connections a build may make: about 10 s on one AVX2 core (2.6 ns each,
- * measured), what an elliptical fibre of roughness 0.1 needs at balanced. */
-#define MAX_CONNECTIONS 4e9
+/* The most exit-to-node connections a build may make: about 16 s on one AVX2 core (2.6 ns each,
+ * measured), a little more than an elliptical fibre of roughness 0.1 needs at balanced (5e9). */
+#define MAX_CONNECTIONS 6e9
 
 static int nodes_for(double range, double step, int least, int most)
 {
@@ -65,6 +70,8 @@ static void choose_grid(hb_plan *plan)
     t->n_sum = nodes_for(u_hi - u_lo, res->u_step, 9, 513);
     t->u_lo = (float)u_lo;
     t->u_scale = (float)((t->n_sum - 1) / (u_hi - u_lo));
+    double panels = 2.0 * ceil(M_PI / (2.0 * res->simpson_step * r)); /* the plan's rule for its own step */
+    t->panels = plan->options.tt_panels > 0 ? plan->options.tt_panels : (int)fmin(fmax(panels, 4.0), HB_MAX_TT_PANELS);
     double cos_floor = fmax(h->cos_floor, 0.5 * M_PI / (t->n_theta_i - 1));
     t->cos_floor = (float)cos_floor;
     t->inv_cos_floor = (float)(1.0 / cos_floor);
@@ -134,6 +141,7 @@ static void build_row(void *rows, int k)
     double phi_i = t->n_phi_i > 1 ? M_PI_2 * m / (t->n_phi_i - 1) : 0.0;
     hb_huang_table_build build = r->build;
     build.scratch = r->scratch + (size_t)(k % r->part) * r->scratch_floats;
+    build.row = k;
     ((const hb_huang_kernels *)r->plan->kernels)->table_row(&r->plan->huang, (float)theta_i, (float)phi_i, &build,
                                                              r->values + (size_t)k * r->row);
 }
@@ -144,13 +152,13 @@ static double table_connections(hb_plan *plan)
     choose_grid(plan);
     const hb_huang_table *t = &plan->huang.table;
     double rows = (double)t->n_theta_i * t->n_phi_i, nodes = (double)t->n_sum * t->n_delta;
-    double exits = 2.0 * resolutions[plan->huang.table_quality].lattice * (plan->huang.tt_panels + 1);
+    double exits = 2.0 * resolutions[plan->huang.table_quality].lattice * (plan->huang.table.panels + 1);
     return rows * exits * nodes;
 }
 
-/* HB_TT_TRT_AUTO builds the table where it takes about a second on one core at most (circular
- * fibres down to roughness 0.1 at balanced; elliptical ones from about 0.3). */
-#define AUTO_CONNECTIONS 4e8
+/* HB_TT_TRT_AUTO builds the table where it takes about a second on one core at most (1.3 s:
+ * circular fibres down to roughness 0.1 at balanced; elliptical ones of e = 0.8 from about 0.3). */
+#define AUTO_CONNECTIONS 5e8
 
 int hb_huang_table_fits(hb_plan *plan) { return table_connections(plan) <= AUTO_CONNECTIONS; }
 
@@ -167,7 +175,7 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
     double u_lo = asinh(-M_PI / r), u_hi = asinh(M_PI / r);
     size_t row = (size_t)t->n_sum * (size_t)t->n_delta * 3;
     size_t rows = (size_t)t->n_theta_i * (size_t)t->n_phi_i;
-    size_t exits = 2 * (size_t)res->lattice * (size_t)(h->tt_panels + 1);
+    size_t exits = 2 * (size_t)res->lattice * (size_t)(t->panels + 1);
     if (connections > MAX_CONNECTIONS) {
         if (error) {
             error->status = HB_ERR_UNSUPPORTED;
@@ -189,7 +197,9 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
         grid[k] = (float)(r * sinh(u_lo + k * (u_hi - u_lo) / (t->n_sum - 1)));
     for (int l = 0; l < t->n_delta; l++)
         grid[t->n_sum + l] = (float)(t->delta_lo + l * delta_range / (t->n_delta - 1));
-    table_rows rows_run = { plan, { grid, grid + t->n_sum, res->lattice, NULL }, scratch, scratch_floats, part, values, row };
+    table_rows rows_run = { plan, { grid, grid + t->n_sum, res->lattice, { 0 }, 0, NULL }, scratch, scratch_floats, part, values, row };
+    for (int k = 0; k < 4; k++)
+        rows_run.build.generator[k] = res->generator[k];
     hb_status st = hb_build_tasks(&plan->options, count, part, build_row, &rows_run, 0.0, 1.0, error);
     free(grid);
     free(scratch);
