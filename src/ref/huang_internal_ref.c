@@ -224,12 +224,31 @@ static int composite_rule(int n, int rule, double a, double b, double *x, double
     return panels * rule;
 }
 
+/* A visible normal's number u maps the NDF's tail to a thin layer at an end of [0, 1] (GGX: the
+ * spherical cap's rim at u2 -> 1), where an evenly spread rule put 4 of 32 points on the whole tail
+ * (TT 8% low at f 2% of its peak). Gauss-Legendre in t with u = t - sin(2 pi t) / (2 pi),
+ * du = (1 - cos(2 pi t)) dt (Sidi's sin^2 transformation) crowds the points at both ends. TT's
+ * two numbers take it; TRT's four keep the even spread, whose 12 points per number the
+ * transformation would thin where TRT's integrand lies (its reciprocity 3.6% off instead of 2%). */
+static int visible_number_rule(int n, double *u, double *w)
+{
+    int count = composite_rule(n, U_RULE, 0.0, 1.0, u, w);
+    for (int k = 0; k < count; k++) {
+        double t = u[k];
+        w[k] *= 1.0 - cos(2.0 * M_PI * t);
+        u[k] = t - sin(2.0 * M_PI * t) / (2.0 * M_PI);
+    }
+    return count;
+}
+
 /* The integral of one lobe's path over the entry nodes and `pairs` visible-normal pairs of numbers. */
 static void nested(const hb_plan *plan, unsigned lobe, const setup *s, int n_phi, const double *phi_x,
                    const double *phi_w, int u_points, double out[3])
 {
     double ux[MAX_POINTS], uw[MAX_POINTS];
-    int n_u = composite_rule(u_points, U_RULE, 0.0, 1.0, ux, uw), n_v = lobe == HB_LOBE_TRT ? n_u : 1;
+    int n_u = lobe == HB_LOBE_TT ? visible_number_rule(u_points, ux, uw)
+                                 : composite_rule(u_points, U_RULE, 0.0, 1.0, ux, uw),
+        n_v = lobe == HB_LOBE_TRT ? n_u : 1;
     const double *vx = n_v > 1 ? ux : (const double[]){ 0.5 }, *vw = n_v > 1 ? uw : (const double[]){ 1.0 };
     for (int c = 0; c < 3; c++)
         out[c] = 0.0;

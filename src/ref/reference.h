@@ -112,7 +112,8 @@ void hb_ref_huang_internal_mc(const hb_plan *plan, double theta_i, double phi_i,
 /* The same integrals by nested quadrature: over the entry azimuth phi_m1 either Simpson on the plan's
  * nodes (simpson = 1: what the estimator's mean is) or composite Gauss-Legendre with phi_points
  * points (simpson = 0); over each visible-normal pair (the estimator's numbers) composite
- * Gauss-Legendre with tt_points (TT) or trt_points (TRT) points per dimension. */
+ * Gauss-Legendre with tt_points (TT) or trt_points (TRT) points per dimension (TT's in a variable
+ * that crowds them at the ends of [0, 1], Sidi's sin^2 transformation). */
 void hb_ref_huang_internal(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
                            int simpson, int phi_points, int tt_points, int trt_points, double tt[3], double trt[3]);
 /* The points the reference quality uses (docs/huang.md: their convergence). */
