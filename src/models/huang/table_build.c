@@ -12,7 +12,7 @@
 /* Per quality (fast, balanced, high): nodes in theta_i and in phi_i (elliptical), the delta step
  * and the step of u = asinh(s / roughness) (near s = 0 that is the step in s over the roughness),
  * Simpson's step over the entry azimuth in roughnesses (half the estimator's at fast and balanced:
- * the paper's 0.7 puts a TT peak 3% off on a circle, 3-7% on an ellipse of e = 0.8), and the
+ * the paper's 0.7 puts a TT peak 3% off on a circle and on an ellipse of e = 0.8), and the
  * internal paths per Simpson node: a rank-1 lattice of N points, N a Fibonacci number, whose first
  * two coordinates (the entry's visible normal, all TT needs) are the Fibonacci lattice and whose
  * last two (the bounce's) are the same lattice at point k l, k minimising the P2 discrepancy of
