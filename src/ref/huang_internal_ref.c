@@ -229,7 +229,8 @@ static int composite_rule(int n, int rule, double a, double b, double *x, double
  * (TT 8% low at f 2% of its peak). Gauss-Legendre in t with u = t - sin(2 pi t) / (2 pi),
  * du = (1 - cos(2 pi t)) dt (Sidi's sin^2 transformation) crowds the points at both ends. TT's
  * two numbers take it; TRT's four keep the even spread, whose 12 points per number the
- * transformation would thin where TRT's integrand lies (its reciprocity 3.6% off instead of 2%). */
+ * transformation would thin where TRT's integrand lies (its reciprocity check off by 3.6e-2
+ * instead of 1.2e-2). */
 static int visible_number_rule(int n, double *u, double *w)
 {
     int count = composite_rule(n, U_RULE, 0.0, 1.0, u, w);

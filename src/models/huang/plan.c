@@ -54,11 +54,11 @@ static const double huang_tt_step[] = {
     [HB_QUALITY_FAST] = 1.4, [HB_QUALITY_BALANCED] = 0.7, [HB_QUALITY_HIGH] = 0.35, [HB_QUALITY_REFERENCE] = 0.35,
 };
 
-static int huang_tt_panels(const hb_options *o, double roughness)
+int hb_huang_tt_panels(const hb_options *o, hb_quality quality, double roughness)
 {
     if (o->tt_panels > 0)
         return o->tt_panels;
-    double panels = 2.0 * ceil(M_PI / (2.0 * huang_tt_step[o->quality] * roughness));
+    double panels = 2.0 * ceil(M_PI / (2.0 * huang_tt_step[quality] * roughness));
     return (int)fmin(fmax(panels, 4.0), HB_MAX_TT_PANELS);
 }
 
@@ -85,7 +85,7 @@ static void derive_constants(hb_plan *plan)
     double r = m->roughness, c = sqrt(1.0 - r * r);
     plan->huang_tilt = (m->lobe_alpha_override & 1u) ? m->lobe_alpha[HB_LOBE_R] : -m->alpha;
     h->lobes = o->lobes == HB_LOBES_DEFAULT ? 7u : o->lobes;
-    h->tt_panels = huang_tt_panels(o, r);
+    h->tt_panels = hb_huang_tt_panels(o, o->quality, r);
     unsigned long long key = hb_mix64(o->seed + 0x9e3779b97f4a7c15ull);
     h->rng_key = (uint32_t)key;
     h->rng_key2 = (uint32_t)(key >> 32);

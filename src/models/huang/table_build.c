@@ -11,22 +11,22 @@
 
 /* Per quality (fast, balanced, high): nodes in theta_i and in phi_i (elliptical), the delta step
  * and the step of u = asinh(s / roughness) (near s = 0 that is the step in s over the roughness),
- * Simpson's step over the entry azimuth in roughnesses (half the estimator's at fast and balanced:
- * the paper's 0.7 puts a TT peak 3% off on a circle and on an ellipse of e = 0.8), and the
- * internal paths per Simpson node: a rank-1 lattice of N points, N a Fibonacci number, whose first
- * two coordinates (the entry's visible normal, all TT needs) are the Fibonacci lattice and whose
- * last two (the bounce's) are the same lattice at point k l, k minimising the P2 discrepancy of
- * the four together. */
+ * and the internal paths per Simpson node: a rank-1 lattice of N points, N a Fibonacci number,
+ * whose first two coordinates (the entry's visible normal, all TT needs) are the Fibonacci lattice
+ * and whose last two (the bounce's) are the same lattice at point k l, k minimising the P2
+ * discrepancy of the four together. Simpson's rule over the entry azimuth takes the next quality's
+ * step (half the estimator's at fast and balanced: the paper's 0.7 roughness puts a TT peak 3% off
+ * on a circle and on an ellipse of e = 0.8). */
 typedef struct table_resolution {
     int theta_i, phi_i;
-    double delta_step, u_step, simpson_step;
+    double delta_step, u_step;
     int lattice, generator[4];
 } table_resolution;
 
 static const table_resolution resolutions[] = {
-    [HB_QUALITY_FAST] = { 17, 5, 1.0, 0.5, 0.7, 13, { 1, 8, 2, 3 } },
-    [HB_QUALITY_BALANCED] = { 33, 9, 0.5, 0.25, 0.35, 21, { 1, 13, 16, 19 } },
-    [HB_QUALITY_HIGH] = { 49, 13, 0.35, 0.18, 0.35, 89, { 1, 55, 86, 13 } },
+    [HB_QUALITY_FAST] = { 17, 5, 1.0, 0.5, 13, { 1, 8, 2, 3 } },
+    [HB_QUALITY_BALANCED] = { 33, 9, 0.5, 0.25, 21, { 1, 13, 16, 19 } },
+    [HB_QUALITY_HIGH] = { 49, 13, 0.35, 0.18, 89, { 1, 55, 86, 13 } },
 };
 
 /* The most exit-to-node connections a build may make: about 16 s on one AVX2 core (2.6 ns each,
@@ -70,8 +70,7 @@ static void choose_grid(hb_plan *plan)
     t->n_sum = nodes_for(u_hi - u_lo, res->u_step, 9, 513);
     t->u_lo = (float)u_lo;
     t->u_scale = (float)((t->n_sum - 1) / (u_hi - u_lo));
-    double panels = 2.0 * ceil(M_PI / (2.0 * res->simpson_step * r)); /* the plan's rule for its own step */
-    t->panels = plan->options.tt_panels > 0 ? plan->options.tt_panels : (int)fmin(fmax(panels, 4.0), HB_MAX_TT_PANELS);
+    t->panels = hb_huang_tt_panels(&plan->options, (hb_quality)(h->table_quality + 1), r);
     double cos_floor = fmax(h->cos_floor, 0.5 * M_PI / (t->n_theta_i - 1));
     t->cos_floor = (float)cos_floor;
     t->inv_cos_floor = (float)(1.0 / cos_floor);
