@@ -1,7 +1,7 @@
 /* HHH22's TT/TRT table against the model: a rough dark-blond fibre (GGX 0.2, alpha 0.035, eta 1.55,
  * eumelanin 0.3, R + TT + TRT), directions near the lobes, and as reference the mean of the
- * high-quality estimator (unbiased for its Simpson sum, whose own error at this roughness is under
- * 0.1%) over many sample indices per direction. */
+ * high-quality estimator (unbiased for its Simpson sum, which at this roughness was within 0.22% of
+ * Gauss-Legendre's at six directions) over many sample indices per direction. */
 #include <math.h>
 #include <stdlib.h>
 
