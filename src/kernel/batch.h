@@ -108,6 +108,13 @@ HB_INLINE void store_one(float *dst, size_t k, vm valid, vf v)
     dst[k] = lanes[0];
 }
 
+HB_INLINE void store_rgb_one(hb_rgb_soa out, size_t k, vm valid, const vf f[3])
+{
+    store_one(out.r, k, valid, f[0]);
+    store_one(out.g, k, valid, f[1]);
+    store_one(out.b, k, valid, f[2]);
+}
+
 HB_INLINE vm load_vectors(hb_vectors_soa in, size_t i, size_t lanes, vf a[6])
 {
     const float *src[6] = { in.wi_x, in.wi_y, in.wi_z, in.wo_x, in.wo_y, in.wo_z };
@@ -208,6 +215,17 @@ HB_INLINE vm load_near(hb_near_soa in, size_t i, size_t lanes, vf a[5])
     return valid;
 }
 
+/* Sample k of a near-field batch in every lane (the one-sample paths), as load_near checks it. */
+HB_INLINE vm load_near_one(hb_near_soa in, size_t k, vf a[5])
+{
+    hb_angles_soa angles = { in.theta_i, in.phi_i, in.theta_o, in.phi_o };
+    vm valid = vm_and(load_angles_one(angles, k, a), offset_valid(vf_set1(in.h[k])));
+    for (int s = 0; s < 4; s++)
+        a[s] = vf_keep(valid, a[s]);
+    a[4] = vf_keep(valid, vf_set1(in.h[k]));
+    return valid;
+}
+
 /* A near-field sampling batch: theta_o, phi_o, the `dims` uniform numbers, then h last. */
 HB_INLINE vm load_sample_near(hb_sample_near_in in, int dims, size_t i, size_t lanes, vf *a)
 {
@@ -273,6 +291,22 @@ HB_INLINE void store_sampled(const hb_sample_batch *b, size_t i, size_t lanes, v
             vm valid = load((in), i, lanes, a);                       \
             compute;                                                  \
             bad_ += count_invalid(valid, lanes);                      \
+        }                                                             \
+        *(invalid) = bad_;                                            \
+        hb_fp_restore(mode_);                                         \
+    } while (0)
+
+/* HB_BATCH for a call of a few samples taken one at a time, sample k in every lane of `a` (load_one),
+ * `compute` storing lane 0 (store_one). */
+#define HB_ONE_BY_ONE(load_one, streams, in, n, invalid, compute)     \
+    do {                                                              \
+        hb_fp_mode mode_ = hb_flush_subnormals();                     \
+        size_t bad_ = 0;                                              \
+        for (size_t k = 0; k < (n); k++) {                            \
+            vf a[streams];                                            \
+            vm valid = load_one((in), k, a);                          \
+            compute;                                                  \
+            bad_ += !(vm_bits(valid) & 1u);                           \
         }                                                             \
         *(invalid) = bad_;                                            \
         hb_fp_restore(mode_);                                         \

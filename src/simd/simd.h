@@ -15,7 +15,8 @@
  *   fused (one rounding) on AVX2, AVX-512 and NEON, two roundings on scalar and SSE4.1;
  *   vf_round (to nearest, ties to even), vf_select(m, a, b) (a where m), vf_keep(m, a) (a where m,
  *   else +0); comparisons vf_lt, vf_le, vf_gt, vf_ge, vf_eq (ordered: false for NaN);
- *   vm_and, vm_or, vm_andnot(a, b) = a and not b, vm_not, vm_bits (bit k: lane k);
+ *   vm_and, vm_or, vm_andnot(a, b) = a and not b, vm_not, vm_bits (bit k: lane k); vf_sum_lanes (the
+ *   lanes' sum as one float, added pairwise in a tree of the ISA's order: for one-sample paths);
  *   vf_as_vi, vi_as_vf (bit casts); vi_set1, vi_add, vi_sub, vi_mul (low 32 bits), vi_and, vi_or,
  *   vi_xor, vi_shl, vi_shr (logical), vi_eq; vi_from_vf (the float must be integral and in int32
  *   range), vf_from_vi; vf_gather(base, idx) (one float per lane), vf_gather4 (four consecutive
@@ -119,14 +120,15 @@ HB_INLINE vf vf_floor(vf a)
 HB_INLINE vf vf_rcp(vf a) { return vf_div(vf_set1(1.0f), a); }
 HB_INLINE vf vf_clamp(vf a, float lo, float hi) { return vf_min(vf_max(a, vf_set1(lo)), vf_set1(hi)); }
 
-/* The sum of the lanes, in lane order (a horizontal add: for the rare one-sample paths only). */
-HB_INLINE float vf_sum_lanes(vf a)
+/* Lanes 0 .. count - 1 of a (count <= HB_W) into out, and no other lane read: for the one-sample paths
+ * whose work sits in the first lanes, so that the work of the others (AVX2's upper register) is dead
+ * code the compiler drops. */
+HB_INLINE void vf_store_first(float *out, vf a, int count)
 {
-    float lanes[HB_W], sum = 0.0f;
+    float lanes[HB_W];
     vf_storeu(lanes, a);
-    for (int k = 0; k < HB_W; k++)
-        sum += lanes[k];
-    return sum;
+    for (int k = 0; k < count; k++)
+        out[k] = lanes[k];
 }
 
 #endif

@@ -71,6 +71,12 @@ HB_INLINE unsigned vm_bits(vm a)
 {
     return (unsigned)_mm256_movemask_ps(a.lo) | (unsigned)_mm256_movemask_ps(a.hi) << 8;
 }
+HB_INLINE float vf_sum_lanes(vf a)
+{
+    __m256 s = _mm256_add_ps(a.lo, a.hi);
+    __m128 q = _mm_add_ps(_mm256_castps256_ps128(s), _mm256_extractf128_ps(s, 1));
+    return HB_SUM4_PS(q);
+}
 
 HB_HALVES1(vi, vf_as_vi, _mm256_castps_si256, vf)
 HB_HALVES1(vf, vi_as_vf, _mm256_castsi256_ps, vi)

@@ -43,6 +43,13 @@ HB_INLINE vm vm_or(vm a, vm b) { return (vm)(a | b); }
 HB_INLINE vm vm_andnot(vm a, vm b) { return (vm)(a & ~b); }
 HB_INLINE vm vm_not(vm a) { return (vm)~a; }
 HB_INLINE unsigned vm_bits(vm a) { return (unsigned)a; }
+HB_INLINE float vf_sum_lanes(vf a)
+{
+    __m256 hi = _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(a), 1));
+    __m256 s = _mm256_add_ps(_mm512_castps512_ps256(a), hi);
+    __m128 q = _mm_add_ps(_mm256_castps256_ps128(s), _mm256_extractf128_ps(s, 1));
+    return HB_SUM4_PS(q);
+}
 
 HB_INLINE vi vf_as_vi(vf a) { return _mm512_castps_si512(a); }
 HB_INLINE vf vi_as_vf(vi a) { return _mm512_castsi512_ps(a); }

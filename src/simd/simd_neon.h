@@ -38,6 +38,7 @@ HB_INLINE vm vm_and(vm a, vm b) { return vandq_u32(a, b); }
 HB_INLINE vm vm_or(vm a, vm b) { return vorrq_u32(a, b); }
 HB_INLINE vm vm_andnot(vm a, vm b) { return vbicq_u32(a, b); }
 HB_INLINE vm vm_not(vm a) { return vmvnq_u32(a); }
+HB_INLINE float vf_sum_lanes(vf a) { return vaddvq_f32(a); }
 HB_INLINE unsigned vm_bits(vm a)
 {
     const uint32_t lane_bit[4] = { 1, 2, 4, 8 };

@@ -42,6 +42,7 @@ HB_INLINE vm vm_or(vm a, vm b) { return a | b; }
 HB_INLINE vm vm_andnot(vm a, vm b) { return a & (b ^ 1u); }
 HB_INLINE vm vm_not(vm a) { return a ^ 1u; }
 HB_INLINE unsigned vm_bits(vm a) { return a; }
+HB_INLINE float vf_sum_lanes(vf a) { return a; }
 
 HB_INLINE vi vf_as_vi(vf a) { vi r; memcpy(&r, &a, sizeof r); return r; }
 HB_INLINE vf vi_as_vf(vi a) { vf r; memcpy(&r, &a, sizeof r); return r; }

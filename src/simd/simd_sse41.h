@@ -54,6 +54,7 @@ HB_INLINE vm vm_or(vm a, vm b) { return _mm_or_ps(a, b); }
 HB_INLINE vm vm_andnot(vm a, vm b) { return _mm_andnot_ps(b, a); }
 HB_INLINE vm vm_not(vm a) { return _mm_xor_ps(a, _mm_castsi128_ps(_mm_set1_epi32(-1))); }
 HB_INLINE unsigned vm_bits(vm a) { return (unsigned)_mm_movemask_ps(a); }
+HB_INLINE float vf_sum_lanes(vf a) { return HB_SUM4_PS(a); }
 
 HB_INLINE vi vf_as_vi(vf a) { return _mm_castps_si128(a); }
 HB_INLINE vf vi_as_vf(vi a) { return _mm_castsi128_ps(a); }

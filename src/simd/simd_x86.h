@@ -16,4 +16,8 @@
         (o3) = P##_shuffle_ps(t1_, t3_, 0xee);                                                    \
     } while (0)
 
+/* The sum of a 128-bit register's four floats, as (a0 + a2) + (a1 + a3) (SSE3's movehdup). */
+#define HB_SUM4_PS(a) _mm_cvtss_f32(hb_sum2_ps_(_mm_add_ps((a), _mm_movehl_ps((a), (a)))))
+#define hb_sum2_ps_(s) _mm_add_ss((s), _mm_movehdup_ps(s))
+
 #endif

@@ -75,8 +75,7 @@ HB_INLINE vf channel_mean(const vf rgb[3])
 typedef struct deon_geometry {
     vf phi;          /* phi_o - phi_i in [-pi, pi] */
     vf cos_phi;
-    vf sin2_theta_d; /* theta_d = (theta_o - theta_i)/2 */
-    vf cos_theta_d;
+    vf cos_theta_d;  /* theta_d = (theta_o - theta_i)/2 */
     vf cos_half_io;  /* cos of half the angle between w_i and w_o (eq. 12's Fresnel; 1 where unused) */
     vf absorption[3]; /* sigma_a log2(e) per channel: the plan's, or each sample's (hb_eval_angles_absorption) */
     int grey;         /* the same absorption in every channel: one channel computed, copied */
@@ -286,7 +285,6 @@ HB_INLINE void deon_np_row(const hb_deon *d, float cos_theta_d, size_t n, const 
         g.phi = vf_loadu(lane_phi);
         g.cos_phi = vf_cos(g.phi);
         g.cos_theta_d = vf_set1(cos_theta_d);
-        g.sin2_theta_d = vf_set1(1.0f - cos_theta_d * cos_theta_d);
         g.cos_half_io = vf_set1(1.0f); /* eq. 12's factor: the table is for the offset Fresnel only */
         deon_plan_absorption(d, &g);
         vf N[HB_MAX_LOBES + 1][3];
@@ -620,12 +618,16 @@ HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[H
         deon_fused_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
 }
 
-/* deon_fused for one sample, its value in every lane, the nodes across the lanes: one shape serves
- * every standard plan (the lobe set read at run time, three channels even for a grey fibre). */
+/* deon_fused for one sample, its value in every lane, the nodes across the lanes: two shapes serve
+ * every standard plan, all of its lobes or a lobe set read at run time (three channels even for a
+ * grey fibre). */
 HB_INLINE void deon_fused_one(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3],
                               deon_pdf_terms *pdf)
 {
-    deon_fused_one_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
+    if (d->lobes == HB_STANDARD_LOBES)
+        deon_fused_one_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 1 });
+    else
+        deon_fused_one_shaped(d, g, M, out, pdf, (deon_shape){ 1, 3, 0 });
 }
 
 /* f by quadrature from M per group leader (longitudinal_deon_groups_*): the standard shape folds M_p
@@ -668,18 +670,11 @@ HB_INLINE void deon_eval(const hb_deon *d, const deon_geometry *g, const vf M[HB
 /* deon_geometry from angles. */
 HB_INLINE void deon_geometry_angles(const hb_deon *d, vf theta_i, vf phi_i, vf theta_o, vf phi_o, deon_geometry *g)
 {
-    vf sin_td, cos_td;
     g->phi = wrap_angle(vf_sub(phi_o, phi_i));
     /* read by Fourier detectors and eq. 12 only (a table reads |phi|, the standard shape sigma |phi|) */
     g->cos_phi = !d->np_table && (d->fourier_terms > 0 || !d->r_fresnel_offset) ? vf_cos(g->phi) : vf_set1(1.0f);
-    vf theta_d = vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i));
-    if (d->np_table) { /* a table reads cos(theta_d) alone: one sine polynomial, no reduction */
-        cos_td = cos_near_pole(theta_d, vf_set1(HB_PIO2_LO));
-        g->sin2_theta_d = vf_fnma(cos_td, cos_td, vf_set1(1.0f));
-    } else {
-        vf_sincos(theta_d, &sin_td, &cos_td);
-        g->sin2_theta_d = vf_mul(sin_td, sin_td);
-    }
+    /* |theta_d| <= pi/2: one sine polynomial, no reduction, relative-accurate near the pole */
+    vf cos_td = cos_near_pole(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), vf_set1(HB_PIO2_LO));
     g->cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
     g->cos_half_io = vf_set1(1.0f);
     deon_plan_absorption(d, g);
@@ -718,7 +713,6 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     g.cos_phi = !d->np_table && d->fourier_terms > 0 ? vf_cos(g.phi) : vf_set1(1.0f); /* Fourier detectors only */
     vf cos_diff = vf_fma(ci, co, vf_mul(si, so)); /* cos(theta_o - theta_i) = cos(2 theta_d) */
     g.cos_theta_d = vf_sqrt(vf_max(vf_fma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
-    g.sin2_theta_d = vf_max(vf_fnma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f));
     vf dot = vf_mul(vf_mul(inv_i, inv_o), vf_fma(wi[0], wo[0], vf_fma(wi[1], wo[1], vf_mul(wi[2], wo[2]))));
     g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
     deon_plan_absorption(d, &g);

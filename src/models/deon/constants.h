@@ -27,6 +27,20 @@ typedef struct hb_longitudinal {
     float shift_hi[3], shift_lo[3];
 } hb_longitudinal;
 
+/* The standard shape's lobes side by side, one lobe per lane, for a call of one sample: lane p holds
+ * order p up to HB_STANDARD_PMAX, lane HB_LOBE_LANES - 1 the residual, and the lanes past them repeat
+ * R's M_p constants with a detector of 0. M_p's float path (longitudinal.h, longitudinal_lobe_lanes)
+ * and the nearest Gaussian of eq. 11, D = norm 2^-(x^2 exponent), times 0 for a lobe the plan leaves
+ * out; the residual's is uniform (exponent 0, norm 1 / (2 pi)). */
+#define HB_LOBE_LANES 5
+#define HB_RESIDUAL_DETECTOR 0.159154943f /* the residual's detector: uniform in phi, 1 / (2 pi) */
+#define HB_LANE_ARRAY 16 /* the widest vector */
+typedef struct hb_lobe_lanes {
+    float inv_v_f[HB_LANE_ARRAY], inv_v_log2e_f[HB_LANE_ARRAY], log2_norm_f[HB_LANE_ARRAY];
+    float shift_hi[3][HB_LANE_ARRAY], shift_lo[3][HB_LANE_ARRAY];
+    float detector_norm[HB_LANE_ARRAY], detector_exponent[HB_LANE_ARRAY];
+} hb_lobe_lanes;
+
 /* dFH11 eq. 7's constants for variance v and shift, in double, and rounded for the float path below
  * HB_QUALITY_HIGH (src/models/deon/plan.c). */
 void hb_longitudinal_derive(hb_longitudinal *l, double v, double shift, hb_quality quality);
@@ -78,6 +92,7 @@ typedef struct hb_deon {
     int asin_narrow; /* eta >= 4/3: gamma_t = asin(h / eta') by vf_asin_narrow (|h / eta'| <= 3/4) */
     int fourier_terms; /* the most Fourier terms any lobe's detector uses (cos(n phi) to precompute) */
     hb_longitudinal longitudinal[HB_MAX_LOBES + 1]; /* index HB_LOBE_RESIDUAL: the residual lobe */
+    hb_lobe_lanes lobe_lanes; /* the standard shape's float M_p constants, a lobe per lane */
     /* lobes whose M_p is the same function (same v and shift) share one evaluation: m_group[p]
      * is the first included lobe with p's constants, and M_p is evaluated for it alone */
     int m_group[HB_MAX_LOBES + 1];

@@ -51,38 +51,58 @@ HB_INLINE void deon_absorbing_angles(const hb_deon *d, const vf a[7], hb_i0 i0, 
     deon_eval(d, &g, M, f);
 }
 
-/* Calls of fewer than HB_DEON_ONE_MAX samples on a standard quadrature plan take each sample alone
- * with the quadrature's nodes across the lanes (azimuthal.h, deon_fused_one): a path tracer's call at
- * a hit costs one sample's work instead of a block of HB_W lanes. Measured (make bench, balanced, 10
- * nodes): one sample alone 299 ns on AVX2, 239 on AVX-512, 329 on SSE4.1, a block 899, 518 and 671
- * ns, so from three samples on the block is as cheap. */
-#define HB_DEON_ONE_MAX 3
+/* Calls of up to HB_DEON_ONE_MAX samples (HB_DEON_NEAR_ONE_MAX in the near field) on a standard
+ * quadrature plan take each sample alone, the far field's quadrature nodes or the near field's lobes
+ * across the lanes: a path tracer's call at a hit costs one sample's work instead of a block of HB_W
+ * lanes. The counts are where that is as cheap or cheaper, measured per ISA (make bench, balanced, ns
+ * for one sample alone against a block): far field AVX2 172 against 830, AVX-512 151 against 630,
+ * SSE4.1 285 against 552; near field 126 against 256, 154 against 168, 174 against 173 (NEON taken
+ * as SSE4.1). */
+#if defined(HB_TARGET_AVX2)
+#define HB_DEON_ONE_MAX 4
+#define HB_DEON_NEAR_ONE_MAX 2
+#elif defined(HB_TARGET_AVX512)
+#define HB_DEON_ONE_MAX 4
+#define HB_DEON_NEAR_ONE_MAX 1
+#else
+#define HB_DEON_ONE_MAX (HB_W > 1)
+#define HB_DEON_NEAR_ONE_MAX (HB_W > 1)
+#endif
 
-HB_INLINE int deon_one_by_one(const hb_deon *d, size_t n) { return HB_W > 1 && d->standard && !d->np_table && n < HB_DEON_ONE_MAX; }
-
-/* f, and the pdf where pdf is not NULL, sample by sample. */
-HB_INLINE void deon_one_by_one_angles(const hb_deon *d, size_t n, hb_angles_soa in, hb_rgb_soa out, float *pdf,
-                                      hb_i0 i0, size_t *invalid)
+HB_INLINE int deon_one_by_one(const hb_deon *d, size_t n, size_t most)
 {
-    hb_fp_mode mode = hb_flush_subnormals();
-    size_t bad = 0;
-    for (size_t k = 0; k < n; k++) {
-        vf a[4], M[HB_MAX_LOBES + 1], f[3];
-        vm valid = load_angles_one(in, k, a);
+    return d->standard && !d->np_table && n <= most;
+}
+
+/* M per lobe of one sample in every lane: the lobes across the lanes on the float path. */
+HB_INLINE void deon_one_M(const hb_deon *d, const vf a[4], hb_i0 i0, vf M[HB_MAX_LOBES + 1])
+{
+    if (d->longitudinal[HB_LOBE_R].single)
+        longitudinal_deon_lobes_one(d, a[0], a[2], i0, M);
+    else
         deon_longitudinal_groups(d, a[0], a[2], i0, M);
-        deon_geometry g;
-        deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
-        if (pdf)
-            store_one(pdf, k, valid, deon_f_pdf_of(d, M, &g, a[2], f, 1));
-        else
-            deon_fused_one(d, &g, M, f, NULL);
-        store_one(out.r, k, valid, f[0]);
-        store_one(out.g, k, valid, f[1]);
-        store_one(out.b, k, valid, f[2]);
-        bad += !(vm_bits(valid) & 1u);
-    }
-    *invalid = bad;
-    hb_fp_restore(mode);
+}
+
+/* f, and the pdf where pdf is not NULL, of one sample in every lane. */
+HB_INLINE void deon_one_angles(const hb_deon *d, const vf a[4], hb_i0 i0, vf f[3], vf *pdf)
+{
+    vf M[HB_MAX_LOBES + 1];
+    deon_one_M(d, a, i0, M);
+    deon_geometry g;
+    deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
+    if (pdf)
+        *pdf = deon_f_pdf_of(d, M, &g, a[2], f, 1);
+    else
+        deon_fused_one(d, &g, M, f, NULL);
+}
+
+/* The near field of one sample in every lane, its lobes across the lanes (near.h; the float M_p path). */
+HB_INLINE void deon_near_one(const hb_deon *d, const vf a[5], hb_i0 i0, vf f[3])
+{
+    deon_geometry g;
+    deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
+    deon_inclinations in = deon_inclinations_of(a[0], a[2]);
+    deon_near_lanes(d, &g, &in, a[4], i0, f);
 }
 
 /* One specialised kernel per I0 variant: the variant is a constant inside each. */
@@ -105,8 +125,9 @@ HB_INLINE void deon_one_by_one_angles(const hb_deon *d, size_t n, hb_angles_soa 
                                      size_t *invalid)                                                    \
     {                                                                                                     \
         vf f[3];                                                                                          \
-        if (deon_one_by_one(deon, n)) {                                                                   \
-            deon_one_by_one_angles(deon, n, in, out, NULL, i0, invalid);                                  \
+        if (deon_one_by_one(deon, n, HB_DEON_ONE_MAX)) {                                                  \
+            HB_ONE_BY_ONE(load_angles_one, 4, in, n, invalid,                                             \
+                          (deon_one_angles(deon, a, i0, f, NULL), store_rgb_one(out, k, valid, f)));      \
             return;                                                                                       \
         }                                                                                                 \
         HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
@@ -130,9 +151,11 @@ HB_INLINE void deon_one_by_one_angles(const hb_deon *d, size_t n, hb_angles_soa 
     static void deon_f_pdf_##suffix(const hb_deon *deon, size_t n, const hb_pair_batch *in, hb_rgb_soa out, \
                                     float *pdf, size_t *invalid)                                         \
     {                                                                                                     \
-        vf f[3];                                                                                          \
-        if (!in->vectors.wi_x && deon_one_by_one(deon, n)) {                                              \
-            deon_one_by_one_angles(deon, n, in->angles, out, pdf, i0, invalid);                           \
+        vf f[3], p;                                                                                       \
+        if (!in->vectors.wi_x && deon_one_by_one(deon, n, HB_DEON_ONE_MAX)) {                             \
+            HB_ONE_BY_ONE(load_angles_one, 4, in->angles, n, invalid,                                     \
+                          (deon_one_angles(deon, a, i0, f, &p), store_one(pdf, k, valid, p),              \
+                           store_rgb_one(out, k, valid, f)));                                             \
             return;                                                                                       \
         }                                                                                                 \
         HB_BATCH(load_pairs, 4, in, n, invalid,                                                           \
@@ -146,10 +169,22 @@ HB_INLINE void deon_one_by_one_angles(const hb_deon *d, size_t n, hb_angles_soa 
         HB_BATCH(load_absorbing, 7, in, n, invalid,                                                       \
                  (deon_absorbing_angles(deon, a, i0, f), store_rgb(out, i, lanes, valid, f)));            \
     }                                                                                                     \
+    /* apart from the batch loop, whose registers it would otherwise share */                            \
+    static HB_NOINLINE void deon_near_one_by_one_##suffix(const hb_deon *deon, size_t n, hb_near_soa in,  \
+                                                         hb_rgb_soa out, size_t *invalid)                \
+    {                                                                                                     \
+        vf f[3];                                                                                          \
+        HB_ONE_BY_ONE(load_near_one, 5, in, n, invalid,                                                   \
+                      (deon_near_one(deon, a, i0, f), store_rgb_one(out, k, valid, f)));                  \
+    }                                                                                                     \
     static void deon_near_##suffix(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out,         \
                                    size_t *invalid)                                                      \
     {                                                                                                     \
         vf f[3];                                                                                          \
+        if (deon_one_by_one(deon, n, HB_DEON_NEAR_ONE_MAX) && deon->longitudinal[HB_LOBE_R].single) {      \
+            deon_near_one_by_one_##suffix(deon, n, in, out, invalid);                                     \
+            return;                                                                                       \
+        }                                                                                                 \
         HB_BATCH(load_near, 5, in, n, invalid,                                                            \
                  (deon_near_angles(deon, a, i0, f, NULL), store_rgb(out, i, lanes, valid, f)));           \
     }                                                                                                     \

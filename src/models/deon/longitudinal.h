@@ -78,14 +78,19 @@ HB_INLINE vf longitudinal_deon(const hb_longitudinal *lobe, vdw one_minus_cos_su
  * 1/v and the norm by log2(e) in advance, so this costs no multiply; |exponent| <= 3.75 keeps the
  * rounding of log2(e) itself below 1e-7 in t). The exponent carries about two ulps of relative
  * error, so M_p's relative error grows as 1e-7 (1 + that exponent): within 1e-6 on the lobe and
- * 2e-5 at M_p = 1e-30 of the peak (docs/deon.md). */
-HB_INLINE vf longitudinal_deon_single(const hb_longitudinal *lobe, vf cone_bits, vf x, hb_i0 i0)
+ * 2e-5 at M_p = 1e-30 of the peak (docs/deon.md). log2_norm: the lobe's log2(norm) per lane. */
+HB_INLINE vf longitudinal_deon_single_norm(vf log2_norm, vf cone_bits, vf x, hb_i0 i0)
 {
     vf exponent, factor;
     i0_scaled(x, i0, &exponent, &factor);
-    vf t = vf_fnma(exponent, vf_set1(HB_LOG2E_F), vf_sub(cone_bits, vf_set1(lobe->log2_norm_f)));
+    vf t = vf_fnma(exponent, vf_set1(HB_LOG2E_F), vf_sub(cone_bits, log2_norm));
     vm significant = vf_le(t, vf_set1((float)(-HB_MP_EXPONENT_FLOOR * 1.4426950408889634)));
     return vf_keep(significant, vf_mul(vf_exp2_neg(t), factor));
+}
+
+HB_INLINE vf longitudinal_deon_single(const hb_longitudinal *lobe, vf cone_bits, vf x, hb_i0 i0)
+{
+    return longitudinal_deon_single_norm(vf_set1(lobe->log2_norm_f), cone_bits, x, i0);
 }
 
 /* cos(t) = sin(pi/2 - |t| + low) for |t| up to just beyond pi/2 (the float pi/2 lies beyond it,
@@ -114,29 +119,66 @@ HB_INLINE deon_inclinations deon_inclinations_of(vf theta_i, vf theta_o)
     return in;
 }
 
+/* Where the float path reads its constants of M_p: one lobe's (hb_longitudinal) broadcast to every lane,
+ * or a lobe per lane (constants.h, hb_lobe_lanes, from lane `first` on). */
+typedef struct longitudinal_consts {
+    const float *inv_v, *inv_v_log2e, *log2_norm, *shift_hi[3], *shift_lo[3];
+    int per_lane;
+} longitudinal_consts;
+
+HB_INLINE vf longitudinal_const(const longitudinal_consts *k, const float *value)
+{
+    return k->per_lane ? vf_loadu(value) : vf_set1(*value);
+}
+
+HB_INLINE longitudinal_consts longitudinal_consts_of(const hb_longitudinal *l)
+{
+    longitudinal_consts k = { &l->inv_v_f, &l->inv_v_log2e_f, &l->log2_norm_f,
+                              { &l->shift_hi[0], &l->shift_hi[1], &l->shift_hi[2] },
+                              { &l->shift_lo[0], &l->shift_lo[1], &l->shift_lo[2] }, 0 };
+    return k;
+}
+
+HB_INLINE longitudinal_consts longitudinal_consts_lanes(const hb_lobe_lanes *l, int first)
+{
+    longitudinal_consts k = { l->inv_v_f + first, l->inv_v_log2e_f + first, l->log2_norm_f + first,
+                              { l->shift_hi[0] + first, l->shift_hi[1] + first, l->shift_hi[2] + first },
+                              { l->shift_lo[0] + first, l->shift_lo[1] + first, l->shift_lo[2] + first }, 1 };
+    return k;
+}
+
 /* The float path's first stage from angles: the cone exponent (1 - cos(theta_i + theta_o'')) log2(e) / v and
  * x = cos(theta_i) cos(theta_o'') / v of M_p(v, theta_i, theta_o - shift). theta_o'' = theta_o - shift, reflected
  * across a pole when it passes one, is s theta_o - c with s = +-1 and c = c_hi + c_lo per case;
  * a = (theta_i + theta_o'')/2 and theta_o'' itself come from exact TwoSums, so their errors
  * stay relative near the cone (a -> 0) and pi/2 - |theta_o''| near a pole. Then
  *     1 - cos(theta_i + theta_o'') = 2 sin^2 a,  x = cos(theta_i) cos(theta_o'') / v. */
-HB_INLINE void longitudinal_cone_angles(const hb_longitudinal *lobe, const deon_inclinations *in, vf *cone_bits,
+HB_INLINE void longitudinal_cone_consts(const longitudinal_consts *k, const deon_inclinations *in, vf *cone_bits,
                                         vf *x)
 {
     vf theta_i = in->theta_i, theta_o = in->theta_o;
-    vf t = vf_sub(theta_o, vf_set1(lobe->shift_hi[0]));
+    vf t = vf_sub(theta_o, longitudinal_const(k, k->shift_hi[0]));
     vm over = vf_gt(t, vf_set1(1.57079637f)), under = vf_lt(t, vf_set1(-1.57079637f));
     vf signed_o = vf_select(vm_or(over, under), vf_neg(theta_o), theta_o);
-    vf c_hi = vf_select(over, vf_set1(lobe->shift_hi[1]), vf_select(under, vf_set1(lobe->shift_hi[2]), vf_set1(lobe->shift_hi[0])));
-    vf c_lo = vf_select(over, vf_set1(lobe->shift_lo[1]), vf_select(under, vf_set1(lobe->shift_lo[2]), vf_set1(lobe->shift_lo[0])));
+    vf c_hi = vf_select(over, longitudinal_const(k, k->shift_hi[1]),
+                        vf_select(under, longitudinal_const(k, k->shift_hi[2]), longitudinal_const(k, k->shift_hi[0])));
+    vf c_lo = vf_select(over, longitudinal_const(k, k->shift_lo[1]),
+                        vf_select(under, longitudinal_const(k, k->shift_lo[2]), longitudinal_const(k, k->shift_lo[0])));
     vf sum = vf_add(theta_i, signed_o);
     vf sum_error = vf_two_sum_error(theta_i, signed_o, sum);
     vf sin_a = vf_sin_halfpi(vf_mul(vf_add(vf_sub(sum, c_hi), vf_sub(sum_error, c_lo)), vf_set1(0.5f)));
     vf theta_o_hi = vf_sub(signed_o, c_hi);
     vf theta_o_lo = vf_sub(vf_two_sum_error(signed_o, vf_neg(c_hi), theta_o_hi), c_lo);
     vf cos_product = vf_mul(in->cos_theta_i, cos_near_pole(theta_o_hi, pole_distance_low(theta_o_hi, theta_o_lo)));
-    *cone_bits = vf_mul(vf_mul(vf_add(sin_a, sin_a), sin_a), vf_set1(lobe->inv_v_log2e_f));
-    *x = vf_mul(cos_product, vf_set1(lobe->inv_v_f));
+    *cone_bits = vf_mul(vf_mul(vf_add(sin_a, sin_a), sin_a), longitudinal_const(k, k->inv_v_log2e));
+    *x = vf_mul(cos_product, longitudinal_const(k, k->inv_v));
+}
+
+HB_INLINE void longitudinal_cone_angles(const hb_longitudinal *lobe, const deon_inclinations *in, vf *cone_bits,
+                                        vf *x)
+{
+    longitudinal_consts k = longitudinal_consts_of(lobe);
+    longitudinal_cone_consts(&k, in, cone_bits, x);
 }
 
 HB_INLINE vf longitudinal_deon_angles_single(const hb_longitudinal *lobe, const deon_inclinations *in, hb_i0 i0)
@@ -144,6 +186,17 @@ HB_INLINE vf longitudinal_deon_angles_single(const hb_longitudinal *lobe, const 
     vf cone_bits, x;
     longitudinal_cone_angles(lobe, in, &cone_bits, &x);
     return longitudinal_deon_single(lobe, cone_bits, x, i0);
+}
+
+/* M_p of one sample (its angles in every lane) for the lobes in lanes first .. first + HB_W - 1 of
+ * hb_lobe_lanes: one pass of the float path for up to HB_W lobes, bit for bit each lobe's own. */
+HB_INLINE vf longitudinal_lobe_lanes(const hb_lobe_lanes *lanes, int first, const deon_inclinations *in,
+                                     hb_i0 i0)
+{
+    longitudinal_consts k = longitudinal_consts_lanes(lanes, first);
+    vf cone_bits, x;
+    longitudinal_cone_consts(&k, in, &cone_bits, &x);
+    return longitudinal_deon_single_norm(longitudinal_const(&k, k.log2_norm), cone_bits, x, i0);
 }
 
 /* theta - shift in double, reflected across a pole into [-pi/2, pi/2]: pi - t above
@@ -295,6 +348,21 @@ HB_INLINE void longitudinal_deon_groups_angles(const hb_deon *d, vf theta_i, vf 
     HB_DEON_GROUPS_M(d, M, i0, HB_CONE_ANGLES, HB_M_ANGLES);
 #undef HB_M_ANGLES
 #undef HB_CONE_ANGLES
+}
+
+/* M[p] for every lobe of the standard shape at one sample whose angles fill every lane, the lobes across
+ * the lanes (longitudinal_lobe_lanes) instead of a pass per group; the float path only (plans below
+ * HB_QUALITY_HIGH). Each lobe's M equals its group leader's bit for bit (the same constants). */
+HB_INLINE void longitudinal_deon_lobes_one(const hb_deon *d, vf theta_i, vf theta_o, hb_i0 i0,
+                                           vf M[HB_MAX_LOBES + 1])
+{
+    deon_inclinations in = deon_inclinations_of(theta_i, theta_o);
+    float m[HB_LOBE_LANES];
+    for (int first = 0; first < HB_LOBE_LANES; first += HB_W)
+        vf_store_first(m + first, longitudinal_lobe_lanes(&d->lobe_lanes, first, &in, i0),
+                       HB_LOBE_LANES - first < HB_W ? HB_LOBE_LANES - first : HB_W);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        M[p] = vf_set1(p <= HB_STANDARD_PMAX ? m[p] : p == HB_LOBE_RESIDUAL ? m[HB_LOBE_LANES - 1] : 0.0f);
 }
 
 /* HB_DEON_GROUPS_M from unit vectors. */

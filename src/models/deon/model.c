@@ -4,12 +4,12 @@
 
 #include "deon.h"
 
-/* The kernels for n samples: standard quadrature plans keep their ISA's kernels from angles, which
- * take a call of one or two samples with the nodes across the lanes (kernels.c, deon_one_by_one:
- * 299 ns on AVX2 against 614 on the scalar kernels); the rest as every model (hb_kernels_for). */
-static const hb_deon_kernels *deon_kernels_for(const hb_plan *plan, size_t n, int angles)
+/* The kernels for n samples: standard quadrature plans keep their ISA's kernels for the paths that take
+ * a call of a few samples one at a time across the lanes (kernels.c, deon_one_by_one: f from angles and
+ * the near field on the float M_p path); the rest as every model (hb_kernels_for). */
+static const hb_deon_kernels *deon_kernels_for(const hb_plan *plan, size_t n, int one_by_one_path)
 {
-    int one_by_one = angles && plan->deon.standard && !plan->deon.np_table && plan->options.term == HB_TERM_FULL;
+    int one_by_one = one_by_one_path && plan->deon.standard && !plan->deon.np_table && plan->options.term == HB_TERM_FULL;
     return one_by_one ? plan->kernels : hb_kernels_for(plan, n);
 }
 
@@ -83,7 +83,7 @@ static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbi
  * longitudinal term has no h). */
 static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    deon_kernels_for(plan, n, 0)->near[plan->options.i0](&plan->deon, n, in, out, invalid);
+    deon_kernels_for(plan, n, plan->deon.longitudinal[HB_LOBE_R].single)->near[plan->options.i0](&plan->deon, n, in, out, invalid);
 }
 
 static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)

@@ -8,9 +8,6 @@
 
 #include "azimuthal.h"
 
-/* The residual's detector: uniform in phi, 1 / (2 pi). */
-#define HB_RESIDUAL_DETECTOR 0.159154943f
-
 /* D_p(x) of eq. 11 alone: the plan's Gaussians at x - 2 pi k, |k| <= terms (the nearest alone for
  * the standard shape), or its Fourier series coeff_0 + sum_n coeff_n cos(n x). */
 HB_INLINE vf detector_single(const hb_detector *det, vf x, deon_shape shape)
@@ -37,10 +34,16 @@ HB_INLINE vf detector_single(const hb_detector *det, vf x, deon_shape shape)
 
 /* The lobes at offset |h|: A(p, h) is even in h and Phi(p, h) odd, so the node at gamma_i = asin|h|
  * serves both signs, detected at phi for h >= 0 and at -phi for h < 0 (D_p is even). */
-HB_INLINE void deon_near_node(const hb_deon *d, const deon_medium *medium, vf h, deon_node *node, deon_shape shape)
+HB_INLINE vf near_offset(vf h, vf *cos_gamma_i)
 {
     vf a = vf_min(vf_abs(h), vf_set1(1.0f));
-    vf cos_gamma_i = vf_sqrt(vf_mul(vf_sub(vf_set1(1.0f), a), vf_add(vf_set1(1.0f), a)));
+    *cos_gamma_i = vf_sqrt(vf_mul(vf_sub(vf_set1(1.0f), a), vf_add(vf_set1(1.0f), a)));
+    return a;
+}
+
+HB_INLINE void deon_near_node(const hb_deon *d, const deon_medium *medium, vf h, deon_node *node, deon_shape shape)
+{
+    vf cos_gamma_i, a = near_offset(h, &cos_gamma_i);
     deon_node_lobes(d, medium, a, vf_asin(a), cos_gamma_i, node, shape);
 }
 
@@ -77,6 +80,63 @@ HB_INLINE void deon_near_shaped(const hb_deon *d, const deon_geometry *g, const 
         out[1] = out[2] = out[0];
     if (pdf)
         *pdf = vf_div(detected, vf_max(mass, vf_set1(1e-37f)));
+}
+
+/* The near field of one sample whose values fill every lane, with its lobes across the lanes (constants.h,
+ * hb_lobe_lanes; standard plans, whose R takes the offset Fresnel, on the float M_p path): the paths at
+ * |h| once (deon_node_paths, the same in every lane), then per lane L its lobe's A(p, h) = A_f[L] T^L
+ * (eq. 13; the residual's lane, L = pmax + 1, times 1 / (1 - f T)), Phi(p, h) (eq. 8), detector (eq. 11)
+ * and M_p (longitudinal_lobe_lanes), and f the sum over the lanes: a pass for up to HB_W lobes where
+ * deon_near takes one per lobe. f comes back in every lane. */
+HB_INLINE void deon_near_lanes(const hb_deon *d, const deon_geometry *g, const deon_inclinations *in, vf h, hb_i0 i0,
+                               vf out[3])
+{
+    static const float lane_order[2 * HB_LANE_ARRAY] = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
+                                                         17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31 };
+    const deon_shape shape = { 1, 3, 0 };
+    const hb_lobe_lanes *lanes = &d->lobe_lanes;
+    deon_medium medium;
+    deon_medium_of(d, g, &medium, 3);
+    vf cos_gamma_i, a = near_offset(h, &cos_gamma_i);
+    deon_paths paths;
+    deon_node_paths(d, &medium, a, vf_asin(a), cos_gamma_i, &paths, shape);
+    vf phi = vf_select(vf_lt(h, vf_set1(0.0f)), vf_neg(g->phi), g->phi);
+    vf one = vf_set1(1.0f), series[3], sum[3];
+    HB_UNROLL
+    for (int c = 0; c < 3; c++) {
+        series[c] = residual_series(paths.f, paths.T[c]);
+        sum[c] = vf_set1(0.0f);
+    }
+    for (int first = 0; first < HB_LOBE_LANES; first += HB_W) {
+        vf order = vf_loadu(lane_order + first), A_f = paths.A_f[0], Phi = paths.Phi[0], T_lane[3] = { one, one, one };
+        vm at;
+        HB_UNROLL
+        for (int p = 1; p <= HB_STANDARD_PMAX + 1; p++) { /* lanes past the residual's take its values, and a 0 detector */
+            at = vf_ge(order, vf_set1((float)p));
+            A_f = vf_select(at, paths.A_f[p], A_f);
+            Phi = p <= HB_STANDARD_PMAX ? vf_select(at, paths.Phi[p], Phi) : Phi;
+            HB_UNROLL
+            for (int c = 0; c < 3; c++) /* T^p as deon_node_lobes forms it */
+                T_lane[c] = vf_mul(T_lane[c], vf_select(at, paths.T[c], one));
+        }
+        HB_UNROLL
+        for (int c = 0; c < 3; c++)
+            T_lane[c] = vf_mul(T_lane[c], vf_select(at, series[c], one));
+        vf x = wrap_angle(vf_sub(phi, Phi));
+        vf D = vf_mul(vf_loadu(lanes->detector_norm + first),
+                      vf_exp2_neg(vf_mul(vf_mul(x, x), vf_loadu(lanes->detector_exponent + first))));
+        vf MDA = vf_mul(vf_mul(longitudinal_lobe_lanes(lanes, first, in, i0), D), A_f);
+        for (int c = 0; c < 3; c++)
+            sum[c] = vf_fma(MDA, T_lane[c], sum[c]);
+    }
+    enum { LIVE = HB_LOBE_LANES < HB_W ? HB_LOBE_LANES : HB_W }; /* the lanes past them hold 0: not read */
+    for (int c = 0; c < 3; c++) {
+        float lobe[LIVE], total = 0.0f;
+        vf_store_first(lobe, sum[c], LIVE);
+        for (int k = 0; k < LIVE; k++)
+            total += lobe[k];
+        out[c] = vf_set1(total);
+    }
 }
 
 HB_INLINE void deon_near(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf h, vf out[3],
