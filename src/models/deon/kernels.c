@@ -51,28 +51,23 @@ HB_INLINE void deon_absorbing_angles(const hb_deon *d, const vf a[7], hb_i0 i0, 
     deon_eval(d, &g, M, f);
 }
 
-/* Calls of up to HB_DEON_ONE_MAX samples (HB_DEON_NEAR_ONE_MAX in the near field) on a standard
- * quadrature plan take each sample alone, the far field's quadrature nodes or the near field's lobes
- * across the lanes: a path tracer's call at a hit costs one sample's work instead of a block of HB_W
- * lanes. The counts are where that is as cheap or cheaper, measured per ISA (make bench, balanced, ns
- * for one sample alone against a block): far field AVX2 172 against 830, AVX-512 151 against 630,
- * SSE4.1 285 against 552; near field 126 against 256, 154 against 168, 174 against 173 (NEON taken
- * as SSE4.1). */
+/* How many samples a call may have for the kernels to take them one at a time, the far field's
+ * quadrature nodes or the near field's lobes across the lanes (model.c dispatches such calls of a
+ * standard quadrature plan to angles_few and near_few): a path tracer's call at a hit costs one
+ * sample's work instead of a block of HB_W lanes. Up to where that is as cheap or cheaper, measured
+ * per ISA (make bench, balanced, ns for one sample alone against a block): far field AVX2 165 against
+ * 830, AVX-512 146 against 630, SSE4.1 248 against 552; near field 127 against 256, 152 against 168,
+ * 166 against 173 (NEON taken as SSE4.1). */
 #if defined(HB_TARGET_AVX2)
-#define HB_DEON_ONE_MAX 4
-#define HB_DEON_NEAR_ONE_MAX 2
+#define HB_DEON_FEW_MAX 4
+#define HB_DEON_NEAR_FEW_MAX 2
 #elif defined(HB_TARGET_AVX512)
-#define HB_DEON_ONE_MAX 4
-#define HB_DEON_NEAR_ONE_MAX 1
+#define HB_DEON_FEW_MAX 4
+#define HB_DEON_NEAR_FEW_MAX 1
 #else
-#define HB_DEON_ONE_MAX (HB_W > 1)
-#define HB_DEON_NEAR_ONE_MAX (HB_W > 1)
+#define HB_DEON_FEW_MAX (HB_W > 1)
+#define HB_DEON_NEAR_FEW_MAX (HB_W > 1)
 #endif
-
-HB_INLINE int deon_one_by_one(const hb_deon *d, size_t n, size_t most)
-{
-    return d->standard && !d->np_table && n <= most;
-}
 
 /* M per lobe of one sample in every lane: the lobes across the lanes on the float path. */
 HB_INLINE void deon_one_M(const hb_deon *d, const vf a[4], hb_i0 i0, vf M[HB_MAX_LOBES + 1])
@@ -97,7 +92,7 @@ HB_INLINE void deon_one_angles(const hb_deon *d, const vf a[4], hb_i0 i0, vf f[3
 }
 
 /* The near field of one sample in every lane, its lobes across the lanes (near.h; the float M_p path). */
-HB_INLINE void deon_near_one(const hb_deon *d, const vf a[5], hb_i0 i0, vf f[3])
+HB_INLINE void deon_near_one_sample(const hb_deon *d, const vf a[5], hb_i0 i0, vf f[3])
 {
     deon_geometry g;
     deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
@@ -107,6 +102,22 @@ HB_INLINE void deon_near_one(const hb_deon *d, const vf a[5], hb_i0 i0, vf f[3])
 
 /* One specialised kernel per I0 variant: the variant is a constant inside each. */
 #define HB_DEON_KERNELS(suffix, i0)                                                                       \
+    /* a call of a few samples, each alone: f, and the pdf where pdf is not NULL */                     \
+    static void deon_angles_few_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out, \
+                                         float *pdf, size_t *invalid)                                    \
+    {                                                                                                     \
+        vf f[3], p;                                                                                       \
+        HB_ONE_BY_ONE(load_angles_one, 4, in, n, invalid,                                                 \
+                      (deon_one_angles(deon, a, i0, f, pdf ? &p : NULL),                                  \
+                       pdf ? store_one(pdf, k, valid, p) : (void)0, store_rgb_one(out, k, valid, f)));    \
+    }                                                                                                     \
+    static void deon_near_few_##suffix(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out,     \
+                                       size_t *invalid)                                                  \
+    {                                                                                                     \
+        vf f[3];                                                                                          \
+        HB_ONE_BY_ONE(load_near_one, 5, in, n, invalid,                                                   \
+                      (deon_near_one_sample(deon, a, i0, f), store_rgb_one(out, k, valid, f)));           \
+    }                                                                                                     \
     static void longitudinal_angles_##suffix(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,     \
                                              float *out, size_t *invalid)                                \
     {                                                                                                     \
@@ -125,11 +136,6 @@ HB_INLINE void deon_near_one(const hb_deon *d, const vf a[5], hb_i0 i0, vf f[3])
                                      size_t *invalid)                                                    \
     {                                                                                                     \
         vf f[3];                                                                                          \
-        if (deon_one_by_one(deon, n, HB_DEON_ONE_MAX)) {                                                  \
-            HB_ONE_BY_ONE(load_angles_one, 4, in, n, invalid,                                             \
-                          (deon_one_angles(deon, a, i0, f, NULL), store_rgb_one(out, k, valid, f)));      \
-            return;                                                                                       \
-        }                                                                                                 \
         HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
                  (deon_angles(deon, a[0], a[1], a[2], a[3], i0, f), store_rgb(out, i, lanes, valid, f))); \
     }                                                                                                     \
@@ -151,13 +157,7 @@ HB_INLINE void deon_near_one(const hb_deon *d, const vf a[5], hb_i0 i0, vf f[3])
     static void deon_f_pdf_##suffix(const hb_deon *deon, size_t n, const hb_pair_batch *in, hb_rgb_soa out, \
                                     float *pdf, size_t *invalid)                                         \
     {                                                                                                     \
-        vf f[3], p;                                                                                       \
-        if (!in->vectors.wi_x && deon_one_by_one(deon, n, HB_DEON_ONE_MAX)) {                             \
-            HB_ONE_BY_ONE(load_angles_one, 4, in->angles, n, invalid,                                     \
-                          (deon_one_angles(deon, a, i0, f, &p), store_one(pdf, k, valid, p),              \
-                           store_rgb_one(out, k, valid, f)));                                             \
-            return;                                                                                       \
-        }                                                                                                 \
+        vf f[3];                                                                                          \
         HB_BATCH(load_pairs, 4, in, n, invalid,                                                           \
                  (store_block(pdf, i, lanes, vf_keep(valid, deon_f_pdf_angles(deon, a, i0, f))),          \
                   store_rgb(out, i, lanes, valid, f)));                                                   \
@@ -169,22 +169,10 @@ HB_INLINE void deon_near_one(const hb_deon *d, const vf a[5], hb_i0 i0, vf f[3])
         HB_BATCH(load_absorbing, 7, in, n, invalid,                                                       \
                  (deon_absorbing_angles(deon, a, i0, f), store_rgb(out, i, lanes, valid, f)));            \
     }                                                                                                     \
-    /* apart from the batch loop, whose registers it would otherwise share */                            \
-    static HB_NOINLINE void deon_near_one_by_one_##suffix(const hb_deon *deon, size_t n, hb_near_soa in,  \
-                                                         hb_rgb_soa out, size_t *invalid)                \
-    {                                                                                                     \
-        vf f[3];                                                                                          \
-        HB_ONE_BY_ONE(load_near_one, 5, in, n, invalid,                                                   \
-                      (deon_near_one(deon, a, i0, f), store_rgb_one(out, k, valid, f)));                  \
-    }                                                                                                     \
     static void deon_near_##suffix(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out,         \
                                    size_t *invalid)                                                      \
     {                                                                                                     \
         vf f[3];                                                                                          \
-        if (deon_one_by_one(deon, n, HB_DEON_NEAR_ONE_MAX) && deon->longitudinal[HB_LOBE_R].single) {      \
-            deon_near_one_by_one_##suffix(deon, n, in, out, invalid);                                     \
-            return;                                                                                       \
-        }                                                                                                 \
         HB_BATCH(load_near, 5, in, n, invalid,                                                            \
                  (deon_near_angles(deon, a, i0, f, NULL), store_rgb(out, i, lanes, valid, f)));           \
     }                                                                                                     \
@@ -224,12 +212,16 @@ const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
     .longitudinal_angles = { longitudinal_angles_abramowitz, longitudinal_angles_paper },
     .longitudinal_vectors = { longitudinal_vectors_abramowitz, longitudinal_vectors_paper },
     .angles = { deon_angles_abramowitz, deon_angles_paper },
+    .angles_few = { deon_angles_few_abramowitz, deon_angles_few_paper },
+    .few_max = HB_DEON_FEW_MAX,
     .vectors = { deon_vectors_abramowitz, deon_vectors_paper },
     .sample = { deon_sample_abramowitz, deon_sample_paper },
     .pdf = { deon_pdf_abramowitz, deon_pdf_paper },
     .f_pdf = { deon_f_pdf_abramowitz, deon_f_pdf_paper },
     .absorbing = { deon_absorbing_abramowitz, deon_absorbing_paper },
     .near = { deon_near_abramowitz, deon_near_paper },
+    .near_few = { deon_near_few_abramowitz, deon_near_few_paper },
+    .near_few_max = HB_DEON_NEAR_FEW_MAX,
     .pdf_near = { deon_pdf_near_abramowitz, deon_pdf_near_paper },
     .sample_near = { deon_sample_near_abramowitz, deon_sample_near_paper },
     .np_row = np_row,

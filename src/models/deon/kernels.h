@@ -19,6 +19,8 @@ typedef void (*hb_deon_vectors_fn)(const hb_deon *deon, size_t n, hb_vectors_soa
                                    size_t *invalid);
 typedef void (*hb_deon_sample_fn)(const hb_deon *deon, size_t n, const hb_sample_batch *b, size_t *invalid);
 typedef void (*hb_deon_pdf_fn)(const hb_deon *deon, size_t n, const hb_pair_batch *in, float *pdf, size_t *invalid);
+typedef void (*hb_deon_few_fn)(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out, float *pdf,
+                               size_t *invalid);
 typedef void (*hb_deon_f_pdf_fn)(const hb_deon *deon, size_t n, const hb_pair_batch *in, hb_rgb_soa out,
                                  float *pdf, size_t *invalid);
 
@@ -35,12 +37,18 @@ typedef struct hb_deon_kernels {
     hb_longitudinal_angles_fn longitudinal_angles[2];   /* indexed by hb_i0 */
     hb_longitudinal_vectors_fn longitudinal_vectors[2]; /* indexed by hb_i0 */
     hb_deon_angles_fn angles[2];                        /* indexed by hb_i0 */
+    /* calls of at most few_max samples of a standard quadrature plan, each sample alone with the
+     * quadrature's nodes across the lanes: f, and the pdf where it is not NULL (kernels.c) */
+    hb_deon_few_fn angles_few[2];
+    int few_max;
     hb_deon_vectors_fn vectors[2];
     hb_deon_sample_fn sample[2];
     hb_deon_pdf_fn pdf[2];
     hb_deon_f_pdf_fn f_pdf[2]; /* f (quadrature plans) and pdf in one pass */
     hb_deon_absorbing_fn absorbing[2]; /* f (quadrature plans) at each sample's absorption */
     hb_deon_near_fn near[2];   /* at each sample's offset h (near.h) */
+    hb_deon_near_fn near_few[2]; /* at most near_few_max samples, each alone with its lobes across the lanes */
+    int near_few_max;
     hb_deon_pdf_near_fn pdf_near[2];
     hb_deon_sample_near_fn sample_near[2];
     hb_deon_np_row_fn np_row; /* one row of the N_p table, out[(k * slots + s) * 3 + c] */

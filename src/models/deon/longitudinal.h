@@ -361,6 +361,7 @@ HB_INLINE void longitudinal_deon_lobes_one(const hb_deon *d, vf theta_i, vf thet
     for (int first = 0; first < HB_LOBE_LANES; first += HB_W)
         vf_store_first(m + first, longitudinal_lobe_lanes(&d->lobe_lanes, first, &in, i0),
                        HB_LOBE_LANES - first < HB_W ? HB_LOBE_LANES - first : HB_W);
+    HB_UNROLL
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
         M[p] = vf_set1(p <= HB_STANDARD_PMAX ? m[p] : p == HB_LOBE_RESIDUAL ? m[HB_LOBE_LANES - 1] : 0.0f);
 }

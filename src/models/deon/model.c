@@ -4,14 +4,16 @@
 
 #include "deon.h"
 
-/* The kernels for n samples: standard quadrature plans keep their ISA's kernels for the paths that take
- * a call of a few samples one at a time across the lanes (kernels.c, deon_one_by_one: f from angles and
- * the near field on the float M_p path); the rest as every model (hb_kernels_for). */
-static const hb_deon_kernels *deon_kernels_for(const hb_plan *plan, size_t n, int one_by_one_path)
+/* Whether the plan's kernels take a call of n samples one sample at a time, the lanes carrying the
+ * far field's quadrature nodes or the near field's lobes instead of samples (kernels.c): standard
+ * quadrature plans of the full model, up to the count measured for the ISA. */
+static int few(const hb_plan *plan, size_t n, int most)
 {
-    int one_by_one = one_by_one_path && plan->deon.standard && !plan->deon.np_table && plan->options.term == HB_TERM_FULL;
-    return one_by_one ? plan->kernels : hb_kernels_for(plan, n);
+    return n <= (size_t)most && plan->deon.standard && !plan->deon.np_table && plan->options.term == HB_TERM_FULL;
 }
+
+/* hb_kernels_for, typed. */
+static const hb_deon_kernels *deon_kernels_for(const hb_plan *plan, size_t n) { return hb_kernels_for(plan, n); }
 
 static unsigned lobes(const hb_options *o)
 {
@@ -20,7 +22,12 @@ static unsigned lobes(const hb_options *o)
 
 static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    const hb_deon_kernels *k = deon_kernels_for(plan, n, 1);
+    const hb_deon_kernels *wide = plan->kernels;
+    if (few(plan, n, wide->few_max)) {
+        wide->angles_few[plan->options.i0](&plan->deon, n, in, out, NULL, invalid);
+        return;
+    }
+    const hb_deon_kernels *k = deon_kernels_for(plan, n);
     if (plan->options.term == HB_TERM_LONGITUDINAL) {
         k->longitudinal_angles[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, invalid);
         hb_spread_channels(n, out);
@@ -31,7 +38,7 @@ static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_
 
 static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    const hb_deon_kernels *k = deon_kernels_for(plan, n, 0);
+    const hb_deon_kernels *k = deon_kernels_for(plan, n);
     if (plan->options.term == HB_TERM_LONGITUDINAL) {
         k->longitudinal_vectors[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, invalid);
         hb_spread_channels(n, out);
@@ -49,12 +56,12 @@ static int sample_dimensions(const hb_plan *plan)
 
 static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    deon_kernels_for(plan, n, 0)->sample[plan->options.i0](&plan->deon, n, b, invalid);
+    deon_kernels_for(plan, n)->sample[plan->options.i0](&plan->deon, n, b, invalid);
 }
 
 static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
-    deon_kernels_for(plan, n, 0)->pdf[plan->options.i0](&plan->deon, n, in, out, invalid);
+    deon_kernels_for(plan, n)->pdf[plan->options.i0](&plan->deon, n, in, out, invalid);
 }
 
 /* The quadrature forms f and the pdf's terms together (sample.h, deon_f_pdf); a table plan's f
@@ -62,10 +69,13 @@ static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *o
 static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf,
                      size_t *invalid)
 {
+    const hb_deon_kernels *wide = plan->kernels;
     if (plan->deon.np_table)
         hb_eval_then_pdf(plan, n, in, out, pdf, invalid);
+    else if (!in->vectors.wi_x && few(plan, n, wide->few_max))
+        wide->angles_few[plan->options.i0](&plan->deon, n, in->angles, out, pdf, invalid);
     else
-        deon_kernels_for(plan, n, !in->vectors.wi_x)->f_pdf[plan->options.i0](&plan->deon, n, in, out, pdf, invalid);
+        deon_kernels_for(plan, n)->f_pdf[plan->options.i0](&plan->deon, n, in, out, pdf, invalid);
 }
 
 /* Per-sample absorption by the quadrature or the colour table: a material's own table holds N_p of
@@ -75,7 +85,7 @@ static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbi
 {
     if ((plan->deon.np_table && !plan->deon.table_absorption) || plan->options.term != HB_TERM_FULL)
         return HB_ERR_UNSUPPORTED;
-    ((const hb_deon_kernels *)hb_kernels_for(plan, n))->absorbing[plan->options.i0](&plan->deon, n, in, out, invalid);
+    deon_kernels_for(plan, n)->absorbing[plan->options.i0](&plan->deon, n, in, out, invalid);
     return HB_OK;
 }
 
@@ -83,17 +93,21 @@ static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbi
  * longitudinal term has no h). */
 static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    deon_kernels_for(plan, n, plan->deon.longitudinal[HB_LOBE_R].single)->near[plan->options.i0](&plan->deon, n, in, out, invalid);
+    const hb_deon_kernels *wide = plan->kernels;
+    if (few(plan, n, wide->near_few_max) && plan->deon.longitudinal[HB_LOBE_R].single) /* the float M_p lanes */
+        wide->near_few[plan->options.i0](&plan->deon, n, in, out, invalid);
+    else
+        deon_kernels_for(plan, n)->near[plan->options.i0](&plan->deon, n, in, out, invalid);
 }
 
 static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)
 {
-    deon_kernels_for(plan, n, 0)->sample_near[plan->options.i0](&plan->deon, n, in, out, invalid);
+    deon_kernels_for(plan, n)->sample_near[plan->options.i0](&plan->deon, n, in, out, invalid);
 }
 
 static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, size_t *invalid)
 {
-    deon_kernels_for(plan, n, 0)->pdf_near[plan->options.i0](&plan->deon, n, in, out, invalid);
+    deon_kernels_for(plan, n)->pdf_near[plan->options.i0](&plan->deon, n, in, out, invalid);
 }
 
 static void describe(hb_text *t, const hb_plan *plan)

@@ -110,8 +110,8 @@ HB_INLINE void deon_near_lanes(const hb_deon *d, const deon_geometry *g, const d
     for (int first = 0; first < HB_LOBE_LANES; first += HB_W) {
         vf order = vf_loadu(lane_order + first), A_f = paths.A_f[0], Phi = paths.Phi[0], T_lane[3] = { one, one, one };
         vm at;
-        HB_UNROLL
-        for (int p = 1; p <= HB_STANDARD_PMAX + 1; p++) { /* lanes past the residual's take its values, and a 0 detector */
+        HB_UNROLL /* lanes past the residual's take its values, and a detector of 0 */
+        for (int p = 1; p <= HB_STANDARD_PMAX + 1; p++) {
             at = vf_ge(order, vf_set1((float)p));
             A_f = vf_select(at, paths.A_f[p], A_f);
             Phi = p <= HB_STANDARD_PMAX ? vf_select(at, paths.Phi[p], Phi) : Phi;
