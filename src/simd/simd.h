@@ -24,7 +24,8 @@
  *   vdw_from_vf, vdw_to_vf (rounded to nearest), vdw_set1, vdw_add, vdw_sub, vdw_mul, vdw_div,
  *   vdw_sqrt, vdw_min, vdw_max, vdw_fma (fused where vf_fma is), vdw_round.
  * Derived here for every ISA: vf_abs, vf_neg, vf_copysign, vf_floor, vf_rcp (a division),
- * vf_clamp; the subnormal mode (hb_flush_subnormals, hb_fp_restore). */
+ * vf_clamp, vf_store_first; the one-register forms HB_REG_W, vf_load_reg, vf_sum_reg (AVX2 defines
+ * its own); the subnormal mode (hb_flush_subnormals, hb_fp_restore). */
 #ifndef HB_SIMD_H
 #define HB_SIMD_H
 
@@ -119,6 +120,16 @@ HB_INLINE vf vf_floor(vf a)
 /* Exact reciprocal (a division): the kernels need it correctly rounded. */
 HB_INLINE vf vf_rcp(vf a) { return vf_div(vf_set1(1.0f), a); }
 HB_INLINE vf vf_clamp(vf a, float lo, float hi) { return vf_min(vf_max(a, vf_set1(lo)), vf_set1(hi)); }
+
+/* One-register forms, for the one-sample paths whose work fits the lanes of one hardware register
+ * (HB_REG_W of them): vf_load_reg(p) loads HB_REG_W floats into the first lanes and vf_sum_reg(a)
+ * sums those lanes. On every ISA but AVX2 (two registers, the upper a copy of the lower and its
+ * work dead) they are vf_loadu and vf_sum_lanes. */
+#ifndef HB_REG_W
+#define HB_REG_W HB_W
+HB_INLINE vf vf_load_reg(const float *p) { return vf_loadu(p); }
+HB_INLINE float vf_sum_reg(vf a) { return vf_sum_lanes(a); }
+#endif
 
 /* Lanes 0 .. count - 1 of a (count <= HB_W) into out, and no other lane read: for the one-sample paths
  * whose work sits in the first lanes, so that the work of the others (AVX2's upper register) is dead

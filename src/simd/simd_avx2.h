@@ -32,6 +32,10 @@ typedef vf vm;
 HB_INLINE vf vf_set1(float a) { vf r = { _mm256_set1_ps(a), _mm256_set1_ps(a) }; return r; }
 HB_INLINE vf vf_loadu(const float *p) { vf r = { _mm256_loadu_ps(p), _mm256_loadu_ps(p + 8) }; return r; }
 HB_INLINE void vf_storeu(float *p, vf a) { _mm256_storeu_ps(p, a.lo); _mm256_storeu_ps(p + 8, a.hi); }
+/* The one-register forms (simd.h): the lower register alone, the upper a copy of it, so that its
+ * work is the lower's or dead. */
+#define HB_REG_W 8
+HB_INLINE vf vf_load_reg(const float *p) { vf r = { _mm256_loadu_ps(p), _mm256_loadu_ps(p) }; return r; }
 HB_HALVES2(vf, vf_add, _mm256_add_ps, vf)
 HB_HALVES2(vf, vf_sub, _mm256_sub_ps, vf)
 HB_HALVES2(vf, vf_mul, _mm256_mul_ps, vf)
@@ -71,12 +75,13 @@ HB_INLINE unsigned vm_bits(vm a)
 {
     return (unsigned)_mm256_movemask_ps(a.lo) | (unsigned)_mm256_movemask_ps(a.hi) << 8;
 }
-HB_INLINE float vf_sum_lanes(vf a)
+HB_INLINE float vf_sum_8(__m256 s)
 {
-    __m256 s = _mm256_add_ps(a.lo, a.hi);
     __m128 q = _mm_add_ps(_mm256_castps256_ps128(s), _mm256_extractf128_ps(s, 1));
     return HB_SUM4_PS(q);
 }
+HB_INLINE float vf_sum_lanes(vf a) { return vf_sum_8(_mm256_add_ps(a.lo, a.hi)); }
+HB_INLINE float vf_sum_reg(vf a) { return vf_sum_8(a.lo); }
 
 HB_HALVES1(vi, vf_as_vi, _mm256_castps_si256, vf)
 HB_HALVES1(vf, vi_as_vf, _mm256_castsi256_ps, vi)

@@ -539,9 +539,12 @@ HB_INLINE void deon_fused_node(const hb_deon *d, const deon_fused_sample *s, con
     }
     if (with_pdf) { /* m_p = M_p times A(p, h) averaged over the channels (the node's weight cancels) */
         vf A[3], T_power[3], mass = vf_set1(0.0f), detected = vf_set1(0.0f);
+        HB_UNROLL
         for (int c = 0; c < 3; c++)
             T_power[c] = vf_set1(1.0f);
+        HB_UNROLL
         for (int p = 0; p <= HB_STANDARD_PMAX + 1; p++) { /* the last: the residual's orders */
+            HB_UNROLL
             for (int c = 0; c < 3; c++) {
                 int k = channels == 1 ? 0 : c;
                 vf series_k = p == HB_STANDARD_PMAX + 1 ? series[k] : vf_set1(1.0f);
@@ -580,8 +583,10 @@ HB_INLINE void deon_fused_shaped(const hb_deon *d, const deon_geometry *g, const
 }
 
 /* The same for one sample whose value fills every lane of g and M, with the nodes across the lanes
- * (HB_W at a time, the plan's node arrays zero past its count): one block of work for up to HB_W
- * nodes instead of a block per node, for a path tracer's call of a few samples. f and the pdf's sum
+ * of one register (HB_REG_W at a time, the plan's node arrays zero past its count): one register's
+ * work for up to HB_REG_W nodes instead of a block per node, for a path tracer's call of a few
+ * samples (on AVX2, two 8-lane steps for 10 nodes keep half the values live that one 16-lane step
+ * does: 1368 instructions per call against 1458, most of the difference spills). f and the pdf's sum
  * come back in every lane; the sum over nodes runs in another order than deon_fused_shaped's, which
  * moves the result by a rounding. */
 HB_INLINE void deon_fused_one_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
@@ -590,18 +595,18 @@ HB_INLINE void deon_fused_one_shaped(const hb_deon *d, const deon_geometry *g, c
     deon_fused_sample s;
     deon_fused_sums sums;
     deon_fused_prepare(d, g, M, &s, &sums, shape);
-    for (int j = 0; j < d->nodes; j += HB_W) {
-        deon_fused_nodes node = { vf_loadu(d->h + j), vf_loadu(d->cos_gamma_i + j), vf_loadu(d->weight + j),
-                                  vf_loadu(d->node_half_probability + j), { vf_set1(0.0f) } };
+    for (int j = 0; j < d->nodes; j += HB_REG_W) {
+        deon_fused_nodes node = { vf_load_reg(d->h + j), vf_load_reg(d->cos_gamma_i + j), vf_load_reg(d->weight + j),
+                                  vf_load_reg(d->node_half_probability + j), { vf_set1(0.0f) } };
         HB_UNROLL
         for (int p = 0; p <= HB_STANDARD_PMAX; p++)
-            node.offset[p] = vf_loadu(d->scaled[p].offset + j);
+            node.offset[p] = vf_load_reg(d->scaled[p].offset + j);
         deon_fused_node(d, &s, &node, &sums, pdf != NULL, shape);
     }
     if (pdf)
-        pdf->sum = vf_set1(vf_sum_lanes(sums.pdf));
+        pdf->sum = vf_set1(vf_sum_reg(sums.pdf));
     for (int c = 0; c < 3; c++)
-        out[c] = vf_set1(vf_sum_lanes(vf_add(sums.rgb[shape.channels == 1 ? 0 : c], sums.R)));
+        out[c] = vf_set1(vf_sum_reg(vf_add(sums.rgb[shape.channels == 1 ? 0 : c], sums.R)));
 }
 
 HB_INLINE void deon_fused(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3],

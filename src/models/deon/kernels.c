@@ -54,15 +54,16 @@ HB_INLINE void deon_absorbing_angles(const hb_deon *d, const vf a[7], hb_i0 i0, 
 /* How many samples a call may have for the kernels to take them one at a time, the far field's
  * quadrature nodes or the near field's lobes across the lanes (model.c dispatches such calls of a
  * standard quadrature plan to angles_few and near_few): a path tracer's call at a hit costs one
- * sample's work instead of a block of HB_W lanes. Up to where that is as cheap or cheaper, measured
- * per ISA (make bench, balanced, ns for one sample alone against a block): far field AVX2 165 against
- * 830, AVX-512 146 against 630, SSE4.1 248 against 552; near field 127 against 256, 152 against 168,
- * 166 against 173 (NEON taken as SSE4.1). */
+ * sample's work instead of a block of HB_W lanes. Up to where that is cheaper, measured per ISA
+ * (balanced, ns per call): far field, five samples one at a time against a block, AVX2 598 against
+ * 764, AVX-512 577 against 619 (six: 720 against 730, 678 against 572); one sample, SSE4.1 245
+ * against 552; near field, one sample, 127 against 256, 152 against 168, 166 against 173 (NEON
+ * taken as SSE4.1). */
 #if defined(HB_TARGET_AVX2)
-#define HB_DEON_FEW_MAX 4
+#define HB_DEON_FEW_MAX 5
 #define HB_DEON_NEAR_FEW_MAX 2
 #elif defined(HB_TARGET_AVX512)
-#define HB_DEON_FEW_MAX 4
+#define HB_DEON_FEW_MAX 5
 #define HB_DEON_NEAR_FEW_MAX 1
 #else
 #define HB_DEON_FEW_MAX (HB_W > 1)
