@@ -210,6 +210,7 @@ static void np_row(const hb_deon *deon, float cos_theta_d, size_t n, const float
 }
 
 const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
+    .width = HB_W,
     .longitudinal_angles = { longitudinal_angles_abramowitz, longitudinal_angles_paper },
     .longitudinal_vectors = { longitudinal_vectors_abramowitz, longitudinal_vectors_paper },
     .angles = { deon_angles_abramowitz, deon_angles_paper },

@@ -34,11 +34,13 @@ typedef void (*hb_deon_sample_near_fn)(const hb_deon *deon, size_t n, hb_sample_
 typedef void (*hb_deon_np_row_fn)(const hb_deon *deon, float cos_theta_d, size_t n, const float *phi, float *out);
 
 typedef struct hb_deon_kernels {
+    int width;                                          /* samples per block: the ISA's HB_W */
     hb_longitudinal_angles_fn longitudinal_angles[2];   /* indexed by hb_i0 */
     hb_longitudinal_vectors_fn longitudinal_vectors[2]; /* indexed by hb_i0 */
     hb_deon_angles_fn angles[2];                        /* indexed by hb_i0 */
-    /* calls of at most few_max samples of a standard quadrature plan, each sample alone with the
-     * quadrature's nodes across the lanes: f, and the pdf where it is not NULL (kernels.c) */
+    /* calls (and a batch's partial last block) of at most few_max samples of a standard quadrature
+     * plan, each sample alone with the quadrature's nodes across the lanes: f, and the pdf where it
+     * is not NULL (kernels.c) */
     hb_deon_few_fn angles_few[2];
     int few_max;
     hb_deon_vectors_fn vectors[2];
