@@ -82,6 +82,12 @@ double hb_test_spec_error(float *const f[3], float *const ref[3], size_t n, size
 /* Unit vectors of sample k's angle pair (docs/conventions.md): w[0..2] = w_i, w[3..5] = w_o. */
 void hb_test_vectors_of(float theta_i, float phi_i, float theta_o, float phi_o, float *const w[6], size_t k);
 
+/* A near-field plan's calls of one sample (and of two, with pairs) against one batch call
+ * (tests/test_deon_near.c): random directions and offsets, every tenth at a pole or h = -1, 0, 1;
+ * checks them within 3e-5 of the peak and that a NaN offset in a call of one is counted and gives 0;
+ * returns the error. */
+double hb_test_near_per_hit(hb_test_ctx *t, const hb_plan *plan, const char *name, int pairs);
+
 /* Error of a float result in units of the float spacing at the double reference. */
 double hb_test_ulp_error(float got, double want);
 

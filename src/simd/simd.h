@@ -24,7 +24,7 @@
  *   vdw_from_vf, vdw_to_vf (rounded to nearest), vdw_set1, vdw_add, vdw_sub, vdw_mul, vdw_div,
  *   vdw_sqrt, vdw_min, vdw_max, vdw_fma (fused where vf_fma is), vdw_round.
  * Derived here for every ISA: vf_abs, vf_neg, vf_copysign, vf_floor, vf_rcp (a division),
- * vf_clamp, vf_store_first; the one-register forms HB_REG_W, vf_load_reg, vf_sum_reg (AVX2 defines
+ * vf_clamp, vf_lane_index, vf_store_first, vf_sum_first; the one-register forms HB_REG_W, vf_load_reg, vf_sum_reg (AVX2 defines
  * its own); the subnormal mode (hb_flush_subnormals, hb_fp_restore). */
 #ifndef HB_SIMD_H
 #define HB_SIMD_H
@@ -140,6 +140,23 @@ HB_INLINE void vf_store_first(float *out, vf a, int count)
     vf_storeu(lanes, a);
     for (int k = 0; k < count; k++)
         out[k] = lanes[k];
+}
+
+/* Lane k holds k. */
+HB_INLINE vf vf_lane_index(void)
+{
+    static const float index[16] = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15 };
+    return vf_loadu(index);
+}
+
+/* The sum of lanes 0 .. count - 1 of a, in lane order, no other lane read (vf_store_first). */
+HB_INLINE float vf_sum_first(vf a, int count)
+{
+    float lanes[HB_W], total = 0.0f;
+    vf_store_first(lanes, a, count);
+    for (int k = 0; k < count; k++)
+        total += lanes[k];
+    return total;
 }
 
 #endif

@@ -29,6 +29,9 @@ typedef struct hb_chiang {
     /* M_p (dFH11 eq. 7 with CBTB16's v_p) at theta_o - shift_p; index 3 the residual */
     hb_longitudinal longitudinal[HB_CHIANG_TERMS];
     float v[HB_CHIANG_TERMS], exp_minus_two_inv_v[HB_CHIANG_TERMS]; /* sampling M_p */
+    /* the terms' float M_p constants side by side for a call of one sample (eval.h, chiang_near_lanes):
+     * lane p term p, the lanes past the residual R's; no detector (the terms' N_p are formed per lane) */
+    hb_lobe_lanes lobe_lanes;
     /* far field */
     int nodes;
     float h[HB_CHIANG_MAX_NODES], weight[HB_CHIANG_MAX_NODES]; /* weight: of f(h) + f(-h), sum 1/2 */

@@ -69,6 +69,19 @@ static void near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa
               store_rgb(out, i, lanes, valid, f)));
 }
 
+/* A call of a few samples of the near field (a path tracer's call per hit), each alone with its
+ * terms across the lanes (eval.h, chiang_near_lanes): model.c sends such calls of a plan on the float
+ * M_p path here, up to near_few_max samples, where that is cheaper than a block (AVX2 and AVX-512)
+ * or the scalar kernels (SSE4.1 and NEON, whose four lanes hold the four terms). */
+static void near_few_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
+{
+    vf f[3];
+    HB_ONE_BY_ONE(load_near_one, 5, in, n, invalid,
+                  (chiang_near_lanes(c, &(deon_inclinations){ a[0], a[2], cos_theta_of(a[0]) }, cos_theta_of(a[2]),
+                                     vf_sub(a[3], a[1]), a[4], f),
+                   store_rgb_one(out, k, valid, f)));
+}
+
 static void sample_near_kernel(const hb_chiang *c, size_t n, hb_sample_near_in in, hb_sample_out out,
                                size_t *invalid)
 {
@@ -94,6 +107,8 @@ const hb_chiang_kernels HB_ISA_SYMBOL(chiang_kernels) = {
     .sample = sample_kernel,
     .f_pdf = f_pdf_kernel,
     .near = near_kernel,
+    .near_few = near_few_kernel,
+    .near_few_max = HB_W > 1,
     .sample_near = sample_near_kernel,
     .pdf_near = pdf_near_kernel,
 };

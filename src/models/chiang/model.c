@@ -44,7 +44,11 @@ static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_
 
 static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    kernels_of(plan, n)->near(&plan->chiang, n, in, out, invalid);
+    const hb_chiang_kernels *wide = plan->kernels;
+    if (n <= (size_t)wide->near_few_max && plan->chiang.longitudinal[0].single)
+        wide->near_few(&plan->chiang, n, in, out, invalid);
+    else
+        kernels_of(plan, n)->near(&plan->chiang, n, in, out, invalid);
 }
 
 static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)

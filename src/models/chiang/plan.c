@@ -113,6 +113,8 @@ static void derive_constants(hb_plan *plan)
         c->v[p] = (float)plan->chiang_v[p];
         c->exp_minus_two_inv_v[p] = (float)exp(-2.0 / plan->chiang_v[p]);
     }
+    for (int k = 0; k < HB_LANE_ARRAY; k++)
+        hb_lobe_lane_set(&c->lobe_lanes, k, &c->longitudinal[k < HB_CHIANG_TERMS ? k : 0], 0.0f, 0.0f);
     double rule = fmax(far_rules[o->quality].c / s + 1.0, far_rules[o->quality].min_nodes);
     if (s >= 0.4)
         rule = fmax(rule, far_rules[o->quality].kink_nodes);

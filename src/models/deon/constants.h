@@ -41,6 +41,10 @@ typedef struct hb_lobe_lanes {
     float detector_norm[HB_LANE_ARRAY], detector_exponent[HB_LANE_ARRAY];
 } hb_lobe_lanes;
 
+/* Lane k of `lanes`: the float M_p constants of l and a detector (src/models/deon/plan.c). */
+void hb_lobe_lane_set(hb_lobe_lanes *lanes, int k, const hb_longitudinal *l, float detector_norm,
+                      float detector_exponent);
+
 /* dFH11 eq. 7's constants for variance v and shift, in double, and rounded for the float path below
  * HB_QUALITY_HIGH (src/models/deon/plan.c). */
 void hb_longitudinal_derive(hb_longitudinal *l, double v, double shift, hb_quality quality);

@@ -91,8 +91,6 @@ HB_INLINE void deon_near_shaped(const hb_deon *d, const deon_geometry *g, const 
 HB_INLINE void deon_near_lanes(const hb_deon *d, const deon_geometry *g, const deon_inclinations *in, vf h, hb_i0 i0,
                                vf out[3])
 {
-    static const float lane_order[2 * HB_LANE_ARRAY] = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
-                                                         17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31 };
     const deon_shape shape = { 1, 3, 0 };
     const hb_lobe_lanes *lanes = &d->lobe_lanes;
     deon_medium medium;
@@ -108,7 +106,7 @@ HB_INLINE void deon_near_lanes(const hb_deon *d, const deon_geometry *g, const d
         sum[c] = vf_set1(0.0f);
     }
     for (int first = 0; first < HB_LOBE_LANES; first += HB_W) {
-        vf order = vf_loadu(lane_order + first), A_f = paths.A_f[0], Phi = paths.Phi[0], T_lane[3] = { one, one, one };
+        vf order = vf_add(vf_set1((float)first), vf_lane_index()), A_f = paths.A_f[0], Phi = paths.Phi[0], T_lane[3] = { one, one, one };
         vm at;
         HB_UNROLL /* lanes past the residual's take its values, and a detector of 0 */
         for (int p = 1; p <= HB_STANDARD_PMAX + 1; p++) {
@@ -129,14 +127,8 @@ HB_INLINE void deon_near_lanes(const hb_deon *d, const deon_geometry *g, const d
         for (int c = 0; c < 3; c++)
             sum[c] = vf_fma(MDA, T_lane[c], sum[c]);
     }
-    enum { LIVE = HB_LOBE_LANES < HB_W ? HB_LOBE_LANES : HB_W }; /* the lanes past them hold 0: not read */
-    for (int c = 0; c < 3; c++) {
-        float lobe[LIVE], total = 0.0f;
-        vf_store_first(lobe, sum[c], LIVE);
-        for (int k = 0; k < LIVE; k++)
-            total += lobe[k];
-        out[c] = vf_set1(total);
-    }
+    for (int c = 0; c < 3; c++) /* the lanes past the lobes hold 0: not read */
+        out[c] = vf_set1(vf_sum_first(sum[c], HB_LOBE_LANES < HB_W ? HB_LOBE_LANES : HB_W));
 }
 
 HB_INLINE void deon_near(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf h, vf out[3],

@@ -123,22 +123,29 @@ static void deon_nodes(hb_deon *d, int n, int mapped)
 
 /* The lobes' float M_p and detector constants side by side (constants.h, hb_lobe_lanes), after the
  * lobe set and the detectors. */
+void hb_lobe_lane_set(hb_lobe_lanes *lanes, int k, const hb_longitudinal *l, float detector_norm,
+                      float detector_exponent)
+{
+    lanes->detector_norm[k] = detector_norm;
+    lanes->detector_exponent[k] = detector_exponent;
+    lanes->inv_v_f[k] = l->inv_v_f;
+    lanes->inv_v_log2e_f[k] = l->inv_v_log2e_f;
+    lanes->log2_norm_f[k] = l->log2_norm_f;
+    for (int c = 0; c < 3; c++) {
+        lanes->shift_hi[c][k] = l->shift_hi[c];
+        lanes->shift_lo[c][k] = l->shift_lo[c];
+    }
+}
+
 static void derive_lobe_lanes(hb_deon *d)
 {
     for (int k = 0; k < HB_LANE_ARRAY; k++) {
         int lobe = k <= HB_STANDARD_PMAX || k == HB_LOBE_LANES - 1;
         int p = k <= HB_STANDARD_PMAX ? k : k == HB_LOBE_LANES - 1 ? HB_LOBE_RESIDUAL : HB_LOBE_R;
-        const hb_longitudinal *l = &d->longitudinal[p];
         float on = lobe && hb_deon_lobe_on(d, p) ? 1.0f : 0.0f;
-        d->lobe_lanes.detector_norm[k] = on * (p == HB_LOBE_RESIDUAL ? HB_RESIDUAL_DETECTOR : d->detector[p].gauss_norm);
-        d->lobe_lanes.detector_exponent[k] = p == HB_LOBE_RESIDUAL ? 0.0f : d->detector[p].log2e_over_two_beta2;
-        d->lobe_lanes.inv_v_f[k] = l->inv_v_f;
-        d->lobe_lanes.inv_v_log2e_f[k] = l->inv_v_log2e_f;
-        d->lobe_lanes.log2_norm_f[k] = l->log2_norm_f;
-        for (int c = 0; c < 3; c++) {
-            d->lobe_lanes.shift_hi[c][k] = l->shift_hi[c];
-            d->lobe_lanes.shift_lo[c][k] = l->shift_lo[c];
-        }
+        hb_lobe_lane_set(&d->lobe_lanes, k, &d->longitudinal[p],
+                         on * (p == HB_LOBE_RESIDUAL ? HB_RESIDUAL_DETECTOR : d->detector[p].gauss_norm),
+                         p == HB_LOBE_RESIDUAL ? 0.0f : d->detector[p].log2e_over_two_beta2);
     }
 }
 
