@@ -106,7 +106,8 @@ HB_INLINE void deon_near_lanes(const hb_deon *d, const deon_geometry *g, const d
         sum[c] = vf_set1(0.0f);
     }
     for (int first = 0; first < HB_LOBE_LANES; first += HB_W) {
-        vf order = vf_add(vf_set1((float)first), vf_lane_index()), A_f = paths.A_f[0], Phi = paths.Phi[0], T_lane[3] = { one, one, one };
+        vf order = vf_add(vf_set1((float)first), vf_lane_index()), A_f = paths.A_f[0], Phi = paths.Phi[0];
+        vf T_lane[3] = { one, one, one };
         vm at;
         HB_UNROLL /* lanes past the residual's take its values, and a detector of 0 */
         for (int p = 1; p <= HB_STANDARD_PMAX + 1; p++) {

@@ -121,8 +121,6 @@ static void deon_nodes(hb_deon *d, int n, int mapped)
     }
 }
 
-/* The lobes' float M_p and detector constants side by side (constants.h, hb_lobe_lanes), after the
- * lobe set and the detectors. */
 void hb_lobe_lane_set(hb_lobe_lanes *lanes, int k, const hb_longitudinal *l, float detector_norm,
                       float detector_exponent)
 {
@@ -137,6 +135,8 @@ void hb_lobe_lane_set(hb_lobe_lanes *lanes, int k, const hb_longitudinal *l, flo
     }
 }
 
+/* The lobes' float M_p and detector constants side by side (constants.h, hb_lobe_lanes), after the
+ * lobe set and the detectors. */
 static void derive_lobe_lanes(hb_deon *d)
 {
     for (int k = 0; k < HB_LANE_ARRAY; k++) {
