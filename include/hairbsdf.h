@@ -23,9 +23,9 @@ extern "C" {
  * appends fields to hb_material and hb_options: a program built against an older header passes its
  * smaller struct_size and the fields it lacks take their defaults. */
 #define HB_VERSION_MAJOR 0
-#define HB_VERSION_MINOR 4
+#define HB_VERSION_MINOR 5
 #define HB_VERSION_PATCH 0
-#define HB_VERSION_STRING "0.4.0"
+#define HB_VERSION_STRING "0.5.0"
 
 /* HB_API marks what the library exports; the shared library exports nothing else. Define
  * HB_STATIC when linking the static library on Windows. */
@@ -474,8 +474,9 @@ HB_API void hb_uniforms(unsigned long long seed, unsigned long long first, size_
 
 /* A plan's precomputed table, for engines that bake it into a texture (`hairbsdf bake`, docs/engines.md): dFH11 N_p (HB_AZIMUTHAL_TABLE) or HHH22 f_TT + f_TRT (HB_TT_TRT_TABLE).
  * Nodes are uniform from lo to hi on each axis; values are row-major over the axes, then the slot,
- * then the channel (RGB innermost; one channel for the colour table, hb_plan_table_channels). The
- * view points into the plan and lives as long as it. */
+ * then the channel (RGB innermost; one channel for the colour table, hb_plan_table_channels). HHH22's
+ * values are square roots: interpolate them, then square (docs/engines.md). The view points into the
+ * plan and lives as long as it. */
 #define HB_TABLE_MAX_AXES 4
 typedef struct hb_table_view {
     hb_model model;

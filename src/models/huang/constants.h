@@ -21,6 +21,7 @@ typedef struct hb_huang_table {
     float cos_floor, inv_cos_floor; /* the least cos(theta) the lookup divides by: the plan's, at least half
                                        a theta_i step (each theta_i node reads the sum at a theta_o that far off) */
     int panels; /* the builder's Simpson panels over the entry window */
+    int paths;  /* the builder's internal paths per Simpson node */
 } hb_huang_table;
 
 /* What the table builder needs besides the plan's constants: the grid of one row (s and delta at

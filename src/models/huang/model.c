@@ -61,7 +61,8 @@ static void describe(hb_text *t, const hb_plan *plan)
     if (h->lobes & 6u) {
         if (h->table.values)
             hb_say(t, "TT + TRT: interpolated from a table (%d theta_i x %d phi_i x %d x %d, built with Simpson over "
-                   "%d panels)%s\n", h->table.n_theta_i, h->table.n_phi_i, h->table.n_sum, h->table.n_delta, h->table.panels,
+                   "%d panels, %d paths per node)%s\n", h->table.n_theta_i, h->table.n_phi_i, h->table.n_sum, h->table.n_delta,
+                   h->table.panels, h->table.paths,
                 h->table_quality < plan->options.quality ? "; tt_trt auto: a coarser grid than the quality's, whose "
                                                            "build would take more than a second" : "");
         else if (plan->kernels)

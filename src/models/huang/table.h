@@ -3,7 +3,8 @@
  * The builder integrates eqs. 31, 32 deterministically: Simpson over the entry azimuth phi_m1 on
  * the table's panels, and at each node `lattice` internal paths whose visible normals are the
  * points of a rank-1 lattice (randomly shifted per node and row) instead of one random path; every
- * path is traced once per row and connected to every w_o of the row. Lookup is multilinear interpolation. */
+ * path is traced once per row and connected to every w_o of the row. The nodes hold square roots;
+ * lookup interpolates them multilinearly and squares the result. */
 #ifndef HB_HUANG_TABLE_H
 #define HB_HUANG_TABLE_H
 
@@ -39,7 +40,7 @@ HB_INLINE huang_table_angles huang_table_angles_of(const hb_huang *h, const huan
     return a;
 }
 
-/* f_TT + f_TRT per channel from the table, multilinear over `axes` axes: theta_i, (phi_i on an
+/* f_TT + f_TRT per channel from the table, the square of its square roots multilinear over `axes` axes: theta_i, (phi_i on an
  * elliptical fibre,) the warped sum theta_i + theta_o and the azimuth difference; cos(theta_o) and
  * sin^2(phi_o) (elliptical only) for eqs. 31, 32's 1 / (2 a cos(theta_o)), cos(theta_i) for its floor. */
 HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a, vf cos_ti, vf cos_to, vf sin2_phi_o,
@@ -85,8 +86,8 @@ HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a
     if (axes == 4)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), sin2_phi_o, vf_set1(1.0f))));
     vf inv_den = vf_div(huang_width_factor_floored(cos_ti, cos_to, t->cos_floor, t->inv_cos_floor), den);
-    for (int c = 0; c < 3; c++)
-        out[c] = vf_mul(vf_max(sum[c], zero), inv_den);
+    for (int c = 0; c < 3; c++) /* the nodes hold square roots */
+        out[c] = vf_mul(vf_mul(sum[c], sum[c]), inv_den);
 }
 
 HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_table_angles *a, vf cos_ti, vf cos_to, vf sin2_phi_o,
@@ -103,6 +104,16 @@ HB_INLINE vf unit_fraction(vf x)
 {
     vf f = vf_sub(x, vf_round(x));
     return vf_select(vf_lt(f, vf_set1(0.0f)), vf_add(f, vf_set1(1.0f)), f);
+}
+
+/* The entry normal's second number warped toward the visible normals' rim, u -> 1 - (1 - u)^1.5,
+ * with its Jacobian 1.5 sqrt(1 - u) (the path's weight): the lattice's points spread further into
+ * the NDF's tail, which TT's tails read (rms noise between seeds at balanced, GGX 0.2: 3.9% -> 2.6%). */
+HB_INLINE vf rim_warp(vf u, vf *jacobian)
+{
+    vf rest = vf_max(vf_sub(vf_set1(1.0f), u), vf_set1(0.0f)), root = vf_sqrt(rest);
+    *jacobian = vf_mul(vf_set1(1.5f), root);
+    return vf_fnma(rest, root, vf_set1(1.0f));
 }
 
 /* Traces the row's internal paths and stores their exits with weight (Simpson weight times rho
@@ -130,6 +141,9 @@ HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, con
             for (int k = 0; k < 4; k++) /* point l: frac(l z_k / N + shift_k) */
                 u[k] = unit_fraction(vf_fma(index, vf_set1((float)b->generator[k] / (float)lattice),
                                             rng_uniform(stream, h->rng_key2, k)));
+            vf jacobian, path_weight;
+            u[1] = rim_warp(u[1], &jacobian);
+            path_weight = vf_mul(weight, jacobian);
             internal_exit exits[2];
             internal_exits(h, &p, e.wi, u, exits, h->lobes >> HB_LOBE_TRT & 1u, NULL, NULL);
             for (int l = 0; l < 2; l++) {
@@ -139,7 +153,7 @@ HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, con
                 vf fields[HB_HUANG_EXIT_FLOATS] = { x->q.macro.x, x->q.macro.z, x->q.meso.x, x->q.meso.y, x->q.meso.z,
                                                     x->w.x,       x->w.y,       x->w.z };
                 for (int c = 0; c < 3; c++)
-                    fields[8 + c] = vf_mul(weight, x->weight[c]);
+                    fields[8 + c] = vf_mul(path_weight, x->weight[c]);
                 float lanes[HB_HUANG_EXIT_FLOATS][HB_W];
                 for (int f = 0; f < HB_HUANG_EXIT_FLOATS; f++)
                     vf_storeu(lanes[f], fields[f]);
@@ -156,8 +170,10 @@ HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, con
     return count;
 }
 
-/* One row of the table: for every (s, delta) node, the sum over the row's exits of their weight
- * times the exit interface's value toward w_o (eqs. 31, 32 without 1 / (2 a cos(theta_o))). */
+/* One row of the table: for every (s, delta) node, the square root of the sum over the row's exits
+ * of their weight times the exit interface's value toward w_o (eqs. 31, 32 without
+ * 1 / (2 a cos(theta_o))). Interpolating square roots and squaring the result halves the linear
+ * interpolant's relative error on an exponential tail and still reaches zero where f does. */
 HB_INLINE void huang_table_row(const hb_huang *h, float theta_i, float phi_i, const hb_huang_table_build *b, float *row)
 {
     const hb_huang_table *t = &h->table;
@@ -194,7 +210,7 @@ HB_INLINE void huang_table_row(const hb_huang *h, float theta_i, float phi_i, co
                 vf_storeu(lanes[c], sum[c]);
             for (int l = 0; l < HB_W && first + l < t->n_delta; l++)
                 for (int c = 0; c < 3; c++)
-                    row[3 * (k * t->n_delta + first + l) + c] = lanes[c][l];
+                    row[3 * (k * t->n_delta + first + l) + c] = sqrtf(fmaxf(lanes[c][l], 0.0f));
         }
 }
 

@@ -9,24 +9,38 @@
 #include "models/build_tasks.h"
 #include "models/table_file.h"
 
+/* Rank-1 lattices of internal paths per Simpson node: N points, N a Fibonacci number, whose first
+ * two coordinates (the entry's visible normal, all TT needs) are the Fibonacci lattice and whose
+ * last two (the bounce's) are the same lattice at point k l, k minimising the P2 discrepancy of the
+ * four together. */
+typedef struct path_lattice {
+    int points, generator[4];
+} path_lattice;
+
+static const path_lattice lattices[] = {
+    { 13, { 1, 8, 2, 3 } },      { 21, { 1, 13, 16, 19 } },   { 34, { 1, 21, 5, 3 } },
+    { 55, { 1, 34, 37, 48 } },   { 89, { 1, 55, 86, 13 } },   { 144, { 1, 89, 133, 29 } },
+    { 233, { 1, 144, 184, 167 } },
+};
+enum { LATTICES = sizeof lattices / sizeof lattices[0] };
+
 /* Per quality (fast, balanced, high): nodes in theta_i and in phi_i (elliptical), the delta step
  * and the step of u = asinh(s / roughness) (near s = 0 that is the step in s over the roughness),
- * and the internal paths per Simpson node: a rank-1 lattice of N points, N a Fibonacci number,
- * whose first two coordinates (the entry's visible normal, all TT needs) are the Fibonacci lattice
- * and whose last two (the bounce's) are the same lattice at point k l, k minimising the P2
- * discrepancy of the four together. Simpson's rule over the entry azimuth takes the next quality's
- * step (half the estimator's at fast and balanced: the paper's 0.7 roughness puts a TT peak 3% off
- * on a circle and on an ellipse of e = 0.8). */
+ * and the paths per Simpson node: lattices[least], or, where the build then stays within `budget`
+ * exit-to-node connections, the largest up to lattices[most] that does. Simpson's rule over the
+ * entry azimuth takes the next quality's step (half the estimator's at fast and balanced: the
+ * paper's 0.7 roughness puts a TT peak 3% off on a circle and on an ellipse of e = 0.8). */
 typedef struct table_resolution {
     int theta_i, phi_i;
     double delta_step, u_step;
-    int lattice, generator[4];
+    int least, most;
+    double budget;
 } table_resolution;
 
 static const table_resolution resolutions[] = {
-    [HB_QUALITY_FAST] = { 17, 5, 1.0, 0.5, 13, { 1, 8, 2, 3 } },
-    [HB_QUALITY_BALANCED] = { 33, 9, 0.5, 0.25, 21, { 1, 13, 16, 19 } },
-    [HB_QUALITY_HIGH] = { 49, 13, 0.35, 0.18, 89, { 1, 55, 86, 13 } },
+    [HB_QUALITY_FAST] = { 17, 5, 1.0, 0.5, 0, 0, 0.0 },
+    [HB_QUALITY_BALANCED] = { 33, 9, 0.5, 0.25, 1, 1, 0.0 },
+    [HB_QUALITY_HIGH] = { 49, 13, 0.35, 0.18, 4, 6, 2e9 },
 };
 
 /* The most exit-to-node connections a build may make: about 16 s on one AVX2 core (2.6 ns each,
@@ -145,14 +159,33 @@ static void build_row(void *rows, int k)
                                                              r->values + (size_t)k * r->row);
 }
 
-/* Exit-to-node connections the build of the plan's table makes (its cost, 2.6 ns each on AVX2). */
+/* Exit-to-node connections a build of the plan's grid makes with `paths` per node (its cost, 2.6 ns
+ * each on AVX2). */
+static double connections_with(const hb_huang_table *t, int paths)
+{
+    double rows = (double)t->n_theta_i * t->n_phi_i, nodes = (double)t->n_sum * t->n_delta;
+    return rows * 2.0 * paths * (t->panels + 1) * nodes;
+}
+
+/* The plan's grid and paths; the connections its build makes with the quality's least paths. */
 static double table_connections(hb_plan *plan)
 {
     choose_grid(plan);
-    const hb_huang_table *t = &plan->huang.table;
-    double rows = (double)t->n_theta_i * t->n_phi_i, nodes = (double)t->n_sum * t->n_delta;
-    double exits = 2.0 * resolutions[plan->huang.table_quality].lattice * (plan->huang.table.panels + 1);
-    return rows * exits * nodes;
+    hb_huang_table *t = &plan->huang.table;
+    const table_resolution *res = &resolutions[plan->huang.table_quality];
+    int k = res->least;
+    while (k < res->most && connections_with(t, lattices[k + 1].points) <= res->budget)
+        k++;
+    t->paths = lattices[k].points;
+    return connections_with(t, lattices[res->least].points);
+}
+
+static const path_lattice *lattice_of(int points)
+{
+    int k = 0;
+    while (k + 1 < LATTICES && lattices[k].points != points)
+        k++;
+    return &lattices[k];
 }
 
 /* HB_TT_TRT_AUTO builds the table where it takes about a second on one core at most (1.3 s:
@@ -168,13 +201,13 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
         return load_table(plan, error);
     hb_huang *h = &plan->huang;
     hb_huang_table *t = &h->table;
-    const table_resolution *res = &resolutions[plan->huang.table_quality];
+    const path_lattice *lattice = lattice_of(t->paths);
     double r = plan->material.roughness;
     double delta_range = h->elliptical ? 2.0 * M_PI : M_PI;
     double u_lo = asinh(-M_PI / r), u_hi = asinh(M_PI / r);
     size_t row = (size_t)t->n_sum * (size_t)t->n_delta * 3;
     size_t rows = (size_t)t->n_theta_i * (size_t)t->n_phi_i;
-    size_t exits = 2 * (size_t)res->lattice * (size_t)(t->panels + 1);
+    size_t exits = 2 * (size_t)lattice->points * (size_t)(t->panels + 1);
     if (connections > MAX_CONNECTIONS) {
         if (error) {
             error->status = HB_ERR_UNSUPPORTED;
@@ -196,9 +229,9 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
         grid[k] = (float)(r * sinh(u_lo + k * (u_hi - u_lo) / (t->n_sum - 1)));
     for (int l = 0; l < t->n_delta; l++)
         grid[t->n_sum + l] = (float)(t->delta_lo + l * delta_range / (t->n_delta - 1));
-    table_rows rows_run = { plan, { grid, grid + t->n_sum, res->lattice, { 0 }, 0, NULL }, scratch, scratch_floats, part, values, row };
+    table_rows rows_run = { plan, { grid, grid + t->n_sum, lattice->points, { 0 }, 0, NULL }, scratch, scratch_floats, part, values, row };
     for (int k = 0; k < 4; k++)
-        rows_run.build.generator[k] = res->generator[k];
+        rows_run.build.generator[k] = lattice->generator[k];
     hb_status st = hb_build_tasks(&plan->options, count, part, build_row, &rows_run, 0.0, 1.0, error);
     free(grid);
     free(scratch);
