@@ -475,7 +475,8 @@ HB_API void hb_uniforms(unsigned long long seed, unsigned long long first, size_
 /* A plan's precomputed table, for engines that bake it into a texture (`hairbsdf bake`, docs/engines.md): dFH11 N_p (HB_AZIMUTHAL_TABLE) or HHH22 f_TT + f_TRT (HB_TT_TRT_TABLE).
  * Nodes are uniform from lo to hi on each axis; values are row-major over the axes, then the slot,
  * then the channel (RGB innermost; one channel for the colour table, hb_plan_table_channels). HHH22's
- * values are square roots: interpolate them, then square (docs/engines.md). The view points into the
+ * values are square roots over a closing factor: interpolate them, square, multiply the factor back
+ * (docs/engines.md). The view points into the
  * plan and lives as long as it. */
 #define HB_TABLE_MAX_AXES 4
 typedef struct hb_table_view {

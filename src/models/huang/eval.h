@@ -19,7 +19,7 @@ HB_INLINE void huang_eval(const hb_huang *h, const huang_directions *d, const vf
     if (h->table.values) {
         huang_table_angles a = angles ? huang_table_angles_from(angles[0], angles[1], angles[2], angles[3])
                                       : huang_table_angles_of(h, d);
-        huang_table_lookup(h, &a, d->cos_ti, d->cos_to, d->sin2_phi_o, internal);
+        huang_table_lookup(h, &a, d->cos_ti, d->sin_ti, d->cos_to, d->sin_to, d->sin2_phi_o, internal);
     } else {
         huang_internal(h, d, index, internal);
     }
@@ -32,8 +32,12 @@ HB_INLINE void huang_angles(const hb_huang *h, vf theta_i, vf phi_i, vf theta_o,
     if (h->table.values && !(h->lobes >> HB_LOBE_R & 1u)) { /* the table alone reads no directions */
         huang_table_angles a = huang_table_angles_from(theta_i, phi_i, theta_o, phi_o);
         vf sin_po = h->elliptical ? vf_sin(wrap_angle(phi_o)) : vf_set1(0.0f);
-        vf cos_ti = vf_max(vf_cos(theta_i), vf_set1(0.0f)), cos_to = vf_max(vf_cos(theta_o), vf_set1(0.0f));
-        huang_table_lookup(h, &a, cos_ti, cos_to, vf_mul(sin_po, sin_po), out);
+        vf cos_ti, sin_ti, cos_to, sin_to;
+        vf_sincos(theta_i, &sin_ti, &cos_ti);
+        vf_sincos(theta_o, &sin_to, &cos_to);
+        cos_ti = vf_max(cos_ti, vf_set1(0.0f));
+        cos_to = vf_max(cos_to, vf_set1(0.0f));
+        huang_table_lookup(h, &a, cos_ti, sin_ti, cos_to, sin_to, vf_mul(sin_po, sin_po), out);
         return;
     }
     huang_directions d = huang_directions_of_angles(h, theta_i, phi_i, theta_o, phi_o);

@@ -3,8 +3,9 @@
  * The builder integrates eqs. 31, 32 deterministically: Simpson over the entry azimuth phi_m1 on
  * the table's panels, and at each node `lattice` internal paths whose visible normals are the
  * points of a rank-1 lattice (randomly shifted per node and row) instead of one random path; every
- * path is traced once per row and connected to every w_o of the row. The nodes hold square roots;
- * lookup interpolates them multilinearly and squares the result. */
+ * path is traced once per row and connected to every w_o of the row. The nodes hold square roots
+ * of f over the tilted windows' closing factor; lookup interpolates them multilinearly, squares the
+ * result and multiplies the factor back. */
 #ifndef HB_HUANG_TABLE_H
 #define HB_HUANG_TABLE_H
 
@@ -17,6 +18,40 @@ HB_INLINE vf table_asinh(vf x)
 {
     vf a = vf_abs(x);
     return vf_copysign(vf_log(vf_add(a, vf_sqrt(vf_fma(a, a, vf_set1(1.0f))))), x);
+}
+
+/* (cos(theta_i - tau) cos(theta_o - tau))^1.5, each cosine floored at 0, tau the mesonormal's tilt:
+ * w's visible window (r_lobe.h, visible_cut) closes where cos(theta - tau) reaches 0, at
+ * theta = tau +- pi/2, and f_TT + f_TRT times cos(theta_o) falls there as this power of it (at the
+ * bench material's theta_i = -1.246: f 2 cos(theta_o) / cos(theta_o - tau)^1.5 is 0.476, 0.467 and
+ * 0.445 at theta_o = 1.46, 1.48, 1.50, where the cosine falls from 0.076 to 0.036). The table holds
+ * the rest, which stays smooth up to the closure and the poles. */
+HB_INLINE float table_closing(const hb_huang *h, float theta_i, float theta_o)
+{
+    float c = fmaxf(cosf(theta_i) * h->cos_tilt + sinf(theta_i) * h->sin_tilt, 0.0f) *
+              fmaxf(cosf(theta_o) * h->cos_tilt + sinf(theta_o) * h->sin_tilt, 0.0f);
+    return c * sqrtf(c);
+}
+
+HB_INLINE vf table_closing_v(const hb_huang *h, vf cos_ti, vf sin_ti, vf cos_to, vf sin_to)
+{
+    vf zero = vf_set1(0.0f), cos_tilt = vf_set1(h->cos_tilt), sin_tilt = vf_set1(h->sin_tilt);
+    vf c = vf_mul(vf_max(vf_fma(cos_ti, cos_tilt, vf_mul(sin_ti, sin_tilt)), zero),
+                  vf_max(vf_fma(cos_to, cos_tilt, vf_mul(sin_to, sin_tilt)), zero));
+    return vf_mul(c, vf_sqrt(c));
+}
+
+/* Where the nodes are evaluated: theta kept HB_TABLE_NODE_GAP (0.01 rad) inside the poles and the
+ * windows' closures tau +- pi/2. At a pole the macronormal sees nothing and past a closure the
+ * window is empty, so f is 0 exactly there, while the node stands for the limit beside it. */
+#define HB_TABLE_NODE_GAP 0.01f
+
+HB_INLINE float table_node_inclination(const hb_huang *h, float theta)
+{
+    float tau = atan2f(h->sin_tilt, h->cos_tilt);
+    float lo = fmaxf(-HB_PIO2_F, tau - HB_PIO2_F) + HB_TABLE_NODE_GAP;
+    float hi = fminf(HB_PIO2_F, tau + HB_PIO2_F) - HB_TABLE_NODE_GAP;
+    return fminf(fmaxf(theta, lo), hi);
 }
 
 /* The angles a lookup reads: theta_i, theta_o, and phi = phi_o - phi_i and phi_i in [-pi, pi]. */
@@ -40,11 +75,12 @@ HB_INLINE huang_table_angles huang_table_angles_of(const hb_huang *h, const huan
     return a;
 }
 
-/* f_TT + f_TRT per channel from the table, the square of its square roots multilinear over `axes` axes: theta_i, (phi_i on an
- * elliptical fibre,) the warped sum theta_i + theta_o and the azimuth difference; cos(theta_o) and
- * sin^2(phi_o) (elliptical only) for eqs. 31, 32's 1 / (2 a cos(theta_o)), cos(theta_i) for its floor. */
-HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a, vf cos_ti, vf cos_to, vf sin2_phi_o,
-                                  vf out[3], int axes)
+/* f_TT + f_TRT per channel from the table: the square of its square roots multilinear over `axes`
+ * axes (theta_i, phi_i on an elliptical fibre, the warped sum theta_i + theta_o and the azimuth
+ * difference) times the closing factor; the angles' cosines and sines for that factor and for eqs.
+ * 31, 32's 1 / (2 a cos(theta_o)) with sin^2(phi_o) (elliptical only), cos(theta_i) for its floor. */
+HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a, vf cos_ti, vf sin_ti, vf cos_to,
+                                  vf sin_to, vf sin2_phi_o, vf out[3], int axes)
 {
     const hb_huang_table *t = &h->table;
     vf delta = a->phi, phi_i = a->phi_i;
@@ -85,18 +121,20 @@ HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a
     vf den = vf_set1(2.0f);
     if (axes == 4)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), sin2_phi_o, vf_set1(1.0f))));
-    vf inv_den = vf_div(huang_width_factor_floored(cos_ti, cos_to, t->cos_floor, t->inv_cos_floor), den);
+    vf scale = vf_div(vf_mul(huang_width_factor_floored(cos_ti, cos_to, t->cos_floor, t->inv_cos_floor),
+                             table_closing_v(h, cos_ti, sin_ti, cos_to, sin_to)),
+                      den);
     for (int c = 0; c < 3; c++) /* the nodes hold square roots */
-        out[c] = vf_mul(vf_mul(sum[c], sum[c]), inv_den);
+        out[c] = vf_mul(vf_mul(sum[c], sum[c]), scale);
 }
 
-HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_table_angles *a, vf cos_ti, vf cos_to, vf sin2_phi_o,
-                                  vf out[3])
+HB_INLINE void huang_table_lookup(const hb_huang *h, const huang_table_angles *a, vf cos_ti, vf sin_ti, vf cos_to,
+                                  vf sin_to, vf sin2_phi_o, vf out[3])
 {
     if (h->elliptical)
-        huang_table_shaped(h, a, cos_ti, cos_to, sin2_phi_o, out, 4);
+        huang_table_shaped(h, a, cos_ti, sin_ti, cos_to, sin_to, sin2_phi_o, out, 4);
     else
-        huang_table_shaped(h, a, cos_ti, cos_to, sin2_phi_o, out, 3);
+        huang_table_shaped(h, a, cos_ti, sin_ti, cos_to, sin_to, sin2_phi_o, out, 3);
 }
 
 /* The fractional part of x, in [0, 1]. */
@@ -172,19 +210,21 @@ HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, con
 
 /* One row of the table: for every (s, delta) node, the square root of the sum over the row's exits
  * of their weight times the exit interface's value toward w_o (eqs. 31, 32 without
- * 1 / (2 a cos(theta_o))). Interpolating square roots and squaring the result halves the linear
+ * 1 / (2 a cos(theta_o))) over the closing factor, both inclinations taken at their nodes'
+ * (table_node_inclination). Interpolating square roots and squaring the result halves the linear
  * interpolant's relative error on an exponential tail and still reaches zero where f does. */
 HB_INLINE void huang_table_row(const hb_huang *h, float theta_i, float phi_i, const hb_huang_table_build *b, float *row)
 {
     const hb_huang_table *t = &h->table;
+    float row_theta_i = theta_i;
+    theta_i = table_node_inclination(h, theta_i);
     int exits = table_row_exits(h, theta_i, phi_i, b, b->scratch);
     vf zero = vf_set1(0.0f);
     for (int k = 0; k < t->n_sum; k++)
         for (int first = 0; first < t->n_delta; first += HB_W) {
             float theta_o[HB_W], phi_o[HB_W];
             for (int l = 0; l < HB_W; l++) {
-                float s = b->sums[k] - theta_i;
-                theta_o[l] = s < -HB_PIO2_F ? -HB_PIO2_F : s > HB_PIO2_F ? HB_PIO2_F : s;
+                theta_o[l] = table_node_inclination(h, b->sums[k] - row_theta_i);
                 phi_o[l] = phi_i + b->deltas[first + l < t->n_delta ? first + l : t->n_delta - 1];
             }
             vf st, ct, sp, cp;
@@ -208,9 +248,11 @@ HB_INLINE void huang_table_row(const hb_huang *h, float theta_i, float phi_i, co
             float lanes[3][HB_W];
             for (int c = 0; c < 3; c++)
                 vf_storeu(lanes[c], sum[c]);
-            for (int l = 0; l < HB_W && first + l < t->n_delta; l++)
+            for (int l = 0; l < HB_W && first + l < t->n_delta; l++) {
+                float closing = table_closing(h, theta_i, theta_o[l]);
                 for (int c = 0; c < 3; c++)
-                    row[3 * (k * t->n_delta + first + l) + c] = sqrtf(fmaxf(lanes[c][l], 0.0f));
+                    row[3 * (k * t->n_delta + first + l) + c] = sqrtf(fmaxf(lanes[c][l], 0.0f) / closing);
+            }
         }
 }
 
