@@ -176,6 +176,40 @@ static void test_table_hard_directions(hb_test_ctx *t)
     }
 }
 
+/* Past the tilted mesonormal's closing windows (theta beyond tau +- pi/2, tau = -alpha: no point of the
+ * fibre shows w a visible mesosurface) TT and TRT are 0 in the model; the table, whose grid steps
+ * cross the closure, gives exactly 0 there too, for w_i and for w_o. */
+static void test_table_closed_windows(hb_test_ctx *t)
+{
+    static const table_case tilted[] = { { HB_NDF_GGX, 0.3, 2.0, 0.0, 0.1 }, { HB_NDF_BECKMANN, 0.3, -3.0, 0.0, 0.0 } };
+    static const float others[] = { -1.2f, -0.5f, 0.0f, 0.5f, 1.2f }, azimuths[] = { 0.0f, 1.0f, 2.0f, 3.0f };
+    enum { O = sizeof others / sizeof others[0], Z = sizeof azimuths / sizeof azimuths[0], N = 2 * O * Z };
+    for (size_t k = 0; k < sizeof tilted / sizeof tilted[0]; k++) {
+        float alpha = (float)(tilted[k].alpha_deg * M_PI / 180.0);
+        float past = copysignf(1.5707964f - 0.5f * fabsf(alpha), alpha); /* halfway from the closure to the pole */
+        float ti[N], pi[N], to[N], po[N], f[3][N], g[3][N];
+        for (int j = 0; j < N; j++) {
+            int o = j / Z % O, z = j % Z, as_input = j < N / 2;
+            ti[j] = as_input ? past : others[o];
+            to[j] = as_input ? others[o] : past;
+            pi[j] = 0.0f;
+            po[j] = azimuths[z];
+        }
+        hb_plan *table = table_plan(t, &tilted[k], HB_TT_TRT_TABLE, HB_QUALITY_FAST, t->isa);
+        hb_plan *mc = table_plan(t, &tilted[k], HB_TT_TRT_MC, HB_QUALITY_FAST, t->isa);
+        if (!table || !mc)
+            return;
+        hb_eval_angles(table, N, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+        hb_eval_angles(mc, N, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ g[0], g[1], g[2] }, NULL);
+        for (int j = 0; j < N; j++)
+            for (int c = 0; c < 3; c++)
+                CHECK(t, f[c][j] == 0.0f && g[c][j] == 0.0f, "case %zu: theta_i %g theta_o %g phi_o %g: table %g, "
+                      "estimator %g", k, ti[j], to[j], po[j], f[c][j], g[c][j]);
+        hb_plan_destroy(table);
+        hb_plan_destroy(mc);
+    }
+}
+
 /* A table too costly to build, or asked of the double reference quality, fails at plan creation. */
 static void test_table_refusals(hb_test_ctx *t)
 {
@@ -261,5 +295,6 @@ const hb_test hb_tests_huang_table[] = {
     { "huang_table_matches_estimator", test_table_matches_estimator, 1 },
     { "huang_table_matches_reference", test_table_matches_reference, 0 },
     { "huang_table_hard_directions", test_table_hard_directions, 1 },
+    { "huang_table_closed_windows", test_table_closed_windows, 1 },
     { 0 },
 };

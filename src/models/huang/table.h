@@ -20,38 +20,41 @@ HB_INLINE vf table_asinh(vf x)
     return vf_copysign(vf_log(vf_add(a, vf_sqrt(vf_fma(a, a, vf_set1(1.0f))))), x);
 }
 
-/* (cos(theta_i - tau) cos(theta_o - tau))^1.5, each cosine floored at 0, tau the mesonormal's tilt:
- * w's visible window (r_lobe.h, visible_cut) closes where cos(theta - tau) reaches 0, at
- * theta = tau +- pi/2, and f_TT + f_TRT times cos(theta_o) falls there as this power of it (at the
- * bench material's theta_i = -1.246: f 2 cos(theta_o) / cos(theta_o - tau)^1.5 is 0.476, 0.467 and
- * 0.445 at theta_o = 1.46, 1.48, 1.50, where the cosine falls from 0.076 to 0.036). The table holds
- * the rest, which stays smooth up to the closure and the poles. */
-HB_INLINE float table_closing(const hb_huang *h, float theta_i, float theta_o)
-{
-    float c = fmaxf(cosf(theta_i) * h->cos_tilt + sinf(theta_i) * h->sin_tilt, 0.0f) *
-              fmaxf(cosf(theta_o) * h->cos_tilt + sinf(theta_o) * h->sin_tilt, 0.0f);
-    return c * sqrtf(c);
-}
-
-HB_INLINE vf table_closing_v(const hb_huang *h, vf cos_ti, vf sin_ti, vf cos_to, vf sin_to)
-{
-    vf zero = vf_set1(0.0f), cos_tilt = vf_set1(h->cos_tilt), sin_tilt = vf_set1(h->sin_tilt);
-    vf c = vf_mul(vf_max(vf_fma(cos_ti, cos_tilt, vf_mul(sin_ti, sin_tilt)), zero),
-                  vf_max(vf_fma(cos_to, cos_tilt, vf_mul(sin_to, sin_tilt)), zero));
-    return vf_mul(c, vf_sqrt(c));
-}
-
-/* Where the nodes are evaluated: theta kept HB_TABLE_NODE_GAP (0.01 rad) inside the poles and the
- * windows' closures tau +- pi/2. At a pole the macronormal sees nothing and past a closure the
- * window is empty, so f is 0 exactly there, while the node stands for the limit beside it. */
+/* Where the nodes are evaluated: theta in [lo, hi], HB_TABLE_NODE_GAP (0.01 rad) inside the poles
+ * and the windows' closures tau +- pi/2. At a pole the macronormal sees nothing and past a closure
+ * the window is empty, so f is 0 exactly there, while the node stands for the limit beside it. */
 #define HB_TABLE_NODE_GAP 0.01f
 
-HB_INLINE float table_node_inclination(const hb_huang *h, float theta)
+/* The closing factor C(theta_i) C(theta_o), C = c sqrt(c / cos(theta)) with c = cos(theta - tau)
+ * floored at 0, tau the mesonormal's tilt and cos(theta) floored at the node gap: w's visible window
+ * (r_lobe.h, visible_cut) closes where c reaches 0, at theta = tau +- pi/2. f_TT + f_TRT times
+ * cos(theta_o) falls there as c^1.5 (at the bench material's theta_i = -1.246, f 2 cos(theta_o) /
+ * c^1.5 is 0.476, 0.467 and 0.445 at theta_o = 1.46, 1.48 and 1.50, as c falls from 0.076 to 0.036),
+ * and without tilt, at a pole, as cos(theta) = c. The table holds the rest, which stays smooth. */
+HB_INLINE vf table_closing(const hb_huang *h, vf cos_ti, vf sin_ti, vf cos_to, vf sin_to)
+{
+    vf zero = vf_set1(0.0f), gap = vf_set1(HB_TABLE_NODE_GAP);
+    vf cos_tilt = vf_set1(h->cos_tilt), sin_tilt = vf_set1(h->sin_tilt);
+    vf c = vf_mul(vf_max(vf_fma(cos_ti, cos_tilt, vf_mul(sin_ti, sin_tilt)), zero),
+                  vf_max(vf_fma(cos_to, cos_tilt, vf_mul(sin_to, sin_tilt)), zero));
+    return vf_mul(c, vf_sqrt(vf_div(c, vf_mul(vf_max(cos_ti, gap), vf_max(cos_to, gap)))));
+}
+
+typedef struct table_node_range {
+    float lo, hi;
+} table_node_range;
+
+HB_INLINE table_node_range table_node_range_of(const hb_huang *h)
 {
     float tau = atan2f(h->sin_tilt, h->cos_tilt);
-    float lo = fmaxf(-HB_PIO2_F, tau - HB_PIO2_F) + HB_TABLE_NODE_GAP;
-    float hi = fminf(HB_PIO2_F, tau + HB_PIO2_F) - HB_TABLE_NODE_GAP;
-    return fminf(fmaxf(theta, lo), hi);
+    table_node_range r = { fmaxf(-HB_PIO2_F, tau - HB_PIO2_F) + HB_TABLE_NODE_GAP,
+                           fminf(HB_PIO2_F, tau + HB_PIO2_F) - HB_TABLE_NODE_GAP };
+    return r;
+}
+
+HB_INLINE float table_node_inclination(const table_node_range *r, float theta)
+{
+    return fminf(fmaxf(theta, r->lo), r->hi);
 }
 
 /* The angles a lookup reads: theta_i, theta_o, and phi = phi_o - phi_i and phi_i in [-pi, pi]. */
@@ -122,7 +125,7 @@ HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a
     if (axes == 4)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), sin2_phi_o, vf_set1(1.0f))));
     vf scale = vf_div(vf_mul(huang_width_factor_floored(cos_ti, cos_to, t->cos_floor, t->inv_cos_floor),
-                             table_closing_v(h, cos_ti, sin_ti, cos_to, sin_to)),
+                             table_closing(h, cos_ti, sin_ti, cos_to, sin_to)),
                       den);
     for (int c = 0; c < 3; c++) /* the nodes hold square roots */
         out[c] = vf_mul(vf_mul(sum[c], sum[c]), scale);
@@ -216,15 +219,16 @@ HB_INLINE int table_row_exits(const hb_huang *h, float theta_i, float phi_i, con
 HB_INLINE void huang_table_row(const hb_huang *h, float theta_i, float phi_i, const hb_huang_table_build *b, float *row)
 {
     const hb_huang_table *t = &h->table;
-    float row_theta_i = theta_i;
-    theta_i = table_node_inclination(h, theta_i);
-    int exits = table_row_exits(h, theta_i, phi_i, b, b->scratch);
-    vf zero = vf_set1(0.0f);
+    table_node_range range = table_node_range_of(h);
+    float node_theta_i = table_node_inclination(&range, theta_i);
+    int exits = table_row_exits(h, node_theta_i, phi_i, b, b->scratch);
+    vf zero = vf_set1(0.0f), sin_ti, cos_ti;
+    vf_sincos(vf_set1(node_theta_i), &sin_ti, &cos_ti);
     for (int k = 0; k < t->n_sum; k++)
         for (int first = 0; first < t->n_delta; first += HB_W) {
             float theta_o[HB_W], phi_o[HB_W];
             for (int l = 0; l < HB_W; l++) {
-                theta_o[l] = table_node_inclination(h, b->sums[k] - row_theta_i);
+                theta_o[l] = table_node_inclination(&range, b->sums[k] - theta_i);
                 phi_o[l] = phi_i + b->deltas[first + l < t->n_delta ? first + l : t->n_delta - 1];
             }
             vf st, ct, sp, cp;
@@ -245,14 +249,13 @@ HB_INLINE void huang_table_row(const hb_huang *h, float theta_i, float phi_i, co
                 for (int c = 0; c < 3; c++)
                     sum[c] = vf_fma(value, vf_set1(f[8 + c]), sum[c]);
             }
+            vf inv_closing = vf_div(vf_set1(1.0f), table_closing(h, cos_ti, sin_ti, ct, st));
             float lanes[3][HB_W];
             for (int c = 0; c < 3; c++)
-                vf_storeu(lanes[c], sum[c]);
-            for (int l = 0; l < HB_W && first + l < t->n_delta; l++) {
-                float closing = table_closing(h, theta_i, theta_o[l]);
+                vf_storeu(lanes[c], vf_sqrt(vf_mul(vf_max(sum[c], zero), inv_closing)));
+            for (int l = 0; l < HB_W && first + l < t->n_delta; l++)
                 for (int c = 0; c < 3; c++)
-                    row[3 * (k * t->n_delta + first + l) + c] = sqrtf(fmaxf(lanes[c][l], 0.0f) / closing);
-            }
+                    row[3 * (k * t->n_delta + first + l) + c] = lanes[c][l];
         }
 }
 
