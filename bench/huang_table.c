@@ -9,7 +9,7 @@
 #include "hairbsdf.h"
 #include "huang_table.h"
 
-enum { DIRECTIONS = 120, DRAWS = 1 << 15 };
+enum { DIRECTIONS = 120, DRAWS = 1 << 17 };
 
 static double uniform(unsigned long long *state)
 {
