@@ -236,7 +236,7 @@ demo: all $(BENCH_BIN)
 	$(RUN) $(TOOL) dump --model marschner --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_marschner.png
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model huang --lobes R --eumelanin 0.3
 	printf '$(DEMO_ROWS)' | $(RUN) $(TOOL) eval --model huang --lobes R --eumelanin 0.3 --quality reference
-	$(RUN) $(TOOL) dump --model huang --tt-trt table --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_huang.png
+	$(RUN) $(TOOL) dump --model huang --eumelanin 0.3 --theta-i 0.3 --exposure 2 -o $(B)/lobes_huang.png
 	$(RUN) $(TOOL) plan --model deon --eumelanin 1.8 --tolerance 1e-2
 	@echo "lobe images: $(B)/lobes_deon.png, $(B)/lobes_marschner.png, $(B)/lobes_huang.png (tone-mapped) and $(B)/lobes_deon.pfm (float RGB)"
 	$(RUN) $(BENCH_BIN) --demo
@@ -262,10 +262,10 @@ images: $(TOOL)
 	  -o docs/images/deon_white_theta-1.0.png
 	$(TOOL) dump --model marschner --eumelanin 0.3 --theta-i 0.3 --exposure 2 --width 384 --height 192 \
 	  -o docs/images/marschner_brown_theta0.3.png
-	$(TOOL) dump --model huang --tt-trt table --eumelanin 0.3 --theta-i 0.3 --exposure 2 --width 384 --height 192 \
+	$(TOOL) dump --model huang --eumelanin 0.3 --theta-i 0.3 --exposure 2 --width 384 --height 192 \
 	  -o docs/images/huang_brown_theta0.3.png
 	$(TOOL) dump --model deon --eumelanin 0.3 --theta-i 0.3 --exposure 2 --width 256 --height 128 \
-	  --compare model=huang --compare tt-trt=table -o docs/images/deon_vs_huang_theta0.3.png
+	  --compare model=huang -o docs/images/deon_vs_huang_theta0.3.png
 	$(TOOL) furnace --model deon --by-lobe --theta-o -1.5,-1.25,-1,-0.75,-0.5,-0.25,0,0.25,0.5,0.75,1,1.25,1.5 \
 	  --svg docs/images/deon_energy_by_lobe.svg > /dev/null
 	$(TOOL) furnace --fig16 --paths 20000 --theta-o -1.4,-1.2,-1,-0.8,-0.6,-0.4,-0.2,0,0.2,0.4,0.6,0.8,1,1.2,1.4 \

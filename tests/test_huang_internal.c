@@ -354,8 +354,7 @@ static void test_internal_orders(hb_test_ctx *t)
             for (int c = 0; c < 3; c++)
                 m.sigma_a[c] = absorbing.sigma_a * (1 << c);
             o.model = HB_MODEL_HUANG;
-            o.lobes = 1u << lobe;
-            o.tt_trt = HB_TT_TRT_TABLE;
+            o.lobes = 1u << lobe; /* tt_trt auto: the table at this roughness */
             hb_plan *one = NULL;
             CHECK(t, hb_plan_create(&m, &o, &one, NULL) == HB_OK, "table plan");
             double f[3] = { 0.0, 0.0, 0.0 };

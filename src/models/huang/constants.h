@@ -68,7 +68,8 @@ typedef struct hb_huang {
     uint32_t rng_key, rng_key2;
     float sigma_a[3];
     hb_huang_table table; /* values == NULL: TT and TRT by eqs. 31, 32 at every evaluation */
-    hb_quality table_quality; /* the grid's: the plan's, or for HB_TT_TRT_AUTO the finest that builds in about a second */
+    int table_grid; /* the grid (table_build.c): the plan's quality's, or for HB_TT_TRT_AUTO the finest up to it that
+                       builds in about a second */
     int table_too_costly; /* HB_TT_TRT_AUTO chose eqs. 31, 32: even the fast grid would take more than that */
 } hb_huang;
 

@@ -12,6 +12,7 @@ int hb_huang_tt_panels(const hb_options *o, hb_quality quality, double roughness
 void hb_huang_release(hb_plan *plan);
 hb_status hb_huang_build_table(hb_plan *plan, hb_error *error);    /* table_build.c */
 int hb_huang_table_fits(hb_plan *plan);                           /* its build takes about a second at most */
+int hb_huang_table_grid_of(hb_quality quality);                   /* a quality's own table grid */
 hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *view, int *channels);
 hb_status hb_huang_shader_constants(const hb_plan *plan, float *constants); /* table_build.c */
 

@@ -63,8 +63,9 @@ static void describe(hb_text *t, const hb_plan *plan)
             hb_say(t, "TT + TRT: interpolated from a table (%d theta_i x %d phi_i x %d x %d, built with Simpson over "
                    "%d panels, %d paths per node)%s\n", h->table.n_theta_i, h->table.n_phi_i, h->table.n_sum, h->table.n_delta,
                    h->table.panels, h->table.paths,
-                h->table_quality < plan->options.quality ? "; tt_trt auto: a coarser grid than the quality's, whose "
-                                                           "build would take more than a second" : "");
+                   h->table_grid < hb_huang_table_grid_of(plan->options.quality)
+                       ? "; tt_trt auto: a coarser grid than the quality's, whose build would take more than a second"
+                       : "");
         else if (plan->kernels)
             hb_say(t, "TT + TRT (eqs. 31, 32): Simpson over %d panels of the entry azimuth, one random internal path per "
                    "node (seed %llu)%s\n", h->tt_panels, plan->options.seed,
@@ -102,7 +103,7 @@ static const hb_preset presets[] = {
     { "all/mc-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
     { "all/mc-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_MC },
     { "all/table-fast", HB_QUALITY_FAST, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_TABLE },
-    { "all/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_TABLE },
+    { "all/table-balanced", HB_QUALITY_BALANCED, 0, HB_AZIMUTHAL_QUADRATURE, HB_TT_TRT_AUTO }, /* the bench row's */
 };
 
 /* App. A's closed form covers GGX without shadowing on circular fibres. */
@@ -120,12 +121,15 @@ static int preset_applies(const hb_preset *p, const hb_material *m, const hb_opt
     return lobe_mask == 1u << HB_LOBE_R && (strcmp(p->name, "R/analytic") == 0) == analytic(m, o);
 }
 
+/* tt_trt auto is a table (on a grid no finer than the quality's) wherever the bench times it. */
+static hb_tt_trt table_if_auto(hb_tt_trt tt_trt) { return tt_trt == HB_TT_TRT_AUTO ? HB_TT_TRT_TABLE : tt_trt; }
+
 static int preset_is(const hb_preset *p, const hb_material *m, const hb_options *o, unsigned lobe_mask)
 {
     if (lobe_mask == 1u && analytic(m, o))
         return 1;
     return p->quality == o->quality && p->quadrature_order == o->quadrature_order && p->azimuthal == o->azimuthal &&
-           (lobe_mask == 1u || p->tt_trt == (o->tt_trt == HB_TT_TRT_AUTO ? HB_TT_TRT_TABLE : o->tt_trt));
+           (lobe_mask == 1u || table_if_auto(p->tt_trt) == table_if_auto(o->tt_trt));
 }
 
 const hb_model_ops hb_huang_model = {

@@ -129,11 +129,11 @@ hb_status hb_huang_derive(hb_plan *plan, hb_error *error)
     int reference = o->quality == HB_QUALITY_REFERENCE || o->tt_trt == HB_TT_TRT_REFERENCE;
     HB_PLAN_SET_KERNELS(plan, kernels_by_isa, reference);
     derive_constants(plan);
-    plan->huang.table_quality = o->quality;
-    if (o->tt_trt == HB_TT_TRT_AUTO) { /* the finest grid up to the plan's quality that builds in about a
+    plan->huang.table_grid = hb_huang_table_grid_of(o->quality);
+    if (o->tt_trt == HB_TT_TRT_AUTO) { /* the finest grid up to the plan's quality's that builds in about a
                                           second (a table file's too: it was saved by a plan of this rule) */
-        while (!hb_huang_table_fits(plan) && plan->huang.table_quality > HB_QUALITY_FAST)
-            plan->huang.table_quality--;
+        while (!hb_huang_table_fits(plan) && plan->huang.table_grid > 0)
+            plan->huang.table_grid--;
         plan->huang.table_too_costly = !o->table_file && !hb_huang_table_fits(plan);
         o->tt_trt = plan->huang.table_too_costly ? HB_TT_TRT_MC : HB_TT_TRT_TABLE;
     }

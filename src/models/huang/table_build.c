@@ -17,35 +17,38 @@ typedef struct path_lattice {
     int points, generator[4];
 } path_lattice;
 
-static const path_lattice lattices[] = {
-    { 13, { 1, 8, 2, 3 } },      { 21, { 1, 13, 16, 19 } },   { 34, { 1, 21, 5, 3 } },
-    { 55, { 1, 34, 37, 48 } },   { 89, { 1, 55, 86, 13 } },   { 144, { 1, 89, 133, 29 } },
-    { 233, { 1, 144, 184, 167 } },
-};
-enum { LATTICES = sizeof lattices / sizeof lattices[0] };
-
-/* Per quality (fast, balanced, high): nodes in theta_i and in phi_i (elliptical), the delta step
- * and the step of u = asinh(s / roughness) (near s = 0 that is the step in s over the roughness),
- * and the paths per Simpson node: lattices[least], or, where the build then stays within `budget`
- * exit-to-node connections, the largest up to lattices[most] that does. Simpson's rule over the
- * entry azimuth takes the next quality's step (half the estimator's at fast and balanced: the
- * paper's 0.7 roughness puts a TT peak 3% off on a circle and on an ellipse of e = 0.8). */
-typedef struct table_resolution {
+/* The grids, coarsest first: nodes in theta_i and in phi_i (elliptical), the delta step and the step
+ * of u = asinh(s / roughness) (near s = 0 that is the step in s over the roughness), the quality
+ * whose Simpson step over the entry azimuth the rows take, and the paths per Simpson node. A
+ * quality's own grid (hb_huang_table_grid_of) is the coarsest whose error on the bench material
+ * (GGX 0.2, where f is at least 1% of its peak) is within the quality's bound: 3% at balanced, 1% at
+ * high (docs/huang.md). HB_TT_TRT_AUTO takes the finest grid up to the quality's own that builds in
+ * about a second. The Simpson step is half the estimator's at fast (the paper's 0.7 roughness puts
+ * a TT peak 3% off on a circle and on an ellipse of e = 0.8). */
+typedef struct table_grid {
     int theta_i, phi_i;
     double delta_step, u_step;
-    int least, most;
-    double budget;
-} table_resolution;
+    hb_quality simpson;
+    path_lattice lattice;
+} table_grid;
 
-static const table_resolution resolutions[] = {
-    [HB_QUALITY_FAST] = { 17, 5, 1.0, 0.5, 0, 0, 0.0 },
-    [HB_QUALITY_BALANCED] = { 33, 9, 0.5, 0.25, 1, 1, 0.0 },
-    [HB_QUALITY_HIGH] = { 49, 13, 0.35, 0.18, 4, 6, 2e9 },
+static const table_grid grids[] = {
+    { 17, 5, 1.0, 0.5, HB_QUALITY_BALANCED, { 13, { 1, 8, 2, 3 } } },
+    { 33, 9, 0.5, 0.25, HB_QUALITY_HIGH, { 21, { 1, 13, 16, 19 } } },
+    { 49, 13, 0.35, 0.12, HB_QUALITY_HIGH, { 377, { 1, 233, 354, 296 } } },
+    { 49, 13, 0.25, 0.09, HB_QUALITY_HIGH, { 1597, { 1, 987, 1173, 1523 } } },
 };
 
-/* The most exit-to-node connections a build may make: about 16 s on one AVX2 core (2.6 ns each,
- * measured), a little more than an elliptical fibre of roughness 0.1 needs at balanced (5e9). */
-#define MAX_CONNECTIONS 6e9
+int hb_huang_table_grid_of(hb_quality quality)
+{
+    return quality == HB_QUALITY_FAST ? 0 : quality == HB_QUALITY_BALANCED ? 2 : 3;
+}
+
+/* The most exit-to-node connections a build may make: about 3.5 minutes on one AVX2 core (2.1 ns
+ * each, measured; threads divide it). A circular fibre needs 4.7e9 at roughness 0.2 and 2.2e10 at
+ * 0.1 on the balanced grid (refused below about 0.05), 3.7e10 at 0.2 on the high grid (refused
+ * below about 0.13). */
+#define MAX_CONNECTIONS 1e11
 
 static int nodes_for(double range, double step, int least, int most)
 {
@@ -65,7 +68,7 @@ static hb_status out_of_memory(hb_error *error, void *a, void *b, void *c)
     return HB_ERR_NOMEM;
 }
 
-/* Exit-to-node connections a build of the plan's grid makes with `paths` per node (its cost, 2.6 ns
+/* Exit-to-node connections a build of the plan's grid makes with `paths` per node (its cost, 2.1 ns
  * each on AVX2). */
 static double connections_with(const hb_huang_table *t, int paths)
 {
@@ -73,33 +76,30 @@ static double connections_with(const hb_huang_table *t, int paths)
     return rows * 2.0 * paths * (t->panels + 1) * nodes;
 }
 
-/* The grid of plan->huang.table and its paths per node, from quality and roughness. */
+/* The grid of plan->huang.table, from its grid's row and the roughness. */
 static void choose_grid(hb_plan *plan)
 {
     hb_huang *h = &plan->huang;
     hb_huang_table *t = &h->table;
-    const table_resolution *res = &resolutions[plan->huang.table_quality];
+    const table_grid *g = &grids[h->table_grid];
     double r = plan->material.roughness;
-    t->n_theta_i = res->theta_i;
-    t->n_phi_i = h->elliptical ? res->phi_i : 1;
+    t->n_theta_i = g->theta_i;
+    t->n_phi_i = h->elliptical ? g->phi_i : 1;
     double delta_range = h->elliptical ? 2.0 * M_PI : M_PI;
-    t->n_delta = nodes_for(delta_range, res->delta_step * r, 9, 257);
+    t->n_delta = nodes_for(delta_range, g->delta_step * r, 9, 257);
     t->delta_lo = h->elliptical ? (float)-M_PI : 0.0f;
     t->delta_scale = (float)((t->n_delta - 1) / delta_range);
     t->sum_centre = 0.0f;
     t->inv_sum_width = (float)(1.0 / r);
     double u_lo = asinh(-M_PI / r), u_hi = asinh(M_PI / r);
-    t->n_sum = nodes_for(u_hi - u_lo, res->u_step, 9, 513);
+    t->n_sum = nodes_for(u_hi - u_lo, g->u_step, 9, 513);
     t->u_lo = (float)u_lo;
     t->u_scale = (float)((t->n_sum - 1) / (u_hi - u_lo));
-    t->panels = hb_huang_tt_panels(&plan->options, (hb_quality)(h->table_quality + 1), r);
+    t->panels = hb_huang_tt_panels(&plan->options, g->simpson, r);
     double cos_floor = fmax(h->cos_floor, 0.5 * M_PI / (t->n_theta_i - 1));
     t->cos_floor = (float)cos_floor;
     t->inv_cos_floor = (float)(1.0 / cos_floor);
-    int k = res->least;
-    while (k < res->most && connections_with(t, lattices[k + 1].points) <= res->budget)
-        k++;
-    t->paths = lattices[k].points;
+    t->paths = g->lattice.points;
 }
 
 /* The table's layout from its grid (the view without values). */
@@ -171,24 +171,15 @@ static void build_row(void *rows, int k)
                                                              r->values + (size_t)k * r->row);
 }
 
-/* The plan's grid; the connections its build makes with the quality's least paths (what tt_trt
- * auto and the refusal judge by). */
+/* The plan's grid and the connections its build makes (what tt_trt auto and the refusal judge by). */
 static double table_connections(hb_plan *plan)
 {
     choose_grid(plan);
-    return connections_with(&plan->huang.table, lattices[resolutions[plan->huang.table_quality].least].points);
+    return connections_with(&plan->huang.table, plan->huang.table.paths);
 }
 
-static const path_lattice *lattice_of(int points)
-{
-    int k = 0;
-    while (k + 1 < LATTICES && lattices[k].points != points)
-        k++;
-    return &lattices[k];
-}
-
-/* HB_TT_TRT_AUTO builds the table where it takes about a second on one core at most (1.3 s:
- * circular fibres down to roughness 0.1 at balanced; elliptical ones of e = 0.8 from about 0.3). */
+/* HB_TT_TRT_AUTO builds the table where it takes about a second on one core at most (1.3 s: on
+ * the second grid circular fibres down to roughness 0.1; elliptical ones of e = 0.8 from about 0.3). */
 #define AUTO_CONNECTIONS 5e8
 
 int hb_huang_table_fits(hb_plan *plan) { return table_connections(plan) <= AUTO_CONNECTIONS; }
@@ -200,7 +191,7 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
         return load_table(plan, error);
     hb_huang *h = &plan->huang;
     hb_huang_table *t = &h->table;
-    const path_lattice *lattice = lattice_of(t->paths);
+    const path_lattice *lattice = &grids[h->table_grid].lattice;
     double r = plan->material.roughness;
     double delta_range = h->elliptical ? 2.0 * M_PI : M_PI;
     double u_lo = asinh(-M_PI / r), u_hi = asinh(M_PI / r);
@@ -213,7 +204,7 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
             snprintf(error->message, sizeof error->message,
                      "the TT/TRT table at roughness %g and this quality needs %.2g path connections (about %.0f s "
                      "to build; the limit is %.0g): use a coarser quality, tt_trt = mc, or fewer tt_panels",
-                     r, connections, connections * 2.6e-9, MAX_CONNECTIONS);
+                     r, connections, connections * 2.1e-9, MAX_CONNECTIONS);
         }
         return HB_ERR_UNSUPPORTED;
     }
