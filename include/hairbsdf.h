@@ -516,9 +516,10 @@ HB_API hb_status hb_table_save(const hb_plan *plan, void *bytes, size_t capacity
  * HHH22 plans of a circular fibre whose R lobe is analytic (GGX without shadowing) or absent and whose
  * TT and TRT come from the table or are absent: 0..3 R (1 or 0), the table (1 or 0), eta, eta^2 - 1;
  * 4..7 1 / eta^2, App. A's c and 1 - c, roughness^2 / (4 pi); 8..10 cos and sin of the tilt and
- * whether it is tilted; 12..14 the table's nodes in theta_i, the warped sum and |phi|; 16..19 the
- * warped sum's first node and nodes per unit, |phi|'s first node and nodes per radian; 20, 21 the
- * sum's centre and 1 / roughness. HB_ERR_UNSUPPORTED for other plans. */
+ * whether it is tilted; 11 the least cos(theta) of eq. 10's projected width; 12..14 the table's
+ * nodes in theta_i, the warped sum and |phi|; 16..19 the warped sum's first node and nodes per unit,
+ * |phi|'s first node and nodes per radian; 20, 21 the sum's centre and 1 / roughness.
+ * HB_ERR_UNSUPPORTED for other plans. */
 #define HB_SHADER_CONSTANTS 64
 HB_API hb_status hb_plan_shader_constants(const hb_plan *plan, float constants[HB_SHADER_CONSTANTS]);
 

@@ -18,8 +18,6 @@ typedef struct hb_huang_table {
     int n_theta_i, n_phi_i, n_sum, n_delta;
     float sum_centre, inv_sum_width, u_lo, u_scale; /* u node k at u_lo + k / u_scale */
     float delta_lo, delta_scale;                    /* delta node l at delta_lo + l / delta_scale */
-    float cos_floor, inv_cos_floor; /* the least cos(theta) the lookup divides by: the plan's, at least half
-                                       a theta_i step (each theta_i node reads the sum at a theta_o that far off) */
     int panels; /* the builder's Simpson panels over the entry window */
     int paths;  /* the builder's internal paths per Simpson node */
 } hb_huang_table;

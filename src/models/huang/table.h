@@ -9,6 +9,8 @@
 #ifndef HB_HUANG_TABLE_H
 #define HB_HUANG_TABLE_H
 
+#include <float.h>
+
 #include "internal.h"
 #include "math/multilinear.h"
 
@@ -25,19 +27,28 @@ HB_INLINE vf table_asinh(vf x)
  * the window is empty, so f is 0 exactly there, while the node stands for the limit beside it. */
 #define HB_TABLE_NODE_GAP 0.01f
 
+/* One direction's c / cos(theta) of the closing factor, with cos(theta) floored at the node gap
+ * where c exceeds it (a tilted fibre's pole, where c stays near |sin tau|) and at c itself below it
+ * (an untilted pole, where c = cos(theta) and the ratio is 1 down to the pole itself). */
+HB_INLINE vf closing_ratio(vf c, vf cos_theta)
+{
+    vf floor = vf_max(vf_min(c, vf_set1(HB_TABLE_NODE_GAP)), vf_set1(FLT_MIN));
+    return vf_div(c, vf_max(cos_theta, floor));
+}
+
 /* The closing factor C(theta_i) C(theta_o), C = c sqrt(c / cos(theta)) with c = cos(theta - tau)
- * floored at 0, tau the mesonormal's tilt and cos(theta) floored at the node gap: w's visible window
+ * floored at 0, tau the mesonormal's tilt (closing_ratio floors cos(theta)): w's visible window
  * (r_lobe.h, visible_cut) closes where c reaches 0, at theta = tau +- pi/2. f_TT + f_TRT times
  * cos(theta_o) falls there as c^1.5 (at the bench material's theta_i = -1.246, f 2 cos(theta_o) /
  * c^1.5 is 0.476, 0.467 and 0.445 at theta_o = 1.46, 1.48 and 1.50, as c falls from 0.076 to 0.036),
  * and without tilt, at a pole, as cos(theta) = c. The table holds the rest, which stays smooth. */
 HB_INLINE vf table_closing(const hb_huang *h, vf cos_ti, vf sin_ti, vf cos_to, vf sin_to)
 {
-    vf zero = vf_set1(0.0f), gap = vf_set1(HB_TABLE_NODE_GAP);
-    vf cos_tilt = vf_set1(h->cos_tilt), sin_tilt = vf_set1(h->sin_tilt);
-    vf c = vf_mul(vf_max(vf_fma(cos_ti, cos_tilt, vf_mul(sin_ti, sin_tilt)), zero),
-                  vf_max(vf_fma(cos_to, cos_tilt, vf_mul(sin_to, sin_tilt)), zero));
-    return vf_mul(c, vf_sqrt(vf_div(c, vf_mul(vf_max(cos_ti, gap), vf_max(cos_to, gap)))));
+    vf zero = vf_set1(0.0f), cos_tilt = vf_set1(h->cos_tilt), sin_tilt = vf_set1(h->sin_tilt);
+    vf c_i = vf_max(vf_fma(cos_ti, cos_tilt, vf_mul(sin_ti, sin_tilt)), zero);
+    vf c_o = vf_max(vf_fma(cos_to, cos_tilt, vf_mul(sin_to, sin_tilt)), zero);
+    vf c = vf_mul(c_i, c_o);
+    return vf_mul(c, vf_sqrt(vf_mul(closing_ratio(c_i, cos_ti), closing_ratio(c_o, cos_to))));
 }
 
 typedef struct table_node_range {
@@ -124,7 +135,7 @@ HB_INLINE void huang_table_shaped(const hb_huang *h, const huang_table_angles *a
     vf den = vf_set1(2.0f);
     if (axes == 4)
         den = vf_mul(den, vf_sqrt(vf_fnma(vf_set1(h->e2), sin2_phi_o, vf_set1(1.0f))));
-    vf scale = vf_div(vf_mul(huang_width_factor_floored(cos_ti, cos_to, t->cos_floor, t->inv_cos_floor),
+    vf scale = vf_div(vf_mul(huang_width_factor(h, cos_ti, cos_to),
                              table_closing(h, cos_ti, sin_ti, cos_to, sin_to)),
                       den);
     for (int c = 0; c < 3; c++) /* the nodes hold square roots */

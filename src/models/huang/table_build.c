@@ -96,9 +96,6 @@ static void choose_grid(hb_plan *plan)
     t->u_lo = (float)u_lo;
     t->u_scale = (float)((t->n_sum - 1) / (u_hi - u_lo));
     t->panels = hb_huang_tt_panels(&plan->options, g->simpson, r);
-    double cos_floor = fmax(h->cos_floor, 0.5 * M_PI / (t->n_theta_i - 1));
-    t->cos_floor = (float)cos_floor;
-    t->inv_cos_floor = (float)(1.0 / cos_floor);
     t->paths = g->lattice.points;
 }
 
@@ -258,7 +255,7 @@ hb_status hb_huang_shader_constants(const hb_plan *plan, float *k)
     k[4] = h->ior.inv_eta2, k[5] = h->c_rough, k[6] = h->one_minus_c, k[7] = h->roughness2 * 0.25f * (float)M_1_PI;
     k[8] = h->cos_tilt, k[9] = h->sin_tilt, k[10] = (float)h->tilted, k[11] = h->cos_floor;
     if (internal) {
-        k[12] = (float)t->n_theta_i, k[13] = (float)t->n_sum, k[14] = (float)t->n_delta, k[15] = t->cos_floor;
+        k[12] = (float)t->n_theta_i, k[13] = (float)t->n_sum, k[14] = (float)t->n_delta;
         k[16] = t->u_lo, k[17] = t->u_scale, k[18] = t->delta_lo, k[19] = t->delta_scale;
         k[20] = t->sum_centre, k[21] = t->inv_sum_width;
     }
