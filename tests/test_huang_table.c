@@ -214,8 +214,9 @@ static void test_table_closed_windows(hb_test_ctx *t)
 /* Without tilt f_TT + f_TRT keeps a finite limit at a pole (f 2 cos(theta_o) falls as cos(theta_o) and
  * the projected width's floor is 1e-8), and the table follows it to within 0.003 rad of the pole:
  * the fast table within a factor 1.5 of the nested quadrature at the brighter pairs there (measured
- * 0.77-1.20; the quadrature's own resolution moves these values by up to 18%), where a lookup
- * floored at half a theta_i step read 58 times low. The quadrature runs once, for every ISA. */
+ * 0.77-1.20; the quadrature's own resolution moves these values by up to 18%); a lookup whose
+ * cos(theta_o) were floored at half a theta_i step would read 58 times low. The quadrature runs once,
+ * for every ISA. */
 static void test_table_untilted_pole(hb_test_ctx *t)
 {
     static const table_case untilted = { HB_NDF_GGX, 0.3, 0.0, 0.0, 0.1 };
