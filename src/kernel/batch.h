@@ -209,6 +209,7 @@ HB_INLINE vm load_near(hb_near_soa in, size_t i, size_t lanes, vf a[5])
     const float *h = in.h;
     load_block(&h, 1, i, lanes, 0.0f, a + 4);
     valid = vm_and(valid, offset_valid(a[4]));
+    HB_UNROLL
     for (int k = 0; k < 4; k++)
         a[k] = vf_keep(valid, a[k]);
     a[4] = vf_keep(valid, a[4]);
@@ -246,6 +247,7 @@ HB_INLINE vm load_sample_near(hb_sample_near_in in, int dims, size_t i, size_t l
 HB_INLINE void store_rgb(hb_rgb_soa out, size_t i, size_t lanes, vm valid, const vf f[3])
 {
     float *planes[3] = { out.r, out.g, out.b };
+    HB_UNROLL
     for (int c = 0; c < 3; c++)
         store_block(planes[c], i, lanes, vf_keep(valid, f[c]));
 }

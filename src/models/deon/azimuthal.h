@@ -104,6 +104,7 @@ HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_med
     vf eta_cos_t = vf_sqrt(vf_fma(g->cos_theta_d, g->cos_theta_d, vf_set1(d->ior.eta2_minus_1)));
     m->inv_eta_prime = vf_div(g->cos_theta_d, eta_cos_t); /* sec. 5 */
     vf inv_cos_theta_t = vf_div(vf_set1(d->ior.eta), eta_cos_t);
+    HB_UNROLL
     for (int c = 0; c < channels; c++) /* at most FLT_MAX / 4, so that twice it times a cosine stays finite */
         m->mu_log2e[c] = vf_min(vf_mul(g->absorption[c], inv_cos_theta_t), vf_set1(8e37f));
 }
@@ -170,6 +171,7 @@ HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf 
     const deon_paths *paths = &node->paths;
     deon_node_paths(d, m, h, gamma_i, cos_gamma_i, &node->paths, shape);
     vf T_power[3];
+    HB_UNROLL
     for (int c = 0; c < channels; c++)
         T_power[c] = paths->T[c];
     if (deon_lobe_on(d, 0, shape)) {
@@ -178,13 +180,16 @@ HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf 
     HB_UNROLL
     for (int p = 1; p <= pmax; p++) {
         if (deon_lobe_on(d, p, shape)) {
+            HB_UNROLL
             for (int c = 0; c < channels; c++)
                 node->A[p][c] = vf_mul(paths->A_f[p], T_power[c]);
         }
+        HB_UNROLL
         for (int c = 0; c < channels; c++)
             T_power[c] = vf_mul(T_power[c], paths->T[c]);
     }
     if (deon_lobe_on(d, HB_LOBE_RESIDUAL, shape)) /* sum_{p > pmax} A(p, h) = A(pmax+1, h) / (1 - f T) */
+        HB_UNROLL
         for (int c = 0; c < channels; c++)
             node->A[HB_LOBE_RESIDUAL][c] = vf_mul(vf_mul(paths->A_f[pmax + 1], T_power[c]), residual_series(paths->f, paths->T[c]));
     if (channels == 1) /* a grey fibre: the other channels are copies (register moves) */
@@ -293,18 +298,18 @@ HB_INLINE void deon_np_row(const hb_deon *d, float cos_theta_d, size_t n, const 
             if (hb_deon_lobe_on(d, p) && d->m_group[p] != p)
                 for (int c = 0; c < 3; c++)
                     N[d->m_group[p]][c] = vf_add(N[d->m_group[p]][c], N[p][c]);
-        for (int s = 0; s < d->table_slots; s++)
+        for (int s = 0; s < d->groups; s++)
             for (int c = 0; c < 3; c++) {
                 float lanes[HB_W];
-                vf_storeu(lanes, N[d->table_leader[s]][c]);
+                vf_storeu(lanes, N[d->group_leader[s]][c]);
                 for (size_t l = 0; l < HB_W && first + l < n; l++)
-                    out[((first + l) * (size_t)d->table_slots + (size_t)s) * 3 + (size_t)c] = lanes[l];
+                    out[((first + l) * (size_t)d->groups + (size_t)s) * 3 + (size_t)c] = lanes[l];
             }
     }
 }
 
 /* f = sum over the M_p groups of M_group N_group, N bilinear in (|phi|, sqrt(cos(theta_d))) from the
- * plan's table (slot s holds group leader table_leader[s]); M is per group leader. A cell's two
+ * plan's table (slot s holds group leader group_leader[s]); M is per group leader. A cell's two
  * azimuth corners are 2 texels side by side in a row, 6 floats per slot, so each of the cell's two
  * rows is read with vf_gather4 four floats at a time (the table has 4 floats of padding for the last
  * group), and f takes one fused multiply-add per value with the weight times M of its corner and slot.
@@ -324,7 +329,7 @@ HB_INLINE void deon_table_shaped(const hb_deon *d, const deon_geometry *g, const
     for (int k = 0; k < 4; k++)
         HB_UNROLL
         for (int s = 0; s < slots; s++)
-            coef[k][s] = vf_mul(weight[k], M[d->table_leader[s]]);
+            coef[k][s] = vf_mul(weight[k], M[d->group_leader[s]]);
     for (int c = 0; c < 3; c++)
         out[c] = vf_set1(0.0f);
     HB_UNROLL
@@ -359,7 +364,7 @@ HB_INLINE void deon_colour_table_shaped(const hb_deon *d, const deon_geometry *g
     int stride[3] = { slots, slots * d->table_absorption, slots * d->table_absorption * d->table_phi }, offset[8];
     HB_UNROLL
     for (int s = 0; s < slots; s++)
-        m[s] = M[d->table_leader[s]];
+        m[s] = M[d->group_leader[s]];
     const int channels = g->grey ? 1 : 3;
     for (int c = 0; c < channels; c++) {
         vf w = vf_log(vf_fma(g->absorption[c], vf_set1(d->table_sigma_scale), vf_set1(1.0f))); /* log(1 + sigma_a / knee) */
@@ -390,12 +395,12 @@ HB_INLINE void deon_colour_table_shaped(const hb_deon *d, const deon_geometry *g
 HB_INLINE void deon_table(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
 {
     if (d->table_absorption) {
-        switch (d->table_slots) {
+        switch (d->groups) {
         case 1: deon_colour_table_shaped(d, g, M, out, 1); return;
         case 2: deon_colour_table_shaped(d, g, M, out, 2); return;
         case 3: deon_colour_table_shaped(d, g, M, out, 3); return;
         case 4: deon_colour_table_shaped(d, g, M, out, 4); return;
-        default: deon_colour_table_shaped(d, g, M, out, d->table_slots); return;
+        default: deon_colour_table_shaped(d, g, M, out, d->groups); return;
         }
     }
     int channels = d->channels;
@@ -406,14 +411,14 @@ HB_INLINE void deon_table(const hb_deon *d, const deon_geometry *g, const vf M[H
         else                                                                                          \
             deon_table_shaped(d, g, M, out, 3, n);                                                    \
         return;
-    switch (d->table_slots) {
+    switch (d->groups) {
     HB_TABLE_SLOTS(1)
     HB_TABLE_SLOTS(2)
     HB_TABLE_SLOTS(3)
     HB_TABLE_SLOTS(4)
     HB_TABLE_SLOTS(5)
     default:
-        deon_table_shaped(d, g, M, out, 3, d->table_slots);
+        deon_table_shaped(d, g, M, out, 3, d->groups);
     }
 #undef HB_TABLE_SLOTS
 }

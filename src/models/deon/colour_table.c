@@ -42,7 +42,7 @@ static void build_colour_row(void *grid, int j)
     const colour_grid *g = grid;
     hb_deon d = g->plan->deon; /* three absorptions at a time, as its channels */
     d.channels = 3;
-    const int slots = d.table_slots;
+    const int slots = d.groups;
     float *row = g->scratch + (size_t)(j % g->part) * (size_t)g->n_phi * (size_t)slots * 3;
     for (int l0 = 0; l0 < g->n_x; l0 += 3) {
         for (int c = 0; c < 3; c++) {
@@ -65,7 +65,7 @@ static void layout(const hb_plan *plan, int n_cd, int n_phi, int n_x, hb_table_v
                           .lo = { 0.0, 0.0, 0.0 }, .hi = { 1.0, M_PI, 1.0 },
                           .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]",
                                     "log(1 + sigma_a / 0.02) / log(1 + 16 / 0.02), sigma_a of the channel" },
-                          .slots = d->table_slots };
+                          .slots = d->groups };
     hb_deon_slot_lobes(d, v);
     v->count = hb_table_count(v, 1);
 }
@@ -148,11 +148,10 @@ static hb_status build_grid(const hb_plan *plan, attempt *a, const double *cd, i
 hb_status hb_deon_build_colour_table(hb_plan *plan, hb_error *error)
 {
     hb_deon *d = &plan->deon;
-    hb_deon_table_slots(d);
     double tol = hb_deon_table_tolerance(plan);
     if (plan->options.table_file)
         return load_colour_table(plan, tol, error);
-    attempt a = { .n_cd = 9, .n_phi = 33, .n_x = 9, .slots = d->table_slots };
+    attempt a = { .n_cd = 9, .n_phi = 33, .n_x = 9, .slots = d->groups };
     double done = 0.0;
     for (;;) {
         double work = 4.0 * a.n_cd * a.n_phi * a.n_x / 3.0 * d->nodes;

@@ -108,11 +108,12 @@ typedef struct hb_deon {
      * lobes that are not group leaders), tabulated at |theta_o| = k pi / (2 HB_LOBE_CHOICE_STEPS) */
     float lobe_choice[HB_MAX_LOBES + 1][HB_LOBE_CHOICE_STEPS + 2];
     float exp_minus_two_inv_v[HB_MAX_LOBES + 1]; /* e^(-2/v) per lobe, for sampling M_p */
+    /* the M_p groups' leaders in increasing order: group_leader[0 .. groups) */
+    int groups, group_leader[HB_MAX_LOBES + 1];
     /* HB_AZIMUTHAL_TABLE (src/models/deon/table_build.c): N of each M_p group, [sqrt(cos(theta_d)) node][|phi| node][slot][rgb],
-     * NULL for the quadrature; slot s holds group leader table_leader[s] */
+     * NULL for the quadrature; slot s holds group leader group_leader[s] */
     const float *np_table;
-    int table_cd, table_phi, table_slots;
-    int table_leader[HB_MAX_LOBES + 1];
+    int table_cd, table_phi;
     /* HB_AZIMUTHAL_COLOUR_TABLE (src/models/deon/colour_table.c): one channel per slot over a third axis,
      * w = log(1 + sigma_a / knee) / log(1 + sigma_max / knee) in [0, 1] in table_absorption nodes,
      * [cd][phi][w][slot]; 0 nodes for a material's own table */

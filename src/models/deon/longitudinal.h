@@ -327,14 +327,15 @@ HB_INLINE vf longitudinal_sample(vf v, vf e2, vf cos_shift, vf sin_shift, vf the
 #define HB_DEON_GROUPS_M(d, M, i0, cone_of_lobe, longitudinal_of_lobe)                                 \
     do {                                                                                              \
         vf cone_[HB_MAX_LOBES + 1], x_[HB_MAX_LOBES + 1];                                             \
-        for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++)                                                \
-            if (hb_deon_group_leader((d), p_) && (d)->longitudinal[p_].single)                        \
-                cone_of_lobe(&(d)->longitudinal[p_], &cone_[p_], &x_[p_]);                            \
-        for (int p_ = 0; p_ <= HB_LOBE_RESIDUAL; p_++) {                                              \
-            const hb_longitudinal *lobe_ = &(d)->longitudinal[p_];                                    \
-            if (hb_deon_group_leader((d), p_))                                                        \
-                (M)[p_] = lobe_->single ? longitudinal_deon_single(lobe_, cone_[p_], x_[p_], (i0))    \
-                                        : longitudinal_of_lobe(lobe_);                                \
+        for (int g_ = 0; g_ < (d)->groups; g_++) {                                                    \
+            const hb_longitudinal *lobe_ = &(d)->longitudinal[(d)->group_leader[g_]];                 \
+            if (lobe_->single)                                                                        \
+                cone_of_lobe(lobe_, &cone_[g_], &x_[g_]);                                             \
+        }                                                                                             \
+        for (int g_ = 0; g_ < (d)->groups; g_++) {                                                    \
+            const hb_longitudinal *lobe_ = &(d)->longitudinal[(d)->group_leader[g_]];                 \
+            (M)[(d)->group_leader[g_]] = lobe_->single ? longitudinal_deon_single(lobe_, cone_[g_], x_[g_], (i0)) \
+                                                       : longitudinal_of_lobe(lobe_);                 \
         }                                                                                             \
     } while (0)
 

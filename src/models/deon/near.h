@@ -59,6 +59,7 @@ HB_INLINE void deon_near_shaped(const hb_deon *d, const deon_geometry *g, const 
     vf phi = vf_select(vf_lt(h, vf_set1(0.0f)), vf_neg(g->phi), g->phi);
     vf fresnel_r = d->r_fresnel_offset ? vf_set1(1.0f) : fresnel_dielectric(g->cos_half_io, &d->ior); /* eq. 12 */
     vf mass = vf_set1(0.0f), detected = vf_set1(0.0f);
+    HB_UNROLL
     for (int c = 0; c < 3; c++)
         out[c] = vf_set1(0.0f);
     HB_UNROLL
@@ -68,6 +69,7 @@ HB_INLINE void deon_near_shaped(const hb_deon *d, const deon_geometry *g, const 
         vf D = p == HB_LOBE_RESIDUAL ? vf_set1(HB_RESIDUAL_DETECTOR)
                                      : detector_single(&d->detector[p], vf_sub(phi, node.paths.Phi[p]), shape);
         vf MD = vf_mul(M[d->m_group[p]], p == 0 ? vf_mul(D, fresnel_r) : D);
+        HB_UNROLL
         for (int c = 0; c < shape.channels; c++)
             out[c] = vf_fma(MD, node.A[p][c], out[c]);
         if (pdf) {

@@ -179,6 +179,10 @@ static void derive_constants(hb_plan *plan)
             }
     }
     d->pmax = o->pmax;
+    d->groups = 0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+        if (hb_deon_group_leader(d, p))
+            d->group_leader[d->groups++] = p;
     d->fourier_terms = 0;
     for (int p = 0; p <= o->pmax; p++)
         if (d->detector[p].fourier && d->detector[p].terms > d->fourier_terms)

@@ -36,11 +36,9 @@ HB_INLINE vf deon_lobe_choice_at(const hb_deon *d, vf theta_o, vf c[HB_MAX_LOBES
     return total;
 }
 
-/* M_g(theta_i, theta_o) for every group leader g, 0 for the other lobes. */
+/* M_g(theta_i, theta_o) for every group leader g (the other lobes' entries are not read). */
 HB_INLINE void deon_longitudinal_groups(const hb_deon *d, vf theta_i, vf theta_o, hb_i0 i0, vf M[HB_MAX_LOBES + 1])
 {
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        M[p] = vf_set1(0.0f);
     longitudinal_deon_groups_angles(d, theta_i, theta_o, i0, M);
 }
 

@@ -15,9 +15,6 @@
 /* 4 floats of padding: the kernels read a row's corners 4 floats at a time (azimuthal.h) */
 #define HB_TABLE_READ_PAD 4
 
-/* One slot per M_p group leader, into d->table_slots and d->table_leader. */
-void hb_deon_table_slots(hb_deon *d);
-
 /* options.table_tolerance, or the quality's (1e-2, 1e-3, 1e-4). */
 double hb_deon_table_tolerance(const hb_plan *plan);
 

@@ -13,14 +13,6 @@
 #define MAX_CD HB_DEON_TABLE_MAX_CD
 #define MAX_WORK HB_DEON_TABLE_MAX_WORK
 
-void hb_deon_table_slots(hb_deon *d)
-{
-    d->table_slots = 0;
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        if (hb_deon_group_leader(d, p))
-            d->table_leader[d->table_slots++] = p;
-}
-
 double hb_deon_table_tolerance(const hb_plan *plan)
 {
     static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
@@ -30,9 +22,9 @@ double hb_deon_table_tolerance(const hb_plan *plan)
 
 void hb_deon_slot_lobes(const hb_deon *d, hb_table_view *v)
 {
-    for (int s = 0; s < d->table_slots; s++)
+    for (int s = 0; s < d->groups; s++)
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-            if (hb_deon_lobe_on(d, p) && d->m_group[p] == d->table_leader[s])
+            if (hb_deon_lobe_on(d, p) && d->m_group[p] == d->group_leader[s])
                 v->slot_lobes[s] |= 1u << p;
 }
 
@@ -48,7 +40,7 @@ typedef struct row_grid {
 static void build_row(void *grid, int j)
 {
     const row_grid *g = grid;
-    size_t row = (size_t)g->n_phi * (size_t)g->plan->deon.table_slots * 3;
+    size_t row = (size_t)g->n_phi * (size_t)g->plan->deon.groups * 3;
     ((const hb_deon_kernels *)g->plan->kernels)->np_row(&g->plan->deon, (float)g->cd[j], (size_t)g->n_phi, g->phi,
                                                         g->out + (size_t)j * row);
 }
@@ -90,7 +82,7 @@ static void layout(const hb_plan *plan, int n_cd, int n_phi, hb_table_view *v)
     *v = (hb_table_view){ .model = HB_MODEL_DEON, .axes = 2, .size = { n_cd, n_phi },
                           .lo = { 0.0, 0.0 }, .hi = { 1.0, M_PI },
                           .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]" },
-                          .slots = d->table_slots };
+                          .slots = d->groups };
     hb_deon_slot_lobes(d, v);
     v->count = hb_table_count(v, 3);
 }
@@ -132,11 +124,10 @@ static hb_status load_table(hb_plan *plan, double tol, hb_error *error)
 hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
 {
     hb_deon *d = &plan->deon;
-    hb_deon_table_slots(d);
     double tol = hb_deon_table_tolerance(plan);
     if (plan->options.table_file)
         return load_table(plan, tol, error);
-    int texel = 3 * d->table_slots, n_phi = 33, n_cd = 9;
+    int texel = 3 * d->groups, n_phi = 33, n_cd = 9;
     double done = 0.0; /* the progress reported */
     for (;;) {
         double work = 3.0 * n_phi * n_cd * d->nodes;
@@ -227,13 +218,13 @@ hb_status hb_deon_shader_constants(const hb_plan *plan, float *k)
     const hb_deon *d = &plan->deon;
     if (!plan->deon_table)
         return HB_ERR_UNSUPPORTED;
-    k[0] = (float)d->table_cd, k[1] = (float)d->table_phi, k[2] = (float)d->table_slots;
+    k[0] = (float)d->table_cd, k[1] = (float)d->table_phi, k[2] = (float)d->groups;
     if (d->table_absorption) { /* the colour table's axis, for sigma_a itself (the plan keeps sigma_a log2(e)) */
         k[3] = (float)d->table_absorption;
         k[40] = (float)(d->table_sigma_scale / M_LN2), k[41] = d->table_w_scale;
     }
-    for (int s = 0; s < d->table_slots; s++) {
-        const hb_longitudinal *l = &d->longitudinal[d->table_leader[s]];
+    for (int s = 0; s < d->groups; s++) {
+        const hb_longitudinal *l = &d->longitudinal[d->group_leader[s]];
         k[4 + 4 * s] = l->inv_v_f, k[5 + 4 * s] = l->inv_v_log2e_f, k[6 + 4 * s] = l->log2_norm_f;
         k[7 + 4 * s] = (float)l->shift;
     }
