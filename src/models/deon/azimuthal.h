@@ -659,9 +659,8 @@ HB_STAGE void deon_quadrature(const hb_deon *d, const deon_geometry *g, const vf
         for (int c = 0; c < 3; c++)
             N[group][c] = vf_add(N[group][c], N[p][c]);
     }
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!hb_deon_group_leader(d, p))
-            continue;
+    for (int group = 0; group < d->groups; group++) {
+        const int p = d->group_leader[group];
         for (int c = 0; c < 3; c++)
             out[c] = vf_fma(M[p], N[p][c], out[c]);
     }

@@ -151,11 +151,8 @@ static void describe(hb_text *t, const hb_plan *plan)
         d->channels == 1 ? "grey (one channel computed, copied to RGB)" : "RGB");
     hb_say_lobes(t, d->lobes);
     hb_say(t, d->lobes >> HB_LOBE_RESIDUAL & 1u ? " (residual: every order above %d in closed form)\n" : "\n", d->pmax);
-    int groups = 0;
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        groups += hb_deon_group_leader(d, p);
     hb_say(t, "M_p (eq. 7): %s I0; %d distinct M_p per sample (lobes with the same roughness and shift share one%s)\n",
-        plan->options.i0 == HB_I0_ABRAMOWITZ ? "A&S 9.8.1/9.8.2" : "the paper's 10-term series for", groups,
+        plan->options.i0 == HB_I0_ABRAMOWITZ ? "A&S 9.8.1/9.8.2" : "the paper's 10-term series for", d->groups,
         plan->material.alpha == 0.0 ? "; no tilt" : "");
     if (d->table_absorption)
         hb_say(t, "N_p (eq. 10): per channel, trilinear from one colour table, %d x %d x %d per M_p group over "

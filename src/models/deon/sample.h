@@ -26,14 +26,23 @@ HB_INLINE vf deon_lobe_choice_at(const hb_deon *d, vf theta_o, vf c[HB_MAX_LOBES
     vf t = vf_sub(x, k);
     vi index = vi_from_vf(k);
     vf total = vf_set1(0.0f);
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!hb_deon_group_leader(d, p))
-            continue;
+    for (int group = 0; group < d->groups; group++) {
+        const int p = d->group_leader[group];
         vf lo = vf_gather(d->lobe_choice[p], index), hi = vf_gather(d->lobe_choice[p] + 1, index);
         c[p] = vf_fma(t, vf_sub(hi, lo), lo);
         total = vf_add(total, c[p]);
     }
     return total;
+}
+
+/* The density of step 1's theta_i (the mixture sum_g c_g M_g / sum_g c_g) from M of every group. */
+HB_INLINE vf deon_theta_density(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf theta_o)
+{
+    vf c[HB_MAX_LOBES + 1];
+    vf c_total = deon_lobe_choice_at(d, theta_o, c), mixture = vf_set1(0.0f);
+    for (int group = 0; group < d->groups; group++)
+        mixture = vf_fma(c[d->group_leader[group]], M[d->group_leader[group]], mixture);
+    return vf_div(mixture, c_total);
 }
 
 /* M_g(theta_i, theta_o) for every group leader g (the other lobes' entries are not read). */
@@ -49,9 +58,8 @@ HB_INLINE vf deon_sample_theta(const hb_deon *d, const vf c[HB_MAX_LOBES + 1], v
 {
     vf target = vf_mul(u[0], c_total), cumulative = vf_set1(0.0f), below = cumulative, share = vf_set1(1.0f);
     vf v = vf_set1(0.0f), e2 = v, cos_shift = v, sin_shift = v;
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!hb_deon_group_leader(d, p))
-            continue;
+    for (int group = 0; group < d->groups; group++) {
+        const int p = d->group_leader[group];
         const hb_longitudinal *l = &d->longitudinal[p];
         vm take = vf_ge(target, cumulative); /* true at the first group: target >= 0 */
         v = vf_select(take, vf_set1((float)(1.0 / l->inv_v)), v);
@@ -159,13 +167,7 @@ HB_STAGE vf deon_f_pdf_of(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const 
                 for (int k = 0; k < 3; k++)
                     out[k] = vf_fma(M[d->m_group[p]], N[p][k], out[k]);
     }
-    vf c[HB_MAX_LOBES + 1];
-    vf c_total = deon_lobe_choice_at(d, theta_o, c);
-    vf mixture = vf_set1(0.0f);
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        if (hb_deon_group_leader(d, p))
-            mixture = vf_fma(c[p], M[p], mixture);
-    return vf_mul(vf_div(mixture, c_total), terms.sum);
+    return vf_mul(deon_theta_density(d, M, theta_o), terms.sum);
 }
 
 HB_INLINE vf deon_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o, vf out[3])
@@ -206,13 +208,9 @@ HB_INLINE void deon_sample(const hb_deon *d, vf theta_o, vf phi_o, const vf u[5]
 HB_INLINE vf deon_near_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, vf theta_o,
                              vf h, vf f[3])
 {
-    vf azimuthal, c[HB_MAX_LOBES + 1], mixture = vf_set1(0.0f);
+    vf azimuthal;
     deon_near(d, g, M, h, f, &azimuthal);
-    vf c_total = deon_lobe_choice_at(d, theta_o, c);
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        if (hb_deon_group_leader(d, p))
-            mixture = vf_fma(c[p], M[p], mixture);
-    return vf_mul(vf_div(mixture, c_total), azimuthal);
+    return vf_mul(deon_theta_density(d, M, theta_o), azimuthal);
 }
 
 HB_INLINE void deon_sample_near(const hb_deon *d, vf theta_o, vf phi_o, vf h, const vf u[4], hb_i0 i0, vf *theta_i,

@@ -44,9 +44,7 @@ static void node_attenuation(const hb_plan *plan, double sin2_theta_d, double ga
  * keeps some probability however dark the fibre. */
 static void deon_lobe_choice(const hb_plan *plan, hb_deon *d)
 {
-    int groups = 0;
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        groups += hb_deon_group_leader(d, p);
+    const int groups = d->groups;
     for (int k = 0; k <= HB_LOBE_CHOICE_STEPS; k++) {
         double theta = M_PI_2 * k / HB_LOBE_CHOICE_STEPS, s = sin(theta);
         double energy[HB_MAX_LOBES + 1] = { 0 }, total = 0.0;
