@@ -275,10 +275,11 @@ typedef struct hb_options {
     double budget_ns;
     const char *calibration;
     /* A table file (hb_table_save's bytes) to load instead of building the plan's table: plan creation
-     * checks its format, library version, checksum, model, material and options against this plan's
-     * and copies its values (the bytes may be freed afterwards), or refuses with HB_ERR_FILE. Only for
+     * checks its format, checksum, model and its table version, material and options against this plan's
+     * and copies its values (the bytes may be freed afterwards), or refuses with HB_ERR_FILE. A file
+     * is read by every release whose model's table version is the file's (docs/engines.md). Only for
      * plans that have a table (dFH11 azimuthal = table, HHH22 tt_trt = table), not with tolerance or
-     * budget_ns. NULL: the table is built. */
+     * budget_ns; at most HB_TABLE_FILE_MAX_BYTES. NULL: the table is built. */
     const void *table_file;
     size_t table_file_size;
     /* Long plan creations (table builds; HHH22's TT/TRT table takes seconds at high quality). progress,
@@ -479,6 +480,9 @@ HB_API void hb_uniforms(unsigned long long seed, unsigned long long first, size_
  * (docs/engines.md). The view points into the
  * plan and lives as long as it. */
 #define HB_TABLE_MAX_AXES 4
+/* No plan's table file is larger (HHH22's finest elliptical grid: 961 MiB; dFH11's: 217 MiB): a loader
+ * may refuse a larger file before reading it, and plan creation refuses a larger table_file_size. */
+#define HB_TABLE_FILE_MAX_BYTES ((size_t)1 << 30)
 typedef struct hb_table_view {
     hb_model model;
     int axes;

@@ -132,6 +132,48 @@ static void test_eval_errors(hb_test_ctx *t)
     CHECK(t, r.status == 0 && strchr(r.out, ','), "deon sample --h: %d %s %s", r.status, r.out, r.err);
 }
 
+/* Inputs an attacker or a slip of the hand gives: a table "file" that is a directory or a device,
+ * a bake for a model without tables, limits just missed, and output that cannot be written. */
+static void test_hostile_inputs(hb_test_ctx *t)
+{
+    hb_tool_run r;
+    char args[640];
+    snprintf(args, sizeof args, "eval --table \"%s\"", hb_test_temp_dir());
+    run_tool(t, args, "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "not a regular file"), "a directory as the table: %d %s", r.status, r.err);
+#ifndef _WIN32
+    run_tool(t, "eval --table /dev/zero", "", &r); /* read whole, it would grow without end */
+    CHECK(t, r.status == 2 && strstr(r.err, "not a regular file"), "/dev/zero as the table: %d %s", r.status, r.err);
+#endif
+    run_tool(t, "bake --model chiang -o x.hbt", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "the chiang model has no tables"), "bake chiang: %d %s", r.status, r.err);
+    run_tool(t, "eval --model chiang --beta-m 1.0000001", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "beta_m = 1.0000001 must be in [0.01, 1] for the chiang model"),
+          "a limit just missed: %s", r.err);
+    run_tool(t, "eval --beta-m 0.0099999998", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "beta_m = 0.0099999998 must be in [0.01, "), "the lower limit: %s", r.err);
+    run_tool(t, "eval --model chiang --beta-n 0.01", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "beta_n = 0.01 must be in [0.02, 1] for the chiang model"),
+          "CBTB16's beta_n range: %s", r.err);
+#ifndef _WIN32
+    /* a full device: every command says so and fails (the shell redirects, so the emulator prefix works) */
+    const char *tool = hb_test_tool(t);
+    char err_path[600];
+    if (!tool || access("/dev/full", W_OK) != 0 || hb_test_temp_file(err_path, sizeof err_path, ".err") != 0)
+        return;
+    static const char *const commands[] = { "plan", "isa", "sample --theta-o 0.3 --count 4", "version" };
+    for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++) {
+        char command[1400], err[512];
+        snprintf(command, sizeof command, "%s %s > /dev/full 2> \"%s\" < /dev/null", tool, commands[k], err_path);
+        int status = system(command);
+        hb_test_read_text(err_path, err, sizeof err);
+        CHECK(t, status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 1 && strstr(err, "cannot write"),
+              "%s > /dev/full: status %d, stderr '%s'", commands[k], status, err);
+    }
+    remove(err_path);
+#endif
+}
+
 static void test_help(hb_test_ctx *t)
 {
     hb_tool_run r;
@@ -612,6 +654,7 @@ const hb_test hb_tests_cli[] = {
     { "cli_eval_errors", test_eval_errors, 0 },
     { "cli_input_edges", test_input_edges, 0 },
     { "cli_help", test_help, 0 },
+    { "cli_hostile_inputs", test_hostile_inputs, 0 },
     { "cli_sample_commands", test_sample_commands, 0 },
     { "cli_plot_commands", test_plot_commands, 0 },
     { "cli_plan_commands", test_plan_commands, 0 },

@@ -236,7 +236,82 @@ static void test_properties(hb_test_ctx *t)
     }
 }
 
+/* The near fields (CBTB16, dFH11 at h) on random materials whose eta reaches down to 1 + 1e-9 and whose
+ * absorption reaches 1e3, at offsets h up to an ulp from +-1 (where the refracted ray grazes the
+ * fibre and the path inside is shortest): f finite and >= 0, within NEAR_BOUND of the double
+ * reference (docs/conventions.md's metric; docs/accuracy.md), and within the ISAs' 3e-5 of the scalar kernel. */
+enum { NEAR_MATERIALS = 8 };
+#define NEAR_BOUND 3e-4
+
+static void near_material(hb_test_ctx *t, hb_model model, int k, hb_material *m)
+{
+    hb_material_default(m);
+    m->eta = k % 2 == 0 ? 1.0 + pow(10.0, hb_test_range(t, -9.0, -4.0)) : 1.0001 + 1.5 * hb_test_uniform(t);
+    for (int c = 0; c < 3; c++)
+        m->sigma_a[c] = hb_test_uniform(t) < 0.3 ? 0.0 : pow(10.0, hb_test_range(t, -2.0, 3.0));
+    double beta_max = model == HB_MODEL_CHIANG ? 1.0 : 1.5;
+    m->beta_m = exp(hb_test_range(t, log(model == HB_MODEL_CHIANG ? 0.03 : 0.02), log(beta_max)));
+    m->beta_n = exp(hb_test_range(t, log(0.02), log(beta_max)));
+    m->alpha = hb_test_range(t, -0.1, 0.1);
+}
+
+static void test_near_properties(hb_test_ctx *t)
+{
+    static float ti[N], pi[N], to[N], po[N], h[N], f[3][N], g[3][N], r[3][N];
+    static const hb_model near_models[] = { HB_MODEL_CHIANG, HB_MODEL_DEON };
+    static const char *const names[] = { "chiang", "deon" };
+    for (int mi = 0; mi < 2; mi++) {
+        double worst_ref = 0.0, worst_scalar = 0.0;
+        for (int k = 0; k < NEAR_MATERIALS; k++) {
+            hb_material m;
+            near_material(t, near_models[mi], k, &m);
+            for (int j = 0; j < N; j++) {
+                ti[j] = (float)asin(hb_test_range(t, -1, 1)), to[j] = (float)asin(hb_test_range(t, -1, 1));
+                pi[j] = (float)hb_test_range(t, -M_PI, M_PI), po[j] = (float)hb_test_range(t, -M_PI, M_PI);
+                float edge = nextafterf(1.0f, 0.0f) - (float)(j % 3) * 6e-8f; /* 1 - 1, 2, 3 ulp */
+                h[j] = j % 4 == 0 ? (j % 8 ? edge : -edge) : j % 4 == 1 ? (j % 8 == 1 ? 1.0f : -1.0f)
+                                                                         : (float)hb_test_range(t, -1, 1);
+            }
+            hb_plan *plan[3] = { NULL, NULL, NULL };
+            for (int q = 0; q < 3; q++) {
+                hb_options o;
+                hb_options_default(&o);
+                o.model = near_models[mi];
+                o.quality = q == 2 ? HB_QUALITY_REFERENCE : HB_QUALITY_HIGH;
+                o.isa = q == 0 ? t->isa : HB_ISA_SCALAR;
+                hb_error err;
+                CHECK(t, hb_plan_create(&m, &o, &plan[q], &err) == HB_OK, "%s plan: %s", names[mi], err.message);
+            }
+            if (!plan[0] || !plan[1] || !plan[2])
+                return;
+            hb_near_soa in = { ti, pi, to, po, h };
+            hb_eval_near(plan[0], N, in, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+            hb_eval_near(plan[1], N, in, (hb_rgb_soa){ g[0], g[1], g[2] }, NULL);
+            hb_eval_near(plan[2], N, in, (hb_rgb_soa){ r[0], r[1], r[2] }, NULL);
+            int bad = 0;
+            for (int c = 0; c < 3; c++)
+                for (int j = 0; j < N; j++)
+                    bad += !(isfinite(f[c][j]) && f[c][j] >= 0.0f);
+            size_t at = 0, at_scalar = 0;
+            double e = hb_test_spec_error((float *const[3]){ f[0], f[1], f[2] }, (float *const[3]){ r[0], r[1], r[2] }, N, &at);
+            double es = hb_test_spec_error((float *const[3]){ f[0], f[1], f[2] }, (float *const[3]){ g[0], g[1], g[2] }, N,
+                                           &at_scalar);
+            CHECK(t, bad == 0 && e <= NEAR_BOUND && es <= 3e-5,
+                  "%s material %d (eta %.17g, sigma_a %.3g %.3g %.3g, beta_m %.3g, beta_n %.3g, alpha %.3g): %d values not "
+                  "finite or < 0; against the reference %.3g at (%.9g, %.9g, %.9g, %.9g, h %.9g), against scalar %.3g at h %.9g",
+                  names[mi], k, m.eta, m.sigma_a[0], m.sigma_a[1], m.sigma_a[2], m.beta_m, m.beta_n, m.alpha, bad, e, ti[at],
+                  pi[at], to[at], po[at], h[at], es, h[at_scalar]);
+            worst_ref = fmax(worst_ref, e), worst_scalar = fmax(worst_scalar, es);
+            for (int q = 0; q < 3; q++)
+                hb_plan_destroy(plan[q]);
+        }
+        hb_test_note(t, "%s near field: worst %.2g against the reference, %.2g against the scalar kernel", names[mi],
+                     worst_ref, worst_scalar);
+    }
+}
+
 const hb_test hb_tests_properties[] = {
     { "properties_random_materials", test_properties, 1 },
+    { "properties_near_field", test_near_properties, 1 },
     { NULL, NULL, 0 },
 };

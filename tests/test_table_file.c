@@ -47,6 +47,28 @@ static hb_status load(const hb_material *m, const hb_options *given, const void 
     return hb_plan_create(m, &o, plan, error);
 }
 
+/* The first place of n bytes in the file, or NULL. */
+static unsigned char *find_bytes(unsigned char *bytes, size_t size, const char *what, size_t n)
+{
+    for (size_t k = 0; k + n <= size; k++)
+        if (memcmp(bytes + k, what, n) == 0)
+            return bytes + k;
+    return NULL;
+}
+
+/* The value count of a table file: the u64 just before its last 4 count bytes and the checksum. */
+static size_t value_count(const unsigned char *bytes, size_t size)
+{
+    for (size_t count = 1; 8 + 4 * count + 8 <= size; count++) {
+        unsigned long long stated = 0;
+        for (int k = 7; k >= 0; k--)
+            stated = stated << 8 | bytes[size - 8 - 4 * count - 8 + (size_t)k];
+        if (stated == count)
+            return count;
+    }
+    return 0;
+}
+
 static void fix_checksum(unsigned char *bytes, size_t size)
 {
     unsigned long long sum = hb_xxh64(bytes, size - 8);
@@ -142,10 +164,35 @@ static void test_refusals(hb_test_ctx *t)
     memcpy(bad, good, size);
     bad[7] = '1';
     expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "format '1'", "an older format");
+    /* another release of the same table version reads it: X.Y.Z's file under X.Y.(Z+1) */
     memcpy(bad, good, size);
+    char next_patch[16] = { 0 };
+    snprintf(next_patch, sizeof next_patch, "%d.%d.%d", HB_VERSION_MAJOR, HB_VERSION_MINOR, HB_VERSION_PATCH + 1);
+    CHECK(t, memcmp(bad + 16, HB_VERSION_STRING, sizeof HB_VERSION_STRING) == 0, "the writer's version at byte 16");
+    memcpy(bad + 16, next_patch, sizeof next_patch);
+    fix_checksum(bad, size);
+    CHECK(t, load(&m, &o, bad, size, &plan, &error) == HB_OK, "a file of release %s: %s", next_patch, error.message);
+    hb_plan_destroy(plan);
+    /* a table version this library does not read is refused, naming both */
+    memcpy(bad, good, size);
+    const size_t table_version_at = 8 + 8 + 32 + 4;
+    CHECK(t, bad[table_version_at] == 1 && bad[table_version_at + 1] == 0, "table version 1 at byte %zu", table_version_at);
+    bad[table_version_at] = 7;
     memcpy(bad + 16, "0.0.1\0", 6);
     fix_checksum(bad, size);
-    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "baked by hairbsdf 0.0.1", "another library version");
+    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "deon tables of version 7 (baked by hairbsdf 0.0.1), this library's are version 1",
+                   "another table version");
+    /* a field named twice, standing in for one the plan depends on: sigma_a[0]'s entry renamed eta */
+    memcpy(bad, good, size);
+    unsigned char *sigma = find_bytes(bad, size, "sigma_a[0]", 11);
+    CHECK(t, sigma && memcmp(sigma - 32, "eta", 4) == 0, "the field eta before sigma_a[0] in the file");
+    if (sigma && memcmp(sigma - 32, "eta", 4) == 0) {
+        memcpy(sigma, sigma - 32, 32); /* name and value */
+        fix_checksum(bad, size);
+        hb_material any = m;
+        any.sigma_a[0] += 3.0;
+        expect_refusal(t, &any, &o, bad, size, HB_ERR_FILE, "names the field 'eta' twice", "a repeated field");
+    }
     expect_refusal(t, &m, &o, (const unsigned char *)"PNG, not a table file, at all", 30, HB_ERR_FILE,
                    "not a hairbsdf table", "another kind of file");
     hb_material other = m;
@@ -165,16 +212,48 @@ static void test_refusals(hb_test_ctx *t)
     const float nan_value = NAN;
     memcpy(bad + size - 8 - 4 * 7, &nan_value, 4);
     fix_checksum(bad, size);
-    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "outside [0, 1e+20]", "a NaN value");
+    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "outside [0, 1e+12]", "a NaN value");
     /* a finite value that would overflow f once multiplied by M_p (the fuzzer found it) */
     memcpy(bad, good, size);
     const float huge = 4.25e37f;
     memcpy(bad + size - 8 - 4 * 11, &huge, 4);
     fix_checksum(bad, size);
-    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "outside [0, 1e+20]", "a value near FLT_MAX");
+    expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "outside [0, 1e+12]", "a value near FLT_MAX");
+    /* HHH22's nodes hold square roots, squared by the lookup: 1e19 (inside a bound of 1e20) made every
+     * f Inf; at the bound of 1e12 everywhere, f is finite at every direction, the poles included */
+    size_t values = value_count(huang_file, huang_size);
+    CHECK(t, values > 11, "the HHH22 file's value count");
+    memcpy(bad, huang_file, huang_size);
+    const float root_huge = 1e19f;
+    memcpy(bad + huang_size - 8 - 4 * 11, &root_huge, 4);
+    fix_checksum(bad, huang_size);
+    expect_refusal(t, &hm, &ho, bad, huang_size, HB_ERR_FILE, "outside [0, 1e+12]", "an HHH22 root past the bound");
+    memcpy(bad, huang_file, huang_size);
+    const float at_bound = 1e12f;
+    for (size_t k = 0; k < values; k++)
+        memcpy(bad + huang_size - 8 - 4 * (k + 1), &at_bound, 4);
+    fix_checksum(bad, huang_size);
+    CHECK(t, load(&hm, &ho, bad, huang_size, &plan, &error) == HB_OK, "every value at the bound: %s", error.message);
+    if (plan) {
+        enum { GRID = 33 };
+        static float ti[GRID * GRID], pi[GRID * GRID], to[GRID * GRID], po[GRID * GRID], f[3][GRID * GRID];
+        for (int a = 0; a < GRID; a++)
+            for (int b = 0; b < GRID; b++) {
+                int j = a * GRID + b;
+                ti[j] = (float)(-M_PI_2 + M_PI * a / (GRID - 1)), to[j] = (float)(-M_PI_2 + M_PI * b / (GRID - 1));
+                pi[j] = 0.3f * (float)a, po[j] = -0.2f * (float)b;
+            }
+        hb_eval_angles(plan, GRID * GRID, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+        int bad_values = 0;
+        for (int c = 0; c < 3; c++)
+            for (int j = 0; j < GRID * GRID; j++)
+                bad_values += !(isfinite(f[c][j]) && f[c][j] >= 0.0f);
+        CHECK(t, bad_values == 0, "%d values of f not finite with every table value 1e12", bad_values);
+        hb_plan_destroy(plan);
+    }
     /* the first axis one node shorter, its value count consistent with the length: no layout of this plan */
     memcpy(bad, good, size);
-    const size_t first_axis = 8 + 8 + 32 + 16;
+    const size_t first_axis = 8 + 8 + 32 + 20;
     bad[first_axis] = (unsigned char)(bad[first_axis] - 1);
     fix_checksum(bad, size);
     expect_refusal(t, &m, &o, bad, size, HB_ERR_FILE, "table file", "another resolution");

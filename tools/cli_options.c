@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "cli_threads.h"
@@ -102,25 +103,30 @@ hb_status cli_material(const cli_model_args *args, hb_material *material, hb_err
 }
 
 /* The whole file at path in a buffer the caller frees; NULL if it cannot be read. */
-static void *read_file(const char *path, size_t *size)
+/* A table file whole; NULL with the reason in why. Only a regular file of at most
+ * HB_TABLE_FILE_MAX_BYTES is opened: a device, a FIFO or a directory could stream without end or
+ * block, and a larger file is no table. */
+static void *read_table_file(const char *path, size_t *size, const char **why)
 {
+    struct stat st;
+    *why = "it cannot be read";
+    if (stat(path, &st) != 0)
+        return NULL;
+    if (!S_ISREG(st.st_mode)) {
+        *why = "it is not a regular file";
+        return NULL;
+    }
+    if ((unsigned long long)st.st_size > HB_TABLE_FILE_MAX_BYTES) {
+        *why = "it is larger than any table file (HB_TABLE_FILE_MAX_BYTES)";
+        return NULL;
+    }
     FILE *f = fopen(path, "rb");
     if (!f)
         return NULL;
-    size_t capacity = 1 << 16, n = 0;
-    unsigned char *bytes = malloc(capacity);
-    for (size_t got = 1; bytes && got > 0; n += got) {
-        if (n == capacity) {
-            unsigned char *grown = realloc(bytes, capacity *= 2);
-            if (!grown)
-                free(bytes);
-            bytes = grown;
-            if (!bytes)
-                break;
-        }
-        got = fread(bytes + n, 1, capacity - n, f);
-    }
-    if (ferror(f)) {
+    size_t n = (size_t)st.st_size;
+    unsigned char *bytes = malloc(n + 1); /* + 1: one byte past the stated size shows that it grew */
+    if (!bytes || fread(bytes, 1, n + 1, f) != n || ferror(f)) {
+        *why = bytes ? "it changed while it was read" : "there is no memory for it";
         free(bytes);
         bytes = NULL;
     }
@@ -142,9 +148,10 @@ hb_status cli_plan_create(const cli_model_args *args, const hb_options *options,
         o.progress = cli_progress;
     if (!args->table_path)
         return hb_plan_create(&material, &o, plan, error);
-    o.table_file = read_file(args->table_path, &o.table_file_size);
+    const char *why;
+    o.table_file = read_table_file(args->table_path, &o.table_file_size, &why);
     if (!o.table_file) {
-        snprintf(error->message, sizeof error->message, "cannot read the table file %s", args->table_path);
+        snprintf(error->message, sizeof error->message, "cannot read the table file %s: %s", args->table_path, why);
         return error->status = HB_ERR_FILE;
     }
     if (o.model == HB_MODEL_HUANG)

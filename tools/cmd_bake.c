@@ -97,9 +97,11 @@ int cmd_bake(int argc, char **argv)
     } else if (o->model == HB_MODEL_HUANG && o->table_tolerance == 0.0) {
         o->tt_trt = HB_TT_TRT_TABLE;
     } else {
-        fprintf(stderr, "hairbsdf bake: %s\n", o->model == HB_MODEL_HUANG
-                                                     ? "the huang table's resolution follows --quality, not --table-tolerance"
-                                                     : "the marschner model has no tables (deon and huang do)");
+        static const char *const names[] = { "marschner", "deon", "huang", "chiang" };
+        if (o->model == HB_MODEL_HUANG)
+            fprintf(stderr, "hairbsdf bake: the huang table's resolution follows --quality, not --table-tolerance\n");
+        else
+            fprintf(stderr, "hairbsdf bake: the %s model has no tables (deon and huang do)\n", names[o->model]);
         return 2;
     }
     hb_plan *plan;

@@ -141,5 +141,5 @@ int cmd_sample(int argc, char **argv)
                mean[0], mean[1], mean[2], se[0], se[1], se[2]);
     }
     hb_plan_destroy(plan);
-    return fflush(stdout) != 0;
+    return 0; /* main reports a failed write */
 }

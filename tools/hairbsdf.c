@@ -1,4 +1,5 @@
 /* hairbsdf: the command-line tool (docs/cli.md). */
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -32,7 +33,18 @@ static int cmd_isa(void)
     return 0;
 }
 
-int main(int argc, char **argv)
+/* The command's status, or 1 with a message where a command that succeeded could not write its
+ * output (a full disk, a closed pipe): stdout's error flag stays set. A failed command has said why. */
+static int finish(const char *cmd, int status)
+{
+    if ((fflush(stdout) != 0 || ferror(stdout)) && status == 0) {
+        fprintf(stderr, "hairbsdf %s: cannot write standard output: %s\n", cmd, strerror(errno));
+        return 1;
+    }
+    return status;
+}
+
+static int run(int argc, char **argv)
 {
     if (argc < 2) {
         usage(stderr);
@@ -67,4 +79,9 @@ int main(int argc, char **argv)
     }
     fprintf(stderr, "hairbsdf: unknown command '%s' (see hairbsdf --help)\n", cmd);
     return 2;
+}
+
+int main(int argc, char **argv)
+{
+    return finish(argc > 1 ? argv[1] : "", run(argc, argv));
 }

@@ -23,6 +23,7 @@ typedef struct hb_preset {
 
 typedef struct hb_model_ops {
     const char *name; /* "deon": as the CLI, the bench and the calibration name the model */
+    double beta_max; /* beta_m and beta_n at most this on the model's own scale (CBTB16: 1); 0: radians, the shared ranges */
 
     /* Plan creation, after the checks every model shares (src/plan/validate.c). */
     unsigned (*lobes)(const hb_options *o); /* the lobe mask the options ask for (resolving HB_LOBES_DEFAULT) */
@@ -46,6 +47,9 @@ typedef struct hb_model_ops {
      * model has none, HB_ERR_UNSUPPORTED for plans whose path cannot take it. */
     hb_status (*eval_absorption)(const hb_plan *plan, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
                                  size_t *invalid);
+    /* The version of the parameterisation of its tables' values, written into table files: a change
+     * that alters what a table of the same layout holds bumps it, so that older files are refused. */
+    int table_version;
     /* HB_ERR_UNSUPPORTED: no table; channels gets its floats per node and slot */
     hb_status (*table)(const hb_plan *plan, hb_table_view *view, int *channels);
     /* hb_plan_shader_constants: HB_SHADER_CONSTANTS floats; NULL when the model has no shader. */

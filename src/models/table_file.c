@@ -1,6 +1,7 @@
 /* Table files: writing a plan's table with its header, and reading one back against a plan.
- * Layout (little-endian; docs/engines.md): "HBTABLE2", u64 file length, char[16] library version,
- * char[16] ISA that built it, u32 model, axes, slots, channels (3, or 1 for a colour table); per axis u32 nodes, f64 lo,
+ * Layout (little-endian; docs/engines.md): "HBTABLE3", u64 file length, char[16] library version and
+ * char[16] ISA that built it (both informative), u32 model, its table version (the parameterisation
+ * of the values), axes, slots, channels (3, or 1 for a colour table); per axis u32 nodes, f64 lo,
  * f64 hi, char[64] what it is; per slot u32 lobe mask; f64 measured error; u32 field count, then
  * per field char[24] name and f64 value (the material and options the table depends on); u64
  * value count; f32 values (axes row-major, then slot, then RGB); u64 XXH64 (seed 0) of every byte before. */
@@ -9,15 +10,17 @@
 #include <string.h>
 
 #include "math/hash.h"
+#include "model.h"
 #include "table_file.h"
 
 #define NAME_BYTES 24
 #define AXIS_BYTES 64
 #define TEXT_BYTES 16
 #define MAX_FIELDS 64
-/* No table holds more (N_p is at most about 1 / beta_n, HHH22's TT + TRT far below this at the
- * smallest roughness); the kernels multiply a value by M_p and sum a few, which stays finite in float. */
-#define HB_TABLE_VALUE_LIMIT 1e20f
+/* No table holds more (N_p is at most about 1 / beta_n, HHH22's square roots of TT + TRT far below
+ * this at the smallest roughness). The kernels square a value (HHH22), multiply it by M_p or by the
+ * pole's width factor (at most 1e8) and sum a few: (1e12)^2 1e8 stays finite in float. */
+#define HB_TABLE_VALUE_LIMIT 1e12f
 
 typedef struct field {
     char name[NAME_BYTES];
@@ -110,13 +113,14 @@ size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *v, int chan
     field fields[MAX_FIELDS];
     int n_fields = plan_fields(plan, fields);
     writer w = { out, 0 };
-    put(&w, "HBTABLE2", 8);
-    size_t length = 8 + 8 + 2 * TEXT_BYTES + 16 + (size_t)v->axes * (4 + 16 + AXIS_BYTES) + (size_t)v->slots * 4 + 8 + 4 +
+    put(&w, "HBTABLE" HB_TABLE_FILE_FORMAT_DIGIT, 8);
+    size_t length = 8 + 8 + 2 * TEXT_BYTES + 20 + (size_t)v->axes * (4 + 16 + AXIS_BYTES) + (size_t)v->slots * 4 + 8 + 4 +
                     (size_t)n_fields * (NAME_BYTES + 8) + 8 + v->count * 4 + 8;
     put_uint(&w, length, 8);
     put_text(&w, HB_VERSION_STRING, TEXT_BYTES);
     put_text(&w, hb_isa_name(plan->isa), TEXT_BYTES);
-    put_uint(&w, (unsigned)v->model, 4), put_uint(&w, (unsigned)v->axes, 4), put_uint(&w, (unsigned)v->slots, 4);
+    put_uint(&w, (unsigned)v->model, 4), put_uint(&w, (unsigned)hb_model_ops_of(v->model)->table_version, 4);
+    put_uint(&w, (unsigned)v->axes, 4), put_uint(&w, (unsigned)v->slots, 4);
     put_uint(&w, (unsigned)channels, 4);
     for (int k = 0; k < v->axes; k++) {
         put_uint(&w, (unsigned)v->size[k], 4);
@@ -202,7 +206,7 @@ static int take_text(reader *r, char *text, size_t n)
 static hb_status read_fields(reader *r, const hb_plan *plan, hb_error *error)
 {
     field own[MAX_FIELDS];
-    int n_own = plan_fields(plan, own), n_file;
+    int n_own = plan_fields(plan, own), n_file, seen[MAX_FIELDS] = { 0 };
     if (!take_u32(r, &n_file, MAX_FIELDS))
         return refuse(error, "its field count is damaged");
     for (int k = 0; k < n_file; k++) {
@@ -215,6 +219,8 @@ static hb_status read_fields(reader *r, const hb_plan *plan, hb_error *error)
             j++;
         if (j == n_own)
             return hb_plan_fail(error, HB_ERR_FILE, "table file: it names a field '%.23s' this library does not know", name);
+        if (seen[j]++) /* each field once: a repeated one would stand in for another that is then never checked */
+            return hb_plan_fail(error, HB_ERR_FILE, "table file: it names the field '%.23s' twice", name);
         if (memcmp(&own[j].value, &value, sizeof value) != 0)
             return hb_plan_fail(error, HB_ERR_FILE,
                                 "table file: baked for %s = %.17g, this plan's is %.17g: bake it for this material and "
@@ -251,13 +257,11 @@ hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error 
     r.end = bytes + size - 8;
     if (!take_text(&r, version, sizeof version) || !take_text(&r, isa, sizeof isa))
         return refuse(error, "it ends inside its header");
-    if (strcmp(version, HB_VERSION_STRING) != 0)
-        return hb_plan_fail(error, HB_ERR_FILE, "table file: baked by hairbsdf %.15s, this is " HB_VERSION_STRING
-                            ": bake it again with this library", version);
     hb_table_view *v = &file->layout;
     *v = (hb_table_view){ 0 };
-    int model;
-    if (!take_u32(&r, &model, 3) || !take_u32(&r, &v->axes, HB_TABLE_MAX_AXES) ||
+    int model, table_version;
+    if (!take_u32(&r, &model, 3) || !take_u32(&r, &table_version, 0x7fffffffu) ||
+        !take_u32(&r, &v->axes, HB_TABLE_MAX_AXES) ||
         !take_u32(&r, &v->slots, HB_MAX_LOBES + 1) || !take_u32(&r, &file->channels, 3) ||
         (file->channels != 3 && file->channels != 1) || v->axes < 1)
         return refuse(error, "its model, axes, slots or channels are out of range");
@@ -265,6 +269,13 @@ hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error 
     if (v->model != plan->options.model)
         return hb_plan_fail(error, HB_ERR_FILE, "table file: baked for model %s, this plan's is %s", model_names[model],
                             model_names[plan->options.model]);
+    /* the library version is informative: any release whose model's tables have the file's
+     * parameterisation reads it */
+    int own_version = hb_model_ops_of(v->model)->table_version;
+    if (table_version != own_version)
+        return hb_plan_fail(error, HB_ERR_FILE,
+                            "table file: %s tables of version %d (baked by hairbsdf %.15s), this library's are version %d: "
+                            "bake it again with this library", model_names[model], table_version, version, own_version);
     for (int k = 0; k < v->axes; k++)
         if (!take_u32(&r, &v->size[k], 1u << 20) || !take_f64(&r, &v->lo[k]) || !take_f64(&r, &v->hi[k]) ||
             !take(&r, NULL, AXIS_BYTES))

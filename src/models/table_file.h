@@ -6,7 +6,8 @@
 
 #include "plan.h"
 
-#define HB_TABLE_FILE_FORMAT 2 /* the digit after "HBTABLE" */
+#define HB_TABLE_FILE_FORMAT 3 /* the digit after "HBTABLE" */
+#define HB_TABLE_FILE_FORMAT_DIGIT "3"
 
 /* A file's table after its header was checked against a plan: its layout as hb_table_view gives it
  * (without axis names) and its values, still little-endian bytes inside the caller's file. */
@@ -28,12 +29,12 @@ static inline size_t hb_table_count(const hb_table_view *v, int channels)
 /* The file's length for the plan's table view (hb_table_file_write with out NULL), or writes it. */
 size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *view, int channels, unsigned char *out);
 
-/* Checks plan->options.table_file: length, format, checksum, library version, model, and every
+/* Checks plan->options.table_file: length, format, checksum, model and its table version, and every
  * material and option field the table depends on; fills file on success. */
 hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error *error);
 
 /* The file's values into out (expected->count floats) when its layout is `expected` (axes, sizes,
- * ranges, slots and their lobes); every value must be in [0, 1e20]. */
+ * ranges, slots and their lobes); every value must be in [0, 1e12]. */
 hb_status hb_table_file_values(const hb_table_file *file, const hb_table_view *expected, int channels, float *out,
                                hb_error *error);
 

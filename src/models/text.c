@@ -1,6 +1,7 @@
 /* The description text helpers: see text.h. */
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "hairbsdf.h"
 #include "text.h"
@@ -13,6 +14,16 @@ void hb_say(hb_text *t, const char *fmt, ...)
                       fmt, ap);
     va_end(ap);
     t->length += n > 0 ? (size_t)n : 0;
+}
+
+const char *hb_shortest(char buf[32], double x)
+{
+    for (int digits = 6; digits <= 17; digits++) {
+        snprintf(buf, 32, "%.*g", digits, x);
+        if (strtod(buf, NULL) == x || x != x)
+            break;
+    }
+    return buf;
 }
 
 const char *hb_lobe_name(int p)

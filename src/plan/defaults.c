@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "models/plan.h"
+#include "models/text.h"
 
 void hb_material_default(hb_material *m)
 {
@@ -45,11 +46,11 @@ hb_status hb_absorption_from_colour(const double rgb[3], double beta_n, double s
     if (!rgb || !sigma_a)
         return hb_plan_fail(error, HB_ERR_NULL, "rgb and sigma_a_rgb must not be NULL");
     if (!(beta_n >= 0.0 && beta_n <= 1.0))
-        return hb_plan_fail(error, HB_ERR_PARAM, "beta_n = %g must be in [0, 1] (CBTB16's scale)", beta_n);
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_n = %s must be in [0, 1] (CBTB16's scale)", HB_NUM(beta_n));
     static const char *const channel[3] = { "r", "g", "b" };
     for (int c = 0; c < 3; c++)
         if (!(rgb[c] > 0.0 && rgb[c] <= 1.0))
-            return hb_plan_fail(error, HB_ERR_PARAM, "rgb.%s = %g must be in (0, 1]", channel[c], rgb[c]);
+            return hb_plan_fail(error, HB_ERR_PARAM, "rgb.%s = %s must be in (0, 1]", channel[c], HB_NUM(rgb[c]));
     /* CBTB16's fit of the multiple-scattering colour of a fibre under its azimuthal roughness:
      * sigma_a = (log(C) / (5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5))^2 */
     double b = beta_n;

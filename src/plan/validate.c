@@ -18,53 +18,62 @@
 
 static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi; } /* false for NaN */
 
+/* beta_m and beta_n against their ranges: radians, or the model's own scale where it has one (CBTB16's [0, 1]). */
+static hb_status validate_roughnesses(const hb_material *m, const hb_model_ops *ops, hb_error *error)
+{
+    double beta_m_max = ops->beta_max > 0.0 ? ops->beta_max : BETA_M_MAX;
+    double beta_n_max = ops->beta_max > 0.0 ? ops->beta_max : BETA_N_MAX;
+    if (!in_range(m->beta_m, BETA_M_MIN, beta_m_max))
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %s must be in [%s, %s] for the %s model (v = beta_m^2 >= 1e-4)",
+                            HB_NUM(m->beta_m), HB_NUM(BETA_M_MIN), HB_NUM(beta_m_max), ops->name);
+    for (int p = 0; p < HB_MAX_LOBES; p++)
+        if (m->lobe_beta_m[p] != 0.0 && !in_range(m->lobe_beta_m[p], BETA_M_MIN, beta_m_max))
+            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_beta_m[%d] = %s must be 0 (derived) or in [%s, %s]", p,
+                                HB_NUM(m->lobe_beta_m[p]), HB_NUM(BETA_M_MIN), HB_NUM(beta_m_max));
+    if (!in_range(m->beta_n, BETA_N_MIN, beta_n_max))
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_n = %s must be in [%s, %s] for the %s model", HB_NUM(m->beta_n),
+                            HB_NUM(BETA_N_MIN), HB_NUM(beta_n_max), ops->name);
+    for (int p = 0; p < HB_MAX_LOBES; p++)
+        if (m->lobe_beta_n[p] != 0.0 && !in_range(m->lobe_beta_n[p], BETA_N_MIN, beta_n_max))
+            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_beta_n[%d] = %s must be 0 (derived) or in [%s, %s]", p,
+                                HB_NUM(m->lobe_beta_n[p]), HB_NUM(BETA_N_MIN), HB_NUM(beta_n_max));
+    return HB_OK;
+}
+
 static hb_status validate_material(const hb_material *m, hb_error *error)
 {
     if (!(m->eta > 1.0 && m->eta <= ETA_MAX))
-        return hb_plan_fail(error, HB_ERR_PARAM, "eta = %g must be in (1, %g]", m->eta, ETA_MAX);
+        return hb_plan_fail(error, HB_ERR_PARAM, "eta = %s must be in (1, %s]", HB_NUM(m->eta), HB_NUM(ETA_MAX));
     static const char *const channel[3] = { "r", "g", "b" };
     for (int c = 0; c < 3; c++)
         if (!(m->sigma_a[c] >= 0.0 && isfinite(m->sigma_a[c])))
-            return hb_plan_fail(error, HB_ERR_PARAM, "sigma_a.%s = %g must be finite and >= 0", channel[c], m->sigma_a[c]);
+            return hb_plan_fail(error, HB_ERR_PARAM, "sigma_a.%s = %s must be finite and >= 0", channel[c], HB_NUM(m->sigma_a[c]));
     if (!(m->eumelanin >= 0.0 && isfinite(m->eumelanin)))
-        return hb_plan_fail(error, HB_ERR_PARAM, "eumelanin = %g must be finite and >= 0", m->eumelanin);
+        return hb_plan_fail(error, HB_ERR_PARAM, "eumelanin = %s must be finite and >= 0", HB_NUM(m->eumelanin));
     if (!(m->pheomelanin >= 0.0 && isfinite(m->pheomelanin)))
-        return hb_plan_fail(error, HB_ERR_PARAM, "pheomelanin = %g must be finite and >= 0", m->pheomelanin);
-    if (!in_range(m->beta_m, BETA_M_MIN, BETA_M_MAX))
-        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %g must be in [%g, %g] (v = beta_m^2 in [1e-4, 10])",
-                    m->beta_m, BETA_M_MIN, BETA_M_MAX);
-    for (int p = 0; p < HB_MAX_LOBES; p++)
-        if (m->lobe_beta_m[p] != 0.0 && !in_range(m->lobe_beta_m[p], BETA_M_MIN, BETA_M_MAX))
-            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_beta_m[%d] = %g must be 0 (derived) or in [%g, %g]", p,
-                        m->lobe_beta_m[p], BETA_M_MIN, BETA_M_MAX);
-    if (!in_range(m->beta_n, BETA_N_MIN, BETA_N_MAX))
-        return hb_plan_fail(error, HB_ERR_PARAM, "beta_n = %g must be in [%g, %g]", m->beta_n, BETA_N_MIN, BETA_N_MAX);
-    for (int p = 0; p < HB_MAX_LOBES; p++)
-        if (m->lobe_beta_n[p] != 0.0 && !in_range(m->lobe_beta_n[p], BETA_N_MIN, BETA_N_MAX))
-            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_beta_n[%d] = %g must be 0 (derived) or in [%g, %g]", p,
-                        m->lobe_beta_n[p], BETA_N_MIN, BETA_N_MAX);
+        return hb_plan_fail(error, HB_ERR_PARAM, "pheomelanin = %s must be finite and >= 0", HB_NUM(m->pheomelanin));
     if (!in_range(m->alpha, -ALPHA_MAX, ALPHA_MAX))
-        return hb_plan_fail(error, HB_ERR_PARAM, "alpha = %g must be in [%g, %g] radians", m->alpha, -ALPHA_MAX, ALPHA_MAX);
+        return hb_plan_fail(error, HB_ERR_PARAM, "alpha = %s must be in [%s, %s] radians", HB_NUM(m->alpha), HB_NUM(-ALPHA_MAX), HB_NUM(ALPHA_MAX));
     for (int p = 0; p < HB_MAX_LOBES; p++)
         if ((m->lobe_alpha_override >> p & 1u) && !in_range(m->lobe_alpha[p], -LOBE_ALPHA_MAX, LOBE_ALPHA_MAX))
-            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_alpha[%d] = %g must be in [%g, %g] radians", p, m->lobe_alpha[p],
-                        -LOBE_ALPHA_MAX, LOBE_ALPHA_MAX);
+            return hb_plan_fail(error, HB_ERR_PARAM, "lobe_alpha[%d] = %s must be in [%s, %s] radians", p, HB_NUM(m->lobe_alpha[p]),
+                        HB_NUM(-LOBE_ALPHA_MAX), HB_NUM(LOBE_ALPHA_MAX));
     if (m->ndf != HB_NDF_GGX && m->ndf != HB_NDF_BECKMANN)
         return hb_plan_fail(error, HB_ERR_PARAM, "ndf = %d is neither HB_NDF_GGX nor HB_NDF_BECKMANN", (int)m->ndf);
     if (!in_range(m->roughness, ROUGHNESS_MIN, ROUGHNESS_MAX))
-        return hb_plan_fail(error, HB_ERR_PARAM, "roughness = %g must be in [%g, %g]", m->roughness, ROUGHNESS_MIN,
-                    ROUGHNESS_MAX);
+        return hb_plan_fail(error, HB_ERR_PARAM, "roughness = %s must be in [%s, %s]", HB_NUM(m->roughness), HB_NUM(ROUGHNESS_MIN),
+                    HB_NUM(ROUGHNESS_MAX));
     if (!in_range(m->eccentricity, 0.0, ECCENTRICITY_MAX))
-        return hb_plan_fail(error, HB_ERR_PARAM, "eccentricity = %g must be in [0, %g]", m->eccentricity,
-                    ECCENTRICITY_MAX);
+        return hb_plan_fail(error, HB_ERR_PARAM, "eccentricity = %s must be in [0, %s]", HB_NUM(m->eccentricity),
+                    HB_NUM(ECCENTRICITY_MAX));
     if (!in_range(m->glint_scale, 0.0, 100.0))
-        return hb_plan_fail(error, HB_ERR_PARAM, "glint_scale = %g must be in [0, 100]", m->glint_scale);
+        return hb_plan_fail(error, HB_ERR_PARAM, "glint_scale = %s must be in [0, 100]", HB_NUM(m->glint_scale));
     if (!in_range(m->caustic_width, 1e-3, 1.0))
-        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_width = %g must be in [0.001, 1] radians", m->caustic_width);
+        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_width = %s must be in [0.001, 1] radians", HB_NUM(m->caustic_width));
     if (!in_range(m->caustic_fade, 1e-3, 2.0))
-        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_fade = %g must be in [0.001, 2]", m->caustic_fade);
+        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_fade = %s must be in [0.001, 2]", HB_NUM(m->caustic_fade));
     if (!in_range(m->caustic_limit, 0.0, 2.0))
-        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_limit = %g must be in [0, 2]", m->caustic_limit);
+        return hb_plan_fail(error, HB_ERR_PARAM, "caustic_limit = %s must be in [0, 2]", HB_NUM(m->caustic_limit));
     return HB_OK;
 }
 
@@ -106,6 +115,9 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
                     "the full model: not with the reference quality or the longitudinal term");
     if ((o->table_file != NULL) != (o->table_file_size > 0))
         return hb_plan_fail(error, HB_ERR_PARAM, "table_file and table_file_size go together: give both or neither");
+    if (o->table_file_size > HB_TABLE_FILE_MAX_BYTES)
+        return hb_plan_fail(error, HB_ERR_FILE, "table file: %zu bytes, larger than any plan's table file (at most %zu)",
+                            o->table_file_size, HB_TABLE_FILE_MAX_BYTES);
     if (o->table_file && (o->tolerance > 0.0 || o->budget_ns > 0.0))
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "a table file fixes the configuration it was baked with: give its "
                     "quality and options, not a tolerance or budget_ns");
@@ -140,8 +152,10 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
 
 hb_status hb_plan_validate(const hb_material *m, const hb_options *o, hb_error *error)
 {
-    hb_status st = validate_material(m, error);
+    hb_status st = validate_options(o, error);
     if (st == HB_OK)
-        st = validate_options(o, error);
+        st = validate_material(m, error);
+    if (st == HB_OK)
+        st = validate_roughnesses(m, hb_model_ops_of(o->model), error);
     return st == HB_OK ? hb_model_ops_of(o->model)->validate(m, o, error) : st;
 }

@@ -23,8 +23,8 @@ static void offset_terms(const hb_plan *plan, double theta_o, double h, double A
 {
     double eta = plan->material.eta, cos_o = fabs(cos(theta_o)), sin_o = sin(theta_o); /* pbrt: sqrt(1 - sin^2) */
     double gamma_o = asin(h), F = hb_ref_fresnel(eta, cos_o * cos(gamma_o));
-    double eta_prime = sqrt(eta * eta - sin_o * sin_o) / cos_o; /* Bravais */
-    double sin_gamma_t = h / eta_prime, cos_gamma_t = sqrt(1.0 - sin_gamma_t * sin_gamma_t);
+    double sin_gamma_t, cos_gamma_t; /* sin gamma_t = h / eta', Bravais' index */
+    double gamma_t = hb_ref_refraction(eta, cos_o, h, sqrt((1.0 - h) * (1.0 + h)), &sin_gamma_t, &cos_gamma_t);
     double cos_theta_t = sqrt(1.0 - sin_o * sin_o / (eta * eta));
     double mean[HB_CHIANG_TERMS] = { 0.0 }, total = 0.0;
     for (int c = 0; c < 3; c++) {
@@ -45,7 +45,7 @@ static void offset_terms(const hb_plan *plan, double theta_o, double h, double A
     for (int p = 0; p < HB_CHIANG_TERMS; p++)
         P[p] = total > 0.0 ? mean[p] / total : 0.0;
     for (int p = 0; p < HB_CHIANG_ORDERS; p++)
-        Phi[p] = 2.0 * p * asin(sin_gamma_t) - 2.0 * gamma_o + p * M_PI;
+        Phi[p] = 2.0 * p * gamma_t - 2.0 * gamma_o + p * M_PI;
 }
 
 /* The trimmed logistic at phi - Phi, wrapped into [-pi, pi]. */

@@ -81,6 +81,17 @@ double hb_ref_fresnel(double eta, double cos_i)
     return 0.5 * (rs * rs + rp * rp);
 }
 
+double hb_ref_refraction(double eta, double cos_theta, double sin_gamma_i, double cos_gamma_i, double *sin_gamma_t,
+                         double *cos_gamma_t)
+{
+    double eta2_minus_1 = (eta - 1.0) * (eta + 1.0);
+    double eta_cos_t = sqrt(eta2_minus_1 + cos_theta * cos_theta); /* eta' cos theta = sqrt(eta^2 - sin^2 theta) */
+    double c = cos_theta * cos_gamma_i;
+    *sin_gamma_t = sin_gamma_i * cos_theta / eta_cos_t;
+    *cos_gamma_t = sqrt(eta2_minus_1 + c * c) / eta_cos_t;
+    return atan2(*sin_gamma_t, *cos_gamma_t);
+}
+
 double hb_ref_detector_direct(double beta, double x, int terms)
 {
     x = remainder(x, 2.0 * M_PI);
@@ -119,10 +130,9 @@ void hb_ref_deon_node(const hb_plan *plan, double sin2_theta_d, double gamma_i, 
 {
     const hb_deon *d = &plan->deon;
     double eta = plan->material.eta, cos_theta_d = sqrt(1.0 - sin2_theta_d);
-    double inv_eta_prime = cos_theta_d / sqrt(eta * eta - sin2_theta_d); /* 1/eta' (sec. 5) */
     double cos_theta_t = sqrt(1.0 - sin2_theta_d / (eta * eta));
-    double sin_gamma_t = sin(gamma_i) * inv_eta_prime, gamma_t = asin(sin_gamma_t);
-    double cos_gamma_t = sqrt(1.0 - sin_gamma_t * sin_gamma_t);
+    double sin_gamma_t, cos_gamma_t; /* sin gamma_t = h / eta' (sec. 5) */
+    double gamma_t = hb_ref_refraction(eta, cos_theta_d, sin(gamma_i), cos(gamma_i), &sin_gamma_t, &cos_gamma_t);
     double f = hb_ref_fresnel(eta, cos_theta_d * cos(gamma_i)); /* eq. 14 */
     double T[3];
     for (int c = 0; c < 3; c++) {

@@ -33,6 +33,12 @@ int hb_ref_marschner_roots(int p, double eta_prime, double phi, int exact, doubl
 
 /* Unpolarised Fresnel reflectance of a dielectric of relative index eta at incidence cos_i. */
 double hb_ref_fresnel(double eta, double cos_i);
+/* The refraction into a fibre of index eta at inclination cos_theta (>= 0) and offset angle gamma_i
+ * (sin and cos given): sin and cos of gamma_t with sin gamma_t = sin gamma_i / eta' (Bravais' eta'),
+ * cos gamma_t as sqrt(eta^2 - 1 + cos^2 theta cos^2 gamma_i) / sqrt(eta^2 - sin^2 theta), free of the
+ * cancellation of 1 - sin^2 gamma_t as eta -> 1 and |h| -> 1; gamma_t itself from both. */
+double hb_ref_refraction(double eta, double cos_theta, double sin_gamma_i, double cos_gamma_i, double *sin_gamma_t,
+                         double *cos_gamma_t);
 
 /* dFH11 eq. 11: the wrapped Gaussian of standard deviation beta, by its direct series
  * (Gaussians at x - 2 pi k, |k| <= terms), its Fourier series (n <= terms), or converged. */

@@ -20,7 +20,6 @@
 typedef struct hb_chiang {
     unsigned lobes; /* bits 0..2 (R, TT, TRT) and HB_LOBE_RESIDUAL */
     hb_dielectric ior;
-    int asin_narrow;        /* eta >= 4/3: gamma_t by vf_asin_narrow */
     float sigma_a_log2e[3]; /* absorption per unit radius times log2(e) */
     /* N_p, the logistic of scale s trimmed to [-pi, pi] (CBTB16): e / (1 + e)^2 times
      * logistic_norm = 1 / (s tanh(pi / (2 s))), e = 2^-(|x| log2(e) / s) */

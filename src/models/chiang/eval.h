@@ -18,19 +18,21 @@ typedef struct chiang_offset {
 /* cos theta_o and sin theta_o carry w_o; h in [-1, 1]. With eta' cos theta_o = sqrt(eta^2 - sin^2
  * theta_o) = sqrt(eta^2 - 1 + cos^2 theta_o) (Bravais' index), sin gamma_t = h / eta'
  * and the path 2 cos gamma_t / cos theta_t (the absorption of HHH22 sec. 3.1.2) need no division by cos theta_o, so w_o at a pole
- * (cos theta_o = 0: gamma_t = 0) is finite. */
+ * (cos theta_o = 0: gamma_t = 0) is finite. cos gamma_t = sqrt(eta^2 - 1 + cos^2 theta_o cos^2 gamma_o) / (eta' cos theta_o),
+ * a sum of two non-negative terms: 1 - sin^2 gamma_t would cancel to 0 as eta -> 1 and |h| -> 1, losing the path inside. */
 HB_INLINE void chiang_offset_at(const hb_chiang *c, vf cos_theta_o, vf h, int with_pdf, chiang_offset *o)
 {
     vf cos_o = vf_abs(cos_theta_o); /* |cos theta_o|, as pbrt takes it: the float pi/2 lies beyond the pole */
     vf cos_gamma_o = vf_sqrt(vf_max(vf_mul(vf_sub(vf_set1(1.0f), h), vf_add(vf_set1(1.0f), h)), vf_set1(0.0f)));
-    vf F = fresnel_dielectric(vf_mul(cos_o, cos_gamma_o), &c->ior); /* dFH11 eq. 14 at cos theta_o cos gamma_o */
-    vf eta_cos_t = vf_sqrt(vf_fma(cos_o, cos_o, vf_set1(c->ior.eta2_minus_1))); /* eta' cos theta_o = eta cos theta_t */
+    vf cos_o_cos_gamma_o = vf_mul(cos_o, cos_gamma_o);
+    vf F = fresnel_dielectric(cos_o_cos_gamma_o, &c->ior); /* dFH11 eq. 14 at cos theta_o cos gamma_o */
+    vf eta2_minus_1 = vf_set1(c->ior.eta2_minus_1);
+    vf eta_cos_t = vf_sqrt(vf_fma(cos_o, cos_o, eta2_minus_1)); /* eta' cos theta_o = eta cos theta_t */
     vf inv_eta_cos_t = vf_div(vf_set1(1.0f), eta_cos_t);
     vf sin_gamma_t = vf_mul(vf_mul(h, cos_o), inv_eta_cos_t);
-    vf sin2_gamma_t = vf_mul(sin_gamma_t, sin_gamma_t);
-    vf cos_gamma_t = vf_sqrt(vf_sub(vf_set1(1.0f), sin2_gamma_t));
+    vf cos_gamma_t = vf_mul(vf_sqrt(vf_fma(cos_o_cos_gamma_o, cos_o_cos_gamma_o, eta2_minus_1)), inv_eta_cos_t);
     vf path = vf_mul(vf_mul(vf_set1(2.0f * c->ior.eta), cos_gamma_t), inv_eta_cos_t); /* 2 cos gamma_t / cos theta_t */
-    vf one_minus_F = fresnel_dielectric_complement(vf_mul(cos_o, cos_gamma_o), &c->ior); /* exact to 0 at grazing */
+    vf one_minus_F = fresnel_dielectric_complement(cos_o_cos_gamma_o, &c->ior); /* exact to 0 at grazing */
     vf mean[HB_CHIANG_TERMS] = { vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f) };
     vf TF[3], den[3], residual_den = vf_set1(1.0f);
     for (int ch = 0; ch < 3; ch++) {
@@ -68,8 +70,7 @@ HB_INLINE void chiang_offset_at(const hb_chiang *c, vf cos_theta_o, vf h, int wi
         for (int p = 0; p < HB_CHIANG_TERMS; p++)
             o->P[p] = vf_mul(mean[p], inv_total);
     }
-    /* gamma_t by the narrow asin where eta >= 4/3 (|sin gamma_t| <= 1 / eta' <= 3/4) */
-    vf gamma_t = c->asin_narrow ? vf_asin_narrow(sin_gamma_t, sin2_gamma_t) : vf_asin(sin_gamma_t);
+    vf gamma_t = vf_asin_with_cos(sin_gamma_t, cos_gamma_t);
     vf gamma_o = vf_asin(vf_clamp(h, -1.0f, 1.0f));
     for (int p = 0; p < HB_CHIANG_ORDERS; p++) /* dFH11 eq. 8: Phi(p, h) = 2 p gamma_t - 2 gamma_o + p pi */
         o->Phi[p] = vf_fma(vf_set1(2.0f * (float)p), gamma_t, vf_fnma(vf_set1(2.0f), gamma_o, vf_set1((float)p * HB_PI_F)));

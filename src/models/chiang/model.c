@@ -115,6 +115,8 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
 
 const hb_model_ops hb_chiang_model = {
     .name = "chiang",
+    .beta_max = 1.0, /* pbrt-v4's [0, 1] scale (docs/chiang.md) */
+    .table_version = 1,
     .lobes = lobes,
     .validate = hb_chiang_validate,
     .derive = hb_chiang_derive,

@@ -25,13 +25,10 @@ double hb_chiang_logistic_scale(double beta_n)
 
 hb_status hb_chiang_validate(const hb_material *m, const hb_options *o, hb_error *error)
 {
-    if (m->beta_m > 1.0 || m->beta_n > 1.0)
-        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %g, beta_n = %g: the chiang model's roughnesses are in "
-                            "[0, 1] (pbrt-v4's scale; docs/chiang.md)", m->beta_m, m->beta_n);
     double v_tt = hb_chiang_variance_r(m->beta_m) / 4.0;
     if (v_tt < HB_CHIANG_V_MIN)
-        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %g gives the TT lobe v = %.3g, below %g (beta_m >= 0.027)",
-                            m->beta_m, v_tt, HB_CHIANG_V_MIN);
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %s gives the TT lobe v = %.3g, below %g (beta_m >= 0.027)",
+                            HB_NUM(m->beta_m), v_tt, HB_CHIANG_V_MIN);
     if (m->eccentricity > 0.0)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "eccentricity = %g: the chiang model is for circular fibres",
                             m->eccentricity);
@@ -94,7 +91,6 @@ static void derive_constants(hb_plan *plan)
     hb_chiang *c = &plan->chiang;
     c->lobes = o->lobes == HB_LOBES_DEFAULT ? 7u | 1u << HB_LOBE_RESIDUAL : o->lobes;
     c->ior = hb_dielectric_of(m->eta);
-    c->asin_narrow = m->eta >= 4.0 / 3.0;
     for (int ch = 0; ch < 3; ch++)
         c->sigma_a_log2e[ch] = hb_absorption_float(plan->sigma_a[ch] * M_LOG2E);
     double s = plan->chiang_s = hb_chiang_logistic_scale(m->beta_n);

@@ -92,6 +92,7 @@ HB_INLINE void deon_plan_absorption(const hb_deon *d, deon_geometry *g)
 /* What every node of the h quadrature needs from a sample: eta' (sec. 5) and mu_a' (sec. 6). */
 typedef struct deon_medium {
     vf cos_theta_d;
+    vf inv_eta_cos_t; /* 1 / (eta' cos(theta_d)) = 1 / sqrt(eta^2 - sin^2(theta_d)) */
     vf inv_eta_prime; /* 1 / eta' = cos(theta_d) / sqrt(eta^2 - sin^2(theta_d)) */
     vf mu_log2e[3];   /* mu_a' log2(e), mu_a' = mu_a / cos(theta_t), per channel */
 } deon_medium;
@@ -102,8 +103,9 @@ HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_med
     /* eta^2 - sin^2(theta_d) as (eta^2 - 1) + cos^2(theta_d): positive for every eta > 1, where the
      * float eta^2 is 1 for eta below 1 + 6e-8 and the difference would be 0 (0 / 0 at the pole) */
     vf eta_cos_t = vf_sqrt(vf_fma(g->cos_theta_d, g->cos_theta_d, vf_set1(d->ior.eta2_minus_1)));
-    m->inv_eta_prime = vf_div(g->cos_theta_d, eta_cos_t); /* sec. 5 */
-    vf inv_cos_theta_t = vf_div(vf_set1(d->ior.eta), eta_cos_t);
+    m->inv_eta_cos_t = vf_div(vf_set1(1.0f), eta_cos_t);
+    m->inv_eta_prime = vf_mul(g->cos_theta_d, m->inv_eta_cos_t); /* sec. 5 */
+    vf inv_cos_theta_t = vf_mul(vf_set1(d->ior.eta), m->inv_eta_cos_t);
     HB_UNROLL
     for (int c = 0; c < channels; c++) /* at most FLT_MAX / 4, so that twice it times a cosine stays finite */
         m->mu_log2e[c] = vf_min(vf_mul(g->absorption[c], inv_cos_theta_t), vf_set1(8e37f));
@@ -123,10 +125,14 @@ HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf 
                                deon_paths *out, deon_shape shape)
 {
     const int pmax = deon_pmax(d, shape);
+    vf cos_d_cos_gamma_i = vf_mul(m->cos_theta_d, cos_gamma_i);
     vf sin_gamma_t = vf_mul(h, m->inv_eta_prime);
-    vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
-    vf gamma_t = vf_asin(sin_gamma_t);
-    vf f = out->f = fresnel_dielectric(vf_mul(m->cos_theta_d, cos_gamma_i), &d->ior); /* eq. 14 */
+    /* cos^2(gamma_t) = (eta^2 - 1 + cos^2(theta_d) cos^2(gamma_i)) / (eta^2 - sin^2(theta_d)), two terms
+     * >= 0: 1 - sin^2(gamma_t) cancels to 0 as eta -> 1 and |h| -> 1, losing the path inside */
+    vf cos_gamma_t = vf_mul(vf_sqrt(vf_fma(cos_d_cos_gamma_i, cos_d_cos_gamma_i, vf_set1(d->ior.eta2_minus_1))),
+                            m->inv_eta_cos_t);
+    vf gamma_t = vf_asin_with_cos(sin_gamma_t, cos_gamma_t);
+    vf f = out->f = fresnel_dielectric(cos_d_cos_gamma_i, &d->ior); /* eq. 14 */
     /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (docs/conventions.md) */
     vf path = !shape.standard && d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
                                                      : vf_add(cos_gamma_t, cos_gamma_t);

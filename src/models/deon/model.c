@@ -222,6 +222,7 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
 
 const hb_model_ops hb_deon_model = {
     .name = "deon",
+    .table_version = 1,
     .lobes = lobes,
     .validate = hb_deon_validate,
     .derive = hb_deon_derive,

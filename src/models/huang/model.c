@@ -134,6 +134,7 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
 
 const hb_model_ops hb_huang_model = {
     .name = "huang",
+    .table_version = 1,
     .lobes = lobes,
     .validate = hb_huang_validate,
     .derive = hb_huang_derive,

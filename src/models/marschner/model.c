@@ -101,6 +101,7 @@ static int any_preset(const hb_preset *p, const hb_material *m, const hb_options
 
 const hb_model_ops hb_marschner_model = {
     .name = "marschner",
+    .table_version = 1,
     .lobes = lobes,
     .validate = hb_marschner_validate,
     .derive = hb_marschner_derive,
