@@ -182,6 +182,27 @@ static void eval_pdf_case(hb_test_ctx *t, const plan_case *c)
         CHECK(t, worst_pdf <= 1e-6, "%s %s: fused pdf differs by %.3g", c->label, name, worst_pdf);
         hb_test_note(t, "%s %s: fused vs separate: f %.2g, pdf %.2g", c->label, name, f_error, worst_pdf);
     }
+    /* along the fibre (x = z = 0, zeros of either sign) a direction's azimuth is 0 in every vector call:
+     * f alone and f with its pdf agree there as everywhere */
+    enum { POLE = 16 };
+    static float pw[6][POLE], pf[3][POLE], pg[3][POLE], ppdf[POLE];
+    for (int k = 0; k < POLE; k++) {
+        float a = 0.4f * (float)k - 3.0f, b = 0.17f * (float)k - 1.3f; /* the other direction: azimuth a, inclination b */
+        float other[3] = { sinf(a) * cosf(b), sinf(b), cosf(a) * cosf(b) };
+        float pole[3] = { k & 4 ? -0.0f : 0.0f, k & 1 ? -1.0f : 1.0f, k & 8 ? -0.0f : 0.0f };
+        for (int d = 0; d < 3; d++) {
+            pw[d][k] = k & 2 ? other[d] : pole[d];     /* w_i */
+            pw[3 + d][k] = k & 2 ? pole[d] : other[d]; /* w_o */
+        }
+    }
+    hb_vectors_soa pin = { pw[0], pw[1], pw[2], pw[3], pw[4], pw[5] };
+    CHECK(t, hb_eval_vectors(plan, POLE, pin, (hb_rgb_soa){ pf[0], pf[1], pf[2] }, NULL) == HB_OK &&
+                 hb_eval_pdf_vectors(plan, POLE, pin, (hb_rgb_soa){ pg[0], pg[1], pg[2] }, ppdf, NULL) == HB_OK,
+          "%s: the poles' calls", c->label);
+    double pole_error = hb_test_spec_error((float *const[3]){ pf[0], pf[1], pf[2] }, (float *const[3]){ pg[0], pg[1], pg[2] },
+                                           POLE, NULL);
+    CHECK(t, pole_error <= 2e-4, "%s: at the poles f from hb_eval_vectors and hb_eval_pdf_vectors differ by %.3g of the peak",
+          c->label, pole_error);
     /* the pdf from vectors against the pdf from the angles (buf.pdf2 holds the vectors' now) */
     CHECK(t, hb_pdf_angles(plan, N, in, buf.pdf, NULL) == HB_OK, "%s: pdf", c->label);
     size_t differ = 0;

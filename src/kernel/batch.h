@@ -125,11 +125,12 @@ HB_INLINE vm load_vectors(hb_vectors_soa in, size_t i, size_t lanes, vf a[6])
     return valid;
 }
 
-/* theta and phi of unit vectors w (docs/conventions.md): theta = atan2(y, |(x, z)|), phi = atan2(x, z). */
+/* theta and phi of unit vectors w (docs/conventions.md): theta = atan2(y, |(x, z)|), phi = atan2(x, z),
+ * 0 along the fibre (planar_z). */
 HB_INLINE void direction_angles(const vf w[3], vf *theta, vf *phi)
 {
     *theta = vf_atan2(w[1], vf_sqrt(vf_fma(w[0], w[0], vf_mul(w[2], w[2]))));
-    *phi = vf_atan2(w[0], w[2]);
+    *phi = vf_atan2(w[0], planar_z(w));
 }
 
 /* Loads lane block i of direction pairs as angles (theta_i, phi_i, theta_o, phi_o), vectors

@@ -415,6 +415,21 @@ HB_INLINE vf vf_normal_quantile(vf u)
     return vf_mul(vf_mul(erfinv_over_x, vf_fnma(vf_set1(-2.0f), u, vf_set1(-1.0f))), vf_set1(1.41421356f));
 }
 
+/* The z of a direction's planar part (x, z), with the planar part of a direction along the fibre
+ * (x = z = 0) taken as (0, 1): its azimuth is 0, in every entry point (docs/conventions.md). */
+HB_INLINE vf planar_z(const vf w[3])
+{
+    vm pole = vm_and(vf_eq(w[0], vf_set1(0.0f)), vf_eq(w[2], vf_set1(0.0f)));
+    return vf_select(pole, vf_set1(1.0f), w[2]);
+}
+
+/* phi = phi_o - phi_i of two directions from their planar parts' cross and dot products. */
+HB_INLINE vf azimuth_difference(const vf wi[3], const vf wo[3])
+{
+    vf zi = planar_z(wi), zo = planar_z(wo);
+    return vf_atan2(vf_fnma(zo, wi[0], vf_mul(wo[0], zi)), vf_fma(wo[0], wi[0], vf_mul(zo, zi)));
+}
+
 /* A sampler's weights f / pdf per channel, 0 where the pdf is 0. */
 HB_INLINE void sample_weights(vf pdf, const vf f[3], vf weight[3])
 {

@@ -65,7 +65,7 @@ int hb_ref_direction(float x, float y, float z, double *theta, double *phi)
     if (!(fabs(norm2 - 1.0) <= HB_UNIT_TOLERANCE))
         return 0;
     *theta = atan2(y, hypot(x, z));
-    *phi = atan2(x, z);
+    *phi = x == 0.0 && z == 0.0 ? 0.0 : atan2(x, z); /* along the fibre: azimuth 0, signed zeros too */
     return 1;
 }
 

@@ -31,7 +31,7 @@ HB_INLINE void chiang_vectors_far(const hb_chiang *c, const vf wi[3], const vf w
     vf M[HB_CHIANG_TERMS], sin_o, cos_o;
     chiang_longitudinal_vectors(c, wi, wo, M);
     inclination(wo[0], wo[1], wo[2], &sin_o, &cos_o);
-    vf phi = vf_atan2(vf_sub(vf_mul(wo[0], wi[2]), vf_mul(wo[2], wi[0])), vf_fma(wo[0], wi[0], vf_mul(wo[2], wi[2])));
+    vf phi = azimuth_difference(wi, wo);
     chiang_far(c, M, cos_o, phi, f, NULL);
 }
 

@@ -721,10 +721,7 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     vf si = vf_mul(wi[1], inv_i), so = vf_mul(wo[1], inv_o);
     vf ci = vf_mul(vf_sqrt(vf_fma(wi[0], wi[0], vf_mul(wi[2], wi[2]))), inv_i);
     vf co = vf_mul(vf_sqrt(vf_fma(wo[0], wo[0], vf_mul(wo[2], wo[2]))), inv_o);
-    /* phi = phi_o - phi_i from the planar components (scale drops out of atan2) */
-    vf sin_part = vf_fnma(wo[2], wi[0], vf_mul(wo[0], wi[2]));
-    vf cos_part = vf_fma(wo[0], wi[0], vf_mul(wo[2], wi[2]));
-    g.phi = vf_atan2(sin_part, cos_part);
+    g.phi = azimuth_difference(wi, wo); /* from the planar components (scale drops out of atan2) */
     g.cos_phi = !d->np_table && d->fourier_terms > 0 ? vf_cos(g.phi) : vf_set1(1.0f); /* Fourier detectors only */
     vf cos_diff = vf_fma(ci, co, vf_mul(si, so)); /* cos(theta_o - theta_i) = cos(2 theta_d) */
     g.cos_theta_d = vf_sqrt(vf_max(vf_fma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));

@@ -269,9 +269,11 @@ HB_INLINE void marschner_vectors(const hb_marschner *m, const vf wi[3], const vf
     g.cos_theta_i = n.cos_theta_i;
     g.cos_theta_d = vf_cos(vf_mul(vf_set1(0.5f), vf_sub(n.theta_o, n.theta_i)));
     /* phi = phi_o - phi_i and cos(phi_i + phi_o) from the planar components */
-    g.phi = vf_atan2(vf_fnma(wo[2], wi[0], vf_mul(wo[0], wi[2])), vf_fma(wo[0], wi[0], vf_mul(wo[2], wi[2])));
-    vf planar2 = vf_mul(n.planar_i, n.planar_o);
-    vf cos_sum = vf_div(vf_fnma(wi[0], wo[0], vf_mul(wi[2], wo[2])), vf_max(planar2, vf_set1(1e-30f)));
+    g.phi = azimuth_difference(wi, wo);
+    /* a direction along the fibre has azimuth 0 (planar_z): its planar part (0, 1), of length 1 */
+    vf zi = planar_z(wi), zo = planar_z(wo);
+    vf planar2 = vf_mul(vf_max(n.planar_i, vf_abs(zi)), vf_max(n.planar_o, vf_abs(zo)));
+    vf cos_sum = vf_div(vf_fnma(wi[0], wo[0], vf_mul(zi, zo)), vf_max(planar2, vf_set1(1e-30f)));
     g.cos_phi_sum = vf_select(vf_gt(planar2, vf_set1(1e-30f)), cos_sum, vf_set1(1.0f));
     marschner_plan_absorption(m, &g);
     marschner_f(m, &g, out);
