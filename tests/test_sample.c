@@ -291,7 +291,73 @@ static void test_sample_api(hb_test_ctx *t)
     CHECK(t, fabs(mean - 0.5) < 0.02, "mean of hb_uniforms %.4f", mean);
 }
 
+/* Uniform numbers at the ends of [0, 1] and at subnormals: every sampler, float and reference, counts
+ * the same samples invalid (a subnormal u is read as a zero of its sign, as the kernels flush it, so
+ * -1e-45 is valid), and gives weight 0 wherever it gives pdf 0 (a balance heuristic divides by it). */
+static void test_sample_extreme_u(hb_test_ctx *t)
+{
+    enum { K = 512 };
+    static float to[K], po[K], h[K], u[HB_SAMPLE_DIMENSIONS][K], ti[K], pi[K], pdf[K], w[3][K];
+    static const float ends[] = { 0.0f, 1.0f, -1e-45f, 1e-45f, -0.0f, 0.5f, 0.99999994f, -1e-38f };
+    static const struct { const char *name; hb_model model; unsigned lobes; int near; } cases[] = {
+        { "deon", HB_MODEL_DEON, HB_LOBES_DEFAULT, 0 },    { "deon near", HB_MODEL_DEON, HB_LOBES_DEFAULT, 1 },
+        { "chiang", HB_MODEL_CHIANG, HB_LOBES_DEFAULT, 0 }, { "chiang near", HB_MODEL_CHIANG, HB_LOBES_DEFAULT, 1 },
+        { "huang R", HB_MODEL_HUANG, 1u << HB_LOBE_R, 0 },
+    };
+    for (int k = 0; k < K; k++) {
+        to[k] = (float)hb_test_range(t, -1.5, 1.5), po[k] = (float)hb_test_range(t, -3, 3);
+        h[k] = (float)hb_test_range(t, -1, 1);
+        for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+            u[d][k] = hb_test_uniform(t) < 0.7 ? ends[(k + 3 * d) % 8] : (float)hb_test_uniform(t);
+    }
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        size_t invalid[2] = { 0, 0 };
+        for (int reference = 0; reference < 2; reference++) {
+            hb_material m;
+            hb_options o;
+            hb_material_default(&m);
+            hb_options_default(&o);
+            o.model = cases[c].model, o.lobes = cases[c].lobes;
+            o.quality = reference ? HB_QUALITY_REFERENCE : HB_QUALITY_BALANCED;
+            o.isa = t->isa;
+            hb_plan *plan;
+            hb_error err;
+            CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "%s: %s", cases[c].name, err.message);
+            if (!plan)
+                continue;
+            hb_sample_out out = { ti, pi, pdf, { w[0], w[1], w[2] } };
+            hb_eval_report report = { 0 };
+            hb_status st;
+            if (cases[c].near) {
+                hb_sample_near_in in = { to, po, h, { 0 } };
+                for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+                    in.u[d] = u[d];
+                st = hb_sample_near(plan, K, in, out, &report);
+            } else {
+                hb_sample_in in = { to, po, { 0 } };
+                for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+                    in.u[d] = u[d];
+                st = hb_sample_angles(plan, K, in, out, &report);
+            }
+            CHECK(t, st == HB_OK, "%s: status %d", cases[c].name, (int)st);
+            invalid[reference] = report.invalid;
+            int zero_pdf_weighted = 0, not_finite = 0;
+            for (int k = 0; k < K; k++)
+                for (int ch = 0; ch < 3; ch++) {
+                    zero_pdf_weighted += pdf[k] == 0.0f && w[ch][k] != 0.0f;
+                    not_finite += !(isfinite(w[ch][k]) && w[ch][k] >= 0.0f && isfinite(pdf[k]) && pdf[k] >= 0.0f);
+                }
+            CHECK(t, zero_pdf_weighted == 0 && not_finite == 0, "%s %s: %d weights > 0 with pdf 0, %d not finite or < 0",
+                  cases[c].name, reference ? "reference" : "balanced", zero_pdf_weighted, not_finite);
+            hb_plan_destroy(plan);
+        }
+        CHECK(t, invalid[0] == invalid[1], "%s: %zu invalid samples in the kernels, %zu in the reference", cases[c].name,
+              invalid[0], invalid[1]);
+    }
+}
+
 const hb_test hb_tests_sample[] = {
+    { "sample_extreme_u", test_sample_extreme_u, 1 },
     { "sample_api", test_sample_api, 0 },
     { "deon_sample_furnace", test_sample_furnace, 0 },
     { "deon_sample_consistency", test_sample_consistency, 0 },

@@ -1,6 +1,7 @@
 /* Public sampling, pdf and fused entry points (docs/sampling.md): argument checks, then the plan's
  * kernels or, for HB_QUALITY_REFERENCE, the double-precision procedure. Directions come as angles
  * or as fibre-frame unit vectors (kernel/streams.h). No allocation. */
+#include <float.h>
 #include <math.h>
 
 #include "math/hash.h"
@@ -35,6 +36,20 @@ static void report_invalid(hb_eval_report *report, size_t invalid)
         report->invalid = invalid;
 }
 
+int hb_plan_pdf_is_estimate(const hb_plan *plan)
+{
+    if (!hb_plan_sample_dimensions(plan))
+        return 0;
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    return ops->pdf_is_estimate ? ops->pdf_is_estimate(plan) : 0;
+}
+
+/* x with a subnormal flushed to a zero of its sign, as the kernels read and write floats (simd.h). */
+static float flushed(float x)
+{
+    return fabsf(x) < FLT_MIN ? copysignf(0.0f, x) : x;
+}
+
 /* The reference sampler, one sample at a time; h: each sample's offset (near field), or NULL. */
 static size_t sample_ref(const hb_plan *plan, int dims, size_t n, const hb_sample_batch *b, const float *h)
 {
@@ -48,7 +63,7 @@ static size_t sample_ref(const hb_plan *plan, int dims, size_t n, const hb_sampl
         double f[3] = { 0.0, 0.0, 0.0 };
         int ok = direction_at(wo, vectors, k, &theta_o, &phi_o) && (!h || fabsf(h[k]) <= 1.0f);
         for (int d = 0; d < dims; d++) {
-            u[d] = b->in.u[d][k];
+            u[d] = flushed(b->in.u[d][k]);
             ok = ok && u[d] >= 0.0 && u[d] <= 1.0;
         }
         if (ok) {
@@ -77,10 +92,13 @@ static size_t sample_ref(const hb_plan *plan, int dims, size_t n, const hb_sampl
             b->out.theta_i[k] = (float)theta_i;
             b->out.phi_i[k] = (float)phi_i;
         }
-        b->out.pdf[k] = (float)pdf;
+        /* the weight is 0 where the pdf the caller sees is 0, as in the kernels (a balance heuristic
+         * divides by it): a pdf below FLT_MIN at an extreme u is flushed as the kernels flush it */
+        float pdf_out = flushed((float)pdf);
+        b->out.pdf[k] = pdf_out;
         float *weight[3] = { b->out.weight.r, b->out.weight.g, b->out.weight.b };
         for (int c = 0; c < 3; c++)
-            weight[c][k] = pdf > 0.0 ? (float)(f[c] / pdf) : 0.0f;
+            weight[c][k] = pdf_out > 0.0f ? flushed((float)(f[c] / pdf)) : 0.0f;
     }
     return invalid;
 }
@@ -159,7 +177,7 @@ static size_t pdf_ref(const hb_plan *plan, size_t n, const hb_pair_batch *in, co
             p = hb_ref_pdf(plan, ti, pi, to, po);
         if (ok && f)
             hb_ref_eval_pair(plan, ti, pi, to, po, value);
-        pdf[k] = (float)p;
+        pdf[k] = flushed((float)p); /* as the sampler writes it */
         if (f)
             f->r[k] = (float)value[0], f->g[k] = (float)value[1], f->b[k] = (float)value[2];
         invalid += !ok;
