@@ -614,7 +614,48 @@ static void test_huang_path_isa(hb_test_ctx *t)
     }
 }
 
+/* Traced paths estimate their pdf, and one estimate can be 0 at a sampled direction whose weight is
+ * > 0 (docs/sampling.md): such plans say so through hb_plan_pdf_is_estimate, exact ones do not and
+ * never return pdf 0 with a weight; the estimated share stays under 1e-3 at fast, roughness 0.3. */
+static void test_huang_path_zero_pdf(hb_test_ctx *t)
+{
+    enum { COUNT = 20000 };
+    for (int traced = 0; traced < 2; traced++) {
+        hb_material m;
+        hb_options o;
+        hb_material_default(&m);
+        hb_options_default(&o);
+        o.model = HB_MODEL_HUANG, o.tt_trt = HB_TT_TRT_MC, o.quality = HB_QUALITY_FAST, o.isa = t->isa;
+        o.lobes = traced ? HB_LOBES_DEFAULT : 1u << HB_LOBE_R;
+        m.roughness = 0.3;
+        hb_plan *plan;
+        CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "plan");
+        if (!plan)
+            return;
+        CHECK(t, hb_plan_pdf_is_estimate(plan) == traced, "hb_plan_pdf_is_estimate %d for %s", hb_plan_pdf_is_estimate(plan),
+              traced ? "traced paths" : "R alone");
+        hb_test_sample_batch(t, plan, COUNT, 0.5, 0.0, 1);
+        int weighted = 0;
+        for (int k = 0; k < COUNT; k++)
+            weighted += hb_samples.pdf[k] == 0.0f && (hb_samples.w[0][k] > 0.0f || hb_samples.w[1][k] > 0.0f ||
+                                                      hb_samples.w[2][k] > 0.0f);
+        CHECK(t, traced ? weighted <= COUNT / 1000 : weighted == 0, "%s: %d of %d samples with pdf 0 and weight > 0",
+              traced ? "traced paths" : "R alone", weighted, COUNT);
+        hb_test_note(t, "%s: %d of %d samples with pdf 0 and weight > 0", traced ? "traced paths" : "R", weighted, COUNT);
+        hb_plan_destroy(plan);
+    }
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    hb_plan *plan;
+    CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK && hb_plan_pdf_is_estimate(plan) == 0 &&
+                 hb_plan_pdf_is_estimate(NULL) == 0, "dFH11's pdf is exact");
+    hb_plan_destroy(plan);
+}
+
 const hb_test hb_tests_sample_huang[] = {
+    { "huang_path_zero_pdf", test_huang_path_zero_pdf, 1 },
     { "huang_sample_chi_square", test_huang_sample_chi_square, 0 },
     { "huang_sample_albedo", test_huang_sample_albedo, 0 },
     { "huang_sample_reference", test_huang_sample_reference, 1 },

@@ -37,6 +37,7 @@ typedef struct hb_model_ops {
     void (*eval_angles)(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid);
     void (*eval_vectors)(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid);
     int (*sample_dimensions)(const hb_plan *plan); /* 0: the plan cannot sample */
+    int (*pdf_is_estimate)(const hb_plan *plan); /* 1 where the pdf is a Monte-Carlo estimate; NULL: never */
     void (*sample)(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid);
     void (*pdf)(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *pdf, size_t *invalid);
     /* f as eval_angles or eval_vectors gives it and the pdf, in one pass where the model's kernels

@@ -26,6 +26,12 @@ static int sample_dimensions(const hb_plan *plan)
     return plan->kernels ? HB_HUANG_PATH_DIMENSIONS : 0;
 }
 
+/* The traced paths' pdf is eq. 33 estimated (sample_paths.h); R alone has its exact pdf. */
+static int pdf_is_estimate(const hb_plan *plan)
+{
+    return sample_dimensions(plan) == HB_HUANG_PATH_DIMENSIONS;
+}
+
 static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
     ((const hb_huang_kernels *)hb_kernels_for(plan, n))->sample(&plan->huang, n, b, invalid);
@@ -142,6 +148,7 @@ const hb_model_ops hb_huang_model = {
     .eval_angles = eval_angles,
     .eval_vectors = eval_vectors,
     .sample_dimensions = sample_dimensions,
+    .pdf_is_estimate = pdf_is_estimate,
     .sample = sample,
     .pdf = pdf,
     .eval_pdf = eval_pdf,
