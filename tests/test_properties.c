@@ -32,6 +32,7 @@ typedef struct property_model {
 
 static const property_model models[] = {
     { "deon", HB_MODEL_DEON, HB_LOBES_DEFAULT, 0, 0, 0 },
+    { "chiang", HB_MODEL_CHIANG, HB_LOBES_DEFAULT, 0, 0, 0 },
     { "marschner", HB_MODEL_MARSCHNER, HB_LOBES_DEFAULT, 0, 1, 0 },
     { "huang R", HB_MODEL_HUANG, 1u << HB_LOBE_R, 0, 1, 1 },
     { "huang R+TT+TRT", HB_MODEL_HUANG, HB_LOBES_DEFAULT, 1, 1, 1 },
@@ -44,15 +45,17 @@ static void eval(const hb_plan *plan, const batch *b, float f[3][N])
 
 /* A random valid material for the model: eta 1.0001..2.5, absorption 0..5, roughness over the
  * whole valid range (log-uniform), tilt, for MJC03 eccentricity and caustic parameters, for HHH22
- * either NDF, roughness 0.01..1 and eccentricity. dFH11 is reciprocal only without tilt (sec. 6). */
+ * either NDF, roughness 0.01..1 and eccentricity; CBTB16's roughnesses on its [0, 1] scale. dFH11
+ * and CBTB16 are reciprocal only without tilt (dFH11 sec. 6). */
 static void random_material(hb_test_ctx *t, hb_model model, int untilted, hb_material *m)
 {
     hb_material_default(m);
     m->eta = 1.0001 + 1.5 * hb_test_uniform(t);
     for (int c = 0; c < 3; c++)
         m->sigma_a[c] = hb_test_uniform(t) < 0.3 ? 0.0 : 5.0 * pow(hb_test_uniform(t), 3);
-    m->beta_m = exp(hb_test_range(t, log(0.02), log(1.5)));
-    m->beta_n = exp(hb_test_range(t, log(0.05), log(2.0)));
+    int unit_scale = model == HB_MODEL_CHIANG; /* CBTB16's beta_m and beta_n are in [0, 1] */
+    m->beta_m = exp(hb_test_range(t, log(0.02), log(unit_scale ? 1.0 : 1.5)));
+    m->beta_n = exp(hb_test_range(t, log(0.05), log(unit_scale ? 1.0 : 2.0)));
     m->alpha = untilted ? 0.0 : hb_test_range(t, -0.1, 0.1);
     if (model == HB_MODEL_MARSCHNER) {
         m->eccentricity = hb_test_uniform(t) < 0.5 ? 0.0 : hb_test_range(t, 0.0, 0.9);
