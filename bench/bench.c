@@ -147,6 +147,7 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int
     if (op_is(op, OP_SAMPLE) && !traced) { /* the weight's error: f_ref / pdf at the sampled directions */
         hb_options ro = *o;
         ro.quality = HB_QUALITY_REFERENCE;
+        ro.pole_floor = HB_POLE_FLOOR_BOUNDED; /* HHH22: the kernels' pole choice, so the error is the float path's */
         hb_plan *reference;
         hb_plan_create(m, &ro, &reference, NULL);
         hb_rgb_soa f_ref = { ref[0], ref[1], ref[2] };
@@ -493,6 +494,7 @@ static void reference_of(const hb_material *m, const config *c)
     hb_options o;
     options_of(c, &o);
     o.quality = HB_QUALITY_REFERENCE;
+    o.pole_floor = HB_POLE_FLOOR_BOUNDED; /* HHH22: the kernels' pole choice, so the error is the float path's */
     o.azimuthal = HB_AZIMUTHAL_QUADRATURE;
     o.r_integration = HB_R_INTEGRATION_AUTO;
     o.r_step = 0.0;

@@ -184,6 +184,15 @@ typedef enum hb_shadowing {
                            keep G at their interfaces, where G = 1 makes their integrals diverge */
 } hb_shadowing;
 
+/* HHH22 at the poles: f's 1 / cos(theta_o) (eqs. 10, 12, 28) grows without bound as w_o turns toward
+ * the fibre axis where the scales or a rough surface without G still collect light (docs/huang.md,
+ * "At the poles"). The bound keeps cos(theta_o) above half the width those show at the pole. */
+typedef enum hb_pole_floor {
+    HB_POLE_FLOOR_AUTO,    /* bounded below HB_QUALITY_REFERENCE, the paper's at HB_QUALITY_REFERENCE */
+    HB_POLE_FLOOR_BOUNDED, /* bounded at every quality, the reference included */
+    HB_POLE_FLOOR_PAPER    /* the paper's 1 / cos(theta_o) at every quality, floored at 1e-8 (the pole itself) */
+} hb_pole_floor;
+
 /* How HHH22's R lobe integrates over the azimuth phi_m of the macro/mesonormal (eq. 12). */
 typedef enum hb_r_integration {
     HB_R_INTEGRATION_AUTO,     /* analytic where it is exact (GGX, no shadowing, circular), else numeric */
@@ -293,6 +302,7 @@ typedef struct hb_options {
     void *progress_context;
     hb_parallel_fn parallel;
     void *parallel_context;
+    hb_pole_floor pole_floor; /* HHH22, default HB_POLE_FLOOR_AUTO */
 } hb_options;
 
 #define HB_MAX_TT_PANELS 2048

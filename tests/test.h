@@ -101,6 +101,7 @@ extern const hb_test hb_tests_deon[];
 extern const hb_test hb_tests_marschner[];
 extern const hb_test hb_tests_marschner_full[];
 extern const hb_test hb_tests_huang[];
+extern const hb_test hb_tests_huang_paper[];
 extern const hb_test hb_tests_properties[];
 extern const hb_test hb_tests_api[];
 extern const hb_test hb_tests_cli[];

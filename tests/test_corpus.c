@@ -114,6 +114,7 @@ static hb_plan *row_plan(const corpus_row *r, const corpus_term *term, unsigned 
         o.shadowing = term->shadowing;
         o.r_integration = term->analytic ? HB_R_INTEGRATION_ANALYTIC : HB_R_INTEGRATION_AUTO;
         o.tt_trt = HB_TT_TRT_MC; /* the estimator's hard cases (the table's: test_huang_table.c) */
+        o.pole_floor = HB_POLE_FLOOR_BOUNDED; /* the kernels' pole choice at the reference too */
     }
     if (r->eccentricity > 0.0 && circular_only(term))
         return NULL;

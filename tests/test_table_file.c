@@ -272,6 +272,40 @@ static void test_refusals(hb_test_ctx *t)
     hb_plan_destroy(plan);
 }
 
+/* HHH22's pole bound: the default's file names no pole_floor (files of releases without the option
+ * load), a pole_floor = paper table is its own and loads only into such a plan, bounded and auto's
+ * files are one. */
+static void test_pole_floor(hb_test_ctx *t)
+{
+    static unsigned char bounded[FILE_MAX], paper[FILE_MAX];
+    hb_material m;
+    hb_options o, po;
+    table_material(1, &m, &o, t->isa);
+    po = o, po.pole_floor = HB_POLE_FLOOR_PAPER;
+    hb_plan *plan;
+    hb_error error;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &error) == HB_OK, "%s", error.message);
+    size_t bounded_size = plan ? save(t, plan, bounded) : 0;
+    hb_plan_destroy(plan);
+    CHECK(t, hb_plan_create(&m, &po, &plan, &error) == HB_OK, "%s", error.message);
+    size_t paper_size = plan ? save(t, plan, paper) : 0;
+    hb_plan_destroy(plan);
+    if (!bounded_size || !paper_size)
+        return;
+    CHECK(t, !find_bytes(bounded, bounded_size, "pole_floor", 11), "the default's file names pole_floor");
+    CHECK(t, paper_size == bounded_size + 32, "the paper's file: %zu bytes, the default's %zu", paper_size, bounded_size);
+    expect_refusal(t, &m, &o, paper, paper_size, HB_ERR_FILE, "baked for pole_floor = 1, this plan's is 0",
+                   "a paper table into a bounded plan");
+    expect_refusal(t, &m, &po, bounded, bounded_size, HB_ERR_FILE, "no field 'pole_floor' (baked at 0)",
+                   "a bounded table into a paper plan");
+    hb_options bo = o;
+    bo.pole_floor = HB_POLE_FLOOR_BOUNDED;
+    CHECK(t, load(&m, &bo, bounded, bounded_size, &plan, &error) == HB_OK, "auto's table, bounded plan: %s", error.message);
+    hb_plan_destroy(plan);
+    CHECK(t, load(&m, &po, paper, paper_size, &plan, &error) == HB_OK, "the paper's own: %s", error.message);
+    hb_plan_destroy(plan);
+}
+
 /* The checksum is XXH64: these values are xxhsum -H64's (Debian's xxhash), an independent implementation. */
 static void test_checksum(hb_test_ctx *t)
 {
@@ -292,5 +326,6 @@ const hb_test hb_tests_table_file[] = {
     { "table_file_checksum", test_checksum, 0 },
     { "table_file_round_trip", test_round_trip, 1 },
     { "table_file_refusals", test_refusals, 0 },
+    { "table_file_pole_floor", test_pole_floor, 0 },
     { NULL, NULL, 0 },
 };

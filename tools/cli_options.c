@@ -25,6 +25,8 @@ const char cli_model_options_help[] =
     "  --r-fresnel offset|half-angle  dFH11 R lobe Fresnel: eq. 14 per offset (default, exact energy), or eq. 12 (paper)\n"
     "  --no-shadowing                 huang: G = 1 in R (default: separable Smith G1(w_i) G1(w_o));\n"
     "                                 TT and TRT keep G, without which they diverge\n"
+    "  --pole-floor auto|bounded|paper  huang: f's 1 / cos(theta_o) bounded near the poles (auto: below\n"
+    "                                 reference quality), or the paper's everywhere (docs/huang.md)\n"
     "  --r-integration auto|analytic|numeric  huang R lobe: App. A closed form (GGX, no G, circular) or Simpson\n"
     "  --r-panels N                   huang: Simpson panels in the peak-following variable (default: from quality)\n"
     "  --r-step X                     huang: the paper's rule instead, steps of X * roughness in phi_m (HHH22: 0.7)\n"
@@ -266,10 +268,11 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
                                               "--ndf", "--sigma-a", "--pmax", "--quadrature", "--absorption",
                                               "--r-fresnel", "--r-integration", "--r-panels", "--tt-trt",
                                               "--tt-panels", "--seed", "--calibration", "--azimuthal", "--colour",
-                                              "--melanin-colour", "--table", "--threads", NULL };
+                                              "--melanin-colour", "--table", "--threads", "--pole-floor", NULL };
     static const char *const per_lobe[] = { "--lobe-beta-m", "--lobe-beta-n", "--lobe-alpha", NULL };
     static const char *const absorptions[] = { "corrected", "paper", NULL };
     static const char *const r_fresnels[] = { "offset", "half-angle", NULL };
+    static const char *const pole_floors[] = { "auto", "bounded", "paper", NULL };
     static const char *const r_integrations[] = { "auto", "analytic", "numeric", NULL };
     static const char *const tt_trts[] = { "mc", "reference", "table", "auto", NULL };
     static const char *const azimuthals[] = { "quadrature", "table", "colour-table", NULL };
@@ -367,6 +370,8 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
         if ((k = pick(value, absorptions)) >= 0) o->absorption = (hb_absorption)k; else expected = "corrected or paper";
     } else if (strcmp(name, "--r-fresnel") == 0) {
         if ((k = pick(value, r_fresnels)) >= 0) o->r_fresnel = (hb_r_fresnel)k; else expected = "offset or half-angle";
+    } else if (strcmp(name, "--pole-floor") == 0) {
+        if ((k = pick(value, pole_floors)) >= 0) o->pole_floor = (hb_pole_floor)k; else expected = "auto, bounded or paper";
     } else if (strcmp(name, "--r-integration") == 0) {
         if ((k = pick(value, r_integrations)) >= 0) o->r_integration = (hb_r_integration)k;
         else expected = "auto, analytic or numeric";

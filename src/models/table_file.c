@@ -22,9 +22,12 @@
  * pole's width factor (at most 1e8) and sum a few: (1e12)^2 1e8 stays finite in float. */
 #define HB_TABLE_VALUE_LIMIT 1e12f
 
+/* An optional field is written only where its value is not 0, and a file without it was baked at 0:
+ * an option added in a later release whose default keeps the tables as they were. */
 typedef struct field {
     char name[NAME_BYTES];
     double value;
+    int optional;
 } field;
 
 static int add(field *f, int k, const char *name, double value)
@@ -32,8 +35,18 @@ static int add(field *f, int k, const char *name, double value)
     memset(f[k].name, 0, sizeof f[k].name); /* the padding is written too */
     snprintf(f[k].name, sizeof f[k].name, "%s", name);
     f[k].value = value;
+    f[k].optional = 0;
     return k + 1;
 }
+
+static int add_optional(field *f, int k, const char *name, double value)
+{
+    k = add(f, k, name, value);
+    f[k - 1].optional = 1;
+    return k;
+}
+
+static int written(const field *f) { return !f->optional || f->value != 0.0; }
 
 static int add_array(field *f, int k, const char *name, const double *v, int n)
 {
@@ -69,8 +82,9 @@ static int plan_fields(const hb_plan *plan, field *f)
     k = add(f, k, "quadrature_order", o->quadrature_order);
     k = add(f, k, "detector_tolerance", o->detector_tolerance), k = add(f, k, "r_fresnel", o->r_fresnel);
     k = add(f, k, "shadowing", o->shadowing), k = add(f, k, "tt_trt", o->tt_trt), k = add(f, k, "tt_panels", o->tt_panels);
-    k = add(f, k, "azimuthal", o->azimuthal);
-    return add(f, k, "table_tolerance", o->table_tolerance);
+    k = add(f, k, "azimuthal", o->azimuthal), k = add(f, k, "table_tolerance", o->table_tolerance);
+    /* HHH22's tables are bounded at the poles below reference quality but for pole_floor = paper */
+    return add_optional(f, k, "pole_floor", o->pole_floor == HB_POLE_FLOOR_PAPER);
 }
 
 /* A writer that counts when out is NULL. */
@@ -111,7 +125,10 @@ static void put_text(writer *w, const char *text, size_t n)
 size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *v, int channels, unsigned char *out)
 {
     field fields[MAX_FIELDS];
-    int n_fields = plan_fields(plan, fields);
+    int n_own = plan_fields(plan, fields), n_fields = 0;
+    for (int k = 0; k < n_own; k++)
+        if (written(&fields[k]))
+            fields[n_fields++] = fields[k];
     writer w = { out, 0 };
     put(&w, "HBTABLE" HB_TABLE_FILE_FORMAT_DIGIT, 8);
     size_t length = 8 + 8 + 2 * TEXT_BYTES + 20 + (size_t)v->axes * (4 + 16 + AXIS_BYTES) + (size_t)v->slots * 4 + 8 + 4 +
@@ -226,8 +243,11 @@ static hb_status read_fields(reader *r, const hb_plan *plan, hb_error *error)
                                 "table file: baked for %s = %.17g, this plan's is %.17g: bake it for this material and "
                                 "these options", name, value, own[j].value);
     }
-    if (n_file != n_own)
-        return hb_plan_fail(error, HB_ERR_FILE, "table file: it names %d fields, this library %d", n_file, n_own);
+    for (int j = 0; j < n_own; j++)
+        if (!seen[j] && written(&own[j]))
+            return hb_plan_fail(error, HB_ERR_FILE,
+                                "table file: it has no field '%s'%s, this plan's is %.17g: bake it for this material "
+                                "and these options", own[j].name, own[j].optional ? " (baked at 0)" : "", own[j].value);
     return HB_OK;
 }
 

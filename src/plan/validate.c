@@ -104,6 +104,8 @@ static hb_status validate_options(const hb_options *o, hb_error *error)
         return hb_plan_fail(error, HB_ERR_PARAM, "absorption = %d is not an absorption variant", (int)o->absorption);
     if (o->r_fresnel != HB_R_FRESNEL_HALF_ANGLE && o->r_fresnel != HB_R_FRESNEL_OFFSET)
         return hb_plan_fail(error, HB_ERR_PARAM, "r_fresnel = %d is not a variant", (int)o->r_fresnel);
+    if (o->pole_floor != HB_POLE_FLOOR_AUTO && o->pole_floor != HB_POLE_FLOOR_BOUNDED && o->pole_floor != HB_POLE_FLOOR_PAPER)
+        return hb_plan_fail(error, HB_ERR_PARAM, "pole_floor = %d is not a variant", (int)o->pole_floor);
     if (!(o->tolerance == 0.0 || in_range(o->tolerance, 1e-6, 0.5)))
         return hb_plan_fail(error, HB_ERR_PARAM, "tolerance = %g must be 0 (none) or in [1e-6, 0.5]", o->tolerance);
     if (!(o->budget_ns == 0.0 || in_range(o->budget_ns, 1e-3, 1e9)))

@@ -59,9 +59,14 @@ double hb_ref_huang_lambda(hb_ndf ndf, double r, double cos_w)
     return 0.5 * (sqrt(1.0 + r * r * tan_w * tan_w) - 1.0);
 }
 
+/* Eq. 10's 1 / (2 cos(theta_o)) as f carries it, bounded at the poles where options.pole_floor asks
+ * (docs/huang.md, "At the poles"): the paper's form at the reference unless the caller asks. */
 double hb_ref_huang_width(const hb_plan *plan, double theta_i, double theta_o)
 {
     const hb_material *m = &plan->material;
+    if (plan->options.pole_floor != HB_POLE_FLOOR_BOUNDED &&
+        (plan->options.pole_floor == HB_POLE_FLOOR_PAPER || plan->options.quality == HB_QUALITY_REFERENCE))
+        return fmin(1.0, fmax(cos(theta_i), 0.0) / 1e-8) / fmax(cos(theta_o), 1e-8);
     double scales = M_PI * fabs(sin(plan->huang_tilt)) / 2.0;
     double grazing_width = m->ndf == HB_NDF_BECKMANN ? m->roughness / (2.0 * sqrt(M_PI)) : m->roughness / 2.0;
     double rough = plan->options.shadowing == HB_SHADOWING_SMITH ? 0.0 : M_PI * grazing_width / 2.0;

@@ -80,6 +80,11 @@ static void describe(hb_text *t, const hb_plan *plan)
         else
             hb_say(t, "TT + TRT: nested quadrature in double\n");
     }
+    if (h->cos_floor > 1e-8f)
+        hb_say(t, "poles: cos(theta) in eq. 10's width kept above %.3g, f bounded from |theta| = %.4g on (pole_floor; "
+               "the paper's f is pole_floor = paper)\n", h->cos_floor, acos(h->cos_floor));
+    else
+        hb_say(t, "poles: the paper's 1 / cos(theta_o) up to the pole itself (pole_floor)\n");
 }
 
 /* HHH22's lobes are about a roughness wide in theta and (TT, the forward focus) in phi. Its

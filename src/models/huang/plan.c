@@ -67,9 +67,13 @@ int hb_huang_tt_panels(const hb_options *o, hb_quality quality, double roughness
  * and, without G, the rough surface's pi r / 2 (GGX; r / (2 sqrt(pi)) per unit for Beckmann: the
  * grazing limit of (1 + Lambda) cos). cos(theta_o) is kept above half of the larger, so the energy
  * near the poles stays bounded, and so is cos(theta_i), so S stays reciprocal; elsewhere f is the
- * paper's. */
-static double huang_cos_floor(double tilt, double roughness, int beckmann, int shadowing)
+ * paper's. Unbounded (the paper's form, options.pole_floor), only the pole itself is floored. */
+static double huang_cos_floor(const hb_options *o, double tilt, double roughness, int beckmann, int shadowing)
 {
+    int bounded = o->pole_floor == HB_POLE_FLOOR_BOUNDED ||
+                  (o->pole_floor == HB_POLE_FLOOR_AUTO && o->quality != HB_QUALITY_REFERENCE);
+    if (!bounded)
+        return 1e-8;
     double scales = 0.5 * M_PI * fabs(sin(tilt));
     double rough = shadowing ? 0.0 : 0.25 * M_PI * roughness * (beckmann ? 1.0 / sqrt(M_PI) : 1.0);
     return fmax(1e-8, fmax(scales, rough));
@@ -108,7 +112,7 @@ static void derive_constants(hb_plan *plan)
     h->one_minus_c = (float)(r * r / (1.0 + c));
     h->cos_tilt = (float)cos(plan->huang_tilt);
     h->sin_tilt = (float)sin(plan->huang_tilt);
-    double cos_floor = huang_cos_floor(plan->huang_tilt, r, h->beckmann, h->shadowing);
+    double cos_floor = huang_cos_floor(o, plan->huang_tilt, r, h->beckmann, h->shadowing);
     h->cos_floor = (float)cos_floor;
     h->inv_cos_floor = (float)(1.0 / cos_floor);
     h->ior = hb_dielectric_of(m->eta);
