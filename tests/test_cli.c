@@ -645,7 +645,57 @@ static void test_absorption_columns(hb_test_ctx *t)
     CHECK(t, r.status == 2 && strstr(r.err, "near field"), "marschner refuses h: %d %s", r.status, r.err);
 }
 
+/* Every command with every model: each runs, or refuses in a message naming the model and why. */
+static void test_model_by_command(hb_test_ctx *t)
+{
+    static const char *const models[] = { "deon", "marschner", "huang", "chiang" };
+    static const char *const lobe_columns[] = { "theta_o,R,TT,TRT,TRRT,residual,total", "theta_o,R,TT,TRT,total",
+                                                "theta_o,R,TT,TRT,total", "theta_o,R,TT,TRT,residual,total" };
+    static const int has_tables[] = { 1, 0, 1, 0 };
+    static const char *const rows[] = { "0.3,0,-0.2,1\n", "0.3,0,-0.2,1\n", "0.3,0,-0.2,1\n", "0.3,0,-0.2,1,0.2\n" };
+    char dir_image[512], table[512], args[1400];
+    if (hb_test_temp_file(dir_image, sizeof dir_image, ".pfm") != 0 || hb_test_temp_file(table, sizeof table, ".hbt") != 0) {
+        CHECK(t, 0, "temporary files");
+        return;
+    }
+    static hb_tool_run r;
+    for (int m = 0; m < 4; m++) {
+        const char *model = models[m];
+        static const char *const commands[] = {
+            "eval", "pdf", "sample --theta-o 0.5 --count 4", "plan", "furnace --theta-o -1,0.5",
+            "furnace --by-lobe --theta-o -1,0.5",
+        };
+        for (size_t c = 0; c < sizeof commands / sizeof commands[0]; c++) {
+            snprintf(args, sizeof args, "%s --model %s --quality fast", commands[c], model);
+            int reads = c < 2; /* eval and pdf read rows; CBTB16's with their offset h */
+            if (!hb_test_run_tool(t, args, reads ? rows[m] : NULL, reads ? strlen(rows[m]) : 0, &r))
+                return;
+            CHECK(t, r.status == 0 && r.out[0] && !r.err[0], "%s: exit %d, stdout '%.80s', stderr '%s'", args, r.status,
+                  r.out, r.err);
+            if (strstr(commands[c], "--by-lobe"))
+                CHECK(t, strncmp(r.out, lobe_columns[m], strlen(lobe_columns[m])) == 0, "%s: header '%.80s', expected '%s'",
+                      args, r.out, lobe_columns[m]);
+        }
+        snprintf(args, sizeof args, "dump --model %s --quality fast --theta-i 0.3 --phi-i 0 --width 16 --height 8 -o \"%s\"",
+                 model, dir_image);
+        if (!hb_test_run_tool(t, args, NULL, 0, &r))
+            return;
+        CHECK(t, r.status == 0, "%s: exit %d, stderr '%s'", args, r.status, r.err);
+        snprintf(args, sizeof args, "bake --model %s --quality fast -o \"%s\"", model, table);
+        if (!hb_test_run_tool(t, args, NULL, 0, &r))
+            return;
+        if (has_tables[m])
+            CHECK(t, r.status == 0, "%s: exit %d, stderr '%s'", args, r.status, r.err);
+        else
+            CHECK(t, r.status != 0 && strstr(r.err, model) && strstr(r.err, "no table"), "%s: exit %d, stderr '%s'", args,
+                  r.status, r.err);
+    }
+    remove(dir_image);
+    remove(table);
+}
+
 const hb_test hb_tests_cli[] = {
+    { "cli_model_by_command", test_model_by_command, 0 },
     { "cli_absorption_columns", test_absorption_columns, 0 },
     { "cli_colour_options", test_colour_options, 0 },
     { "cli_deon_commands", test_deon_commands, 0 },

@@ -13,7 +13,8 @@ static void furnace_usage(FILE *to)
     fprintf(to, "usage: hairbsdf furnace [options] [--theta-o A,B,...] [--by-lobe | --orders [--paths N] | --fig16]\n"
                 "                        [--svg FILE]\n"
                 "Prints theta_o,E_r,E_g,E_b: the integral of f over all w_i. With --by-lobe, the red\n"
-                "channel's energy per lobe (R..pmax, residual), the total, and the share of p >= 3.\n"
+                "channel's energy per lobe the model has (R..pmax, residual), the total, and the share\n"
+                "of p >= 3.\n"
                 "--orders (huang, circular): the energy leaving by order, R, TT, TRT and all beyond, by a\n"
                 "random walk of N paths (default 20000) per theta (channel mean, standard error of the\n"
                 "beyond column), and the share beyond TRT, which the model drops (HHH22 Fig. 16).\n"
@@ -41,6 +42,30 @@ static int energy(const cli_model_args *args, unsigned lobes, double theta_o, do
     else if (st != HB_OK)
         fprintf(stderr, "hairbsdf furnace: %s\n", hb_status_string(st));
     return st == HB_OK;
+}
+
+/* The lobes of --by-lobe: orders 0..pmax and the residual, those the model has (a plan of the lobe
+ * alone is not refused as unsupported). 0 and a message when a plan fails for another reason. */
+static int model_lobes(const cli_model_args *args, unsigned *lobes)
+{
+    *lobes = 0;
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        if (p > args->options.pmax && p != HB_LOBE_RESIDUAL)
+            continue;
+        hb_options o = args->options;
+        o.lobes = 1u << p;
+        hb_plan *plan;
+        hb_error err;
+        hb_status st = cli_plan_create(args, &o, &plan, &err);
+        hb_plan_destroy(plan);
+        if (st == HB_OK)
+            *lobes |= 1u << p;
+        else if (st != HB_ERR_UNSUPPORTED) {
+            fprintf(stderr, "hairbsdf furnace: %s\n", err.message);
+            return 0;
+        }
+    }
+    return 1;
 }
 
 /* --orders: one row per theta for the material (named `fibre`). */
@@ -110,13 +135,16 @@ static int furnace_rows(FILE *out, const furnace_request *q)
         }
         return 0;
     }
-    int pmax = args.options.pmax;
+    unsigned lobes = 0;
     if (by_lobe) {
+        if (!model_lobes(&args, &lobes))
+            return 2;
         fprintf(out, "theta_o");
-        static const char *const names[] = { "R", "TT", "TRT", "TRRT", "p4", "p5", "p6", "p7" };
-        for (int p = 0; p <= pmax; p++)
-            fprintf(out, ",%s", names[p]);
-        fprintf(out, ",residual,total,share_p3_and_above\n");
+        static const char *const names[] = { "R", "TT", "TRT", "TRRT", "p4", "p5", "p6", "p7", "residual" };
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            if (lobes >> p & 1u)
+                fprintf(out, ",%s", names[p]);
+        fprintf(out, ",total,share_p3_and_above\n");
     } else {
         fprintf(out, "theta_o,E_r,E_g,E_b\n");
     }
@@ -131,7 +159,7 @@ static int furnace_rows(FILE *out, const furnace_request *q)
         double total = 0.0, high = 0.0;
         fprintf(out, "%.4f", thetas[k]);
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-            if (p > pmax && p != HB_LOBE_RESIDUAL)
+            if (!(lobes >> p & 1u))
                 continue;
             if (!energy(&args, 1u << p, thetas[k], e))
                 return 2;
