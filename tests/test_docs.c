@@ -1,5 +1,6 @@
 /* The documents: every relative link of README.md, CONTRIBUTING.md and each page of docs/ names a file of the
- * repository, and none of them points outside it or cites a file the repository does not hold. */
+ * repository, and none of them points outside it or cites a file the repository does not hold; every
+ * timing they print comes from a block `make bench` wrote. */
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,26 +41,70 @@ static int check_links(hb_test_ctx *t, const char *dir, const char *name)
     return links;
 }
 
-static void test_links(hb_test_ctx *t)
+/* The number of "<digit> ns" timings of the file outside the blocks `make bench` writes (between
+ * "<!-- make bench: ... begin -->" and "<!-- make bench: ... end -->"), each reported. */
+static int check_timings(hb_test_ctx *t, const char *dir, const char *name)
 {
-    int links = check_links(t, "", "README.md") + check_links(t, "", "CONTRIBUTING.md");
+    char path[512];
+    snprintf(path, sizeof path, "%s%s", dir, name);
+    char *text = hb_test_read_file(path, NULL);
+    CHECK(t, text != NULL, "cannot read %s", path);
+    if (!text)
+        return 0;
+    int generated = 0, line = 1, found = 0;
+    for (const char *p = text; *p; p++) {
+        if (*p == '\n')
+            line++;
+        if (!strncmp(p, "<!-- make bench:", 16)) {
+            const char *close = strstr(p, "-->");
+            int begins = close && close - p > 8 && !strncmp(close - 6, "begin ", 6);
+            generated = begins;
+        }
+        int ns = p[0] >= '0' && p[0] <= '9' && !strncmp(p + 1, " ns", 3) &&
+                 !(p[4] == '_' || (p[4] >= '0' && p[4] <= '9') || (p[4] >= 'A' && p[4] <= 'Z') || (p[4] >= 'a' && p[4] <= 'z'));
+        if (ns && !generated) {
+            CHECK(t, 0, "%s:%d: a timing typed by hand ('%.8s'): point at the bench's generated tables", path, line, p);
+            found++;
+        }
+    }
+    free(text);
+    return found;
+}
+
+/* check(t, dir, name) for README.md, CONTRIBUTING.md and every page of docs/; the sum of its results. */
+static int for_each_page(hb_test_ctx *t, int (*check)(hb_test_ctx *, const char *, const char *), int *pages)
+{
+    int sum = check(t, "", "README.md") + check(t, "", "CONTRIBUTING.md");
     DIR *docs = opendir("docs");
     CHECK(t, docs != NULL, "no docs/ folder");
-    int pages = 0;
+    *pages = 0;
     for (struct dirent *e; docs && (e = readdir(docs));) {
         size_t n = strlen(e->d_name);
         if (n > 3 && !strcmp(e->d_name + n - 3, ".md")) {
-            links += check_links(t, "docs/", e->d_name);
-            pages++;
+            sum += check(t, "docs/", e->d_name);
+            (*pages)++;
         }
     }
     if (docs)
         closedir(docs);
+    return sum;
+}
+
+static void test_links(hb_test_ctx *t)
+{
+    int pages, links = for_each_page(t, check_links, &pages);
     CHECK(t, pages >= 8, "docs/ holds %d pages", pages);
     hb_test_note(t, "%d relative links in README.md, CONTRIBUTING.md and %d docs pages", links, pages);
 }
 
+static void test_timings(hb_test_ctx *t)
+{
+    int pages, found = for_each_page(t, check_timings, &pages);
+    hb_test_note(t, "%d hand-typed timings in README.md, CONTRIBUTING.md and %d docs pages", found, pages);
+}
+
 const hb_test hb_tests_docs[] = {
     { "docs_links_resolve", test_links, 0 },
+    { "docs_timings_generated", test_timings, 0 },
     { NULL, NULL, 0 },
 };
