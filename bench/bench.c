@@ -632,6 +632,57 @@ static void write_report(const char *path, const row *rows, int nrows, const cha
     region_write(&r, path, HB_REPORT_BEGIN, HB_REPORT_END);
 }
 
+/* The row of configuration key MODEL/TERM/VARIANT on isa, or NULL. */
+static const row *find_row(const row *rows, int nrows, const char *key, hb_isa isa)
+{
+    for (int k = 0; k < nrows; k++) {
+        char label[64];
+        snprintf(label, sizeof label, "%s/%s/%s", rows[k].model, rows[k].term, rows[k].variant);
+        if (rows[k].isa == isa && strcmp(label, key) == 0)
+            return &rows[k];
+    }
+    return NULL;
+}
+
+/* docs/benchmarks.md's effects region: what turning one effect off saves, each pair of rows of
+ * the run on AVX2 (the budgets' ISA). */
+static void write_effects(const char *path, const row *rows, int nrows)
+{
+    static const struct {
+        const char *what, *with, *without;
+    } effects[] = {
+        { "dFH11 balanced: TRT, TRRT and residual (dark hair: R + TT)", "deon/full/balanced", "deon/effects/R+TT" },
+        { "dFH11 balanced: the tilt (alpha = 0: one M_p for every lobe)", "deon/full/balanced", "deon/effects/untilted" },
+        { "dFH11 balanced: both (dark hair, untilted)", "deon/full/balanced", "deon/effects/R+TT-untilted" },
+        { "dFH11 balanced: everything but R (black hair)", "deon/full/balanced", "deon/effects/R" },
+        { "dFH11: N_p by quadrature vs from the table (balanced)", "deon/full/balanced", "deon/full/table-balanced" },
+        { "MJC03: TT and TRT (R alone)", "marschner/full/closed-form", "marschner/effects/R" },
+        { "MJC03: TRT (R + TT)", "marschner/full/closed-form", "marschner/effects/R+TT" },
+        { "MJC03: the elliptical fibre (e 0.5 vs circular)", "marschner/effects/elliptical", "marschner/full/closed-form" },
+        { "HHH22 R, balanced: Smith G (App. A closed form without it)", "huang/R/G-balanced", "huang/R/analytic" },
+        { "HHH22 R, balanced: the elliptical fibre (e 0.5)", "huang/effects/G-balanced-elliptical", "huang/R/G-balanced" },
+        { "HHH22 R, balanced: the tilt", "huang/R/G-balanced", "huang/effects/G-balanced-untilted" },
+        { "CBTB16 near field, balanced: TT, TRT and the residual (R alone)", "chiang/near/balanced", "chiang/effects/R" },
+    };
+    region r;
+    if (!region_open(&r))
+        return;
+    FILE *f = r.f;
+    fprintf(f, "| effect | ns/sample with it (avx2) | without it | saving |\n|---|---|---|---|\n");
+    for (size_t k = 0; k < sizeof effects / sizeof effects[0]; k++) {
+        const row *with = find_row(rows, nrows, effects[k].with, HB_ISA_AVX2);
+        const row *without = find_row(rows, nrows, effects[k].without, HB_ISA_AVX2);
+        if (!with || !without)
+            continue;
+        fprintf(f, "| %s |", effects[k].what);
+        put_ns(f, with->min_ns);
+        put_ns(f, without->min_ns);
+        fprintf(f, " %.0f%% |\n", 100.0 * (1.0 - without->min_ns / with->min_ns));
+    }
+    fprintf(f, "\n`make bench`, %s, %s, the same run as the table above.\n", r.date, r.cpu);
+    region_write(&r, path, HB_EFFECTS_BEGIN, HB_EFFECTS_END);
+}
+
 static int is_demo_row(const char *label);
 
 /* The README's summary region: the demo rows on the best ISA of the run, ns per sample and error. */
@@ -901,6 +952,8 @@ int main(int argc, char **argv)
         write_report(report, rows, nrows, scaling_text ? scaling_text : "", budget_text ? budget_text : "");
     if (summary && !partial)
         write_summary(summary, rows, nrows);
+    if (report && !partial)
+        write_effects(report, rows, nrows);
     free(scaling_text);
     free(budget_text);
     return over ? 1 : 0;

@@ -8,6 +8,8 @@
 #define HB_REPORT_END "<!-- make bench: end -->"
 #define HB_SUMMARY_BEGIN "<!-- make bench: summary begin -->"
 #define HB_SUMMARY_END "<!-- make bench: summary end -->"
+#define HB_EFFECTS_BEGIN "<!-- make bench: effects begin -->"
+#define HB_EFFECTS_END "<!-- make bench: effects end -->"
 
 /* Replaces what lies between the marker lines begin and end of the file at path (lines that are
  * exactly the markers; they stay) with text. Returns 0, or 1 with a message on stderr when the file
