@@ -116,6 +116,17 @@ static void test_lobes_dropped(hb_test_ctx *t)
     hb_plan_describe(plan, text, sizeof text);
     CHECK(t, strstr(text, "calibrated as full/balanced") || strstr(text, "no calibrated figures"),
           "a plain plan reports its calibrated figures:\n%s", text);
+    CHECK(t, !strstr(text, "does not meet"), "dFH11 balanced meets its target:\n%s", text);
+    hb_plan_destroy(plan);
+    /* HHH22's R lobe with G at balanced: Simpson's 32 panels reach about 3e-3, not 1e-3, and say so */
+    hb_material_default(&m);
+    o.model = HB_MODEL_HUANG, o.lobes = 1u << HB_LOBE_R, o.isa = HB_ISA_AVX2;
+    if (!hb_isa_available(HB_ISA_AVX2))
+        return;
+    CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "HHH22 R");
+    hb_plan_describe(plan, text, sizeof text);
+    CHECK(t, strstr(text, "calibrated as R/G-balanced") && strstr(text, "does not meet the balanced target of 1e-03"),
+          "a configuration above its level's target says so:\n%s", text);
     hb_plan_destroy(plan);
 }
 
