@@ -122,7 +122,7 @@ BENCH_BIN := $(B)/hairbsdf_bench$(EXE)
 REPLAYS := $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%$(EXE))
 FUZZ_TOOL_OBJS := $(B)/tools/csv.o $(B)/tools/cli_options.o $(B)/tools/cli_threads.o
 
-.PHONY: all test check tsan bench bench-instr calibration demo images fuzz fuzz-run install abi clean
+.PHONY: all test check tsan bench bench-instr bench-instr-check calibration demo images fuzz fuzz-run install abi clean
 all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LINK)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE)
 
 $(B)/%.o: %.c
@@ -216,6 +216,11 @@ calibration:
 # Instructions per sample under callgrind (repeatable, unlike time on a shared machine).
 bench-instr: $(BENCH_BIN)
 	bench/instr.sh $(BENCH_BIN)
+
+# The instruction budgets of bench/instr_budgets.txt (callgrind, AVX2): a cost regression fails on
+# any host, where the latency budgets of make bench depend on the host's state.
+bench-instr-check: $(BENCH_BIN)
+	bench/instr.sh $(BENCH_BIN) bench/instr_budgets.txt
 
 # The main job on the default material: which ISA runs, the README example, f for a few
 # directions (d'Eon 2011, full model, and its double reference beside it), the white furnace
