@@ -33,16 +33,14 @@ size_t hb_plan_describe(const hb_plan *plan, char *out, size_t size)
     } else {
         char configuration[32];
         double ns, err;
-        /* the error each quality level aims at, relative to the peak (README.md, docs/conventions.md) */
-        static const double targets[] = { 1e-2, 1e-3, 1e-4 };
         static const char *const levels[] = { "fast", "balanced", "high" };
         if (plan->kernels && hb_plan_expected(plan, configuration, sizeof configuration, &ns, &err)) {
             hb_say(&t, "calibrated as %s: error %.2g, %.4g ns per sample on %s (built-in calibration)\n", configuration, err,
                 ns, hb_isa_name(plan->isa));
             int q = (int)plan->options.quality;
-            if (q < 3 && err > targets[q])
+            if (q < HB_QUALITY_REFERENCE && err > hb_quality_target(plan->options.quality))
                 hb_say(&t, "this configuration does not meet the %s target of %.0e: its calibrated error is %.2g times it\n",
-                       levels[q], targets[q], err / targets[q]);
+                       levels[q], hb_quality_target(plan->options.quality), err / hb_quality_target(plan->options.quality));
         } else
             hb_say(&t, "no calibrated figures for this configuration (make bench measures it)\n");
     }

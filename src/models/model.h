@@ -12,6 +12,13 @@
 #include "plan.h"
 #include "text.h"
 
+/* The error a quality level below reference aims at, relative to the peak f (docs/conventions.md). */
+static inline double hb_quality_target(hb_quality q)
+{
+    static const double targets[] = { 1e-2, 1e-3, 1e-4 };
+    return targets[q];
+}
+
 /* A named configuration, as the bench names its rows and the calibration its entries. */
 typedef struct hb_preset {
     const char *name;

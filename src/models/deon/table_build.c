@@ -15,9 +15,7 @@
 
 double hb_deon_table_tolerance(const hb_plan *plan)
 {
-    static const double tolerance_of_quality[] = { 1e-2, 1e-3, 1e-4 };
-    return plan->options.table_tolerance > 0.0 ? plan->options.table_tolerance
-                                               : tolerance_of_quality[plan->options.quality];
+    return plan->options.table_tolerance > 0.0 ? plan->options.table_tolerance : hb_quality_target(plan->options.quality);
 }
 
 void hb_deon_slot_lobes(const hb_deon *d, hb_table_view *v)
