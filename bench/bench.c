@@ -210,7 +210,7 @@ static int check_budgets(const char *path, const row *rows, int nrows, FILE *ver
     }
     fclose(f);
     if (!checked)
-        fprintf(verdicts, "no budget row matched this machine's ISAs\n");
+        fprintf(verdicts, "no budget row matched the ISAs this CPU has\n");
     return over;
 }
 
