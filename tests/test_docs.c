@@ -10,14 +10,8 @@
 
 /* Each Markdown link "](target)" of the file: a target that is not a URL or an anchor must exist,
  * relative to the file's folder, and stay inside the repository. */
-static int check_links(hb_test_ctx *t, const char *dir, const char *name)
+static int check_links(hb_test_ctx *t, const char *dir, const char *path, const char *text)
 {
-    char path[512];
-    snprintf(path, sizeof path, "%s%s", dir, name);
-    char *text = hb_test_read_file(path, NULL);
-    CHECK(t, text != NULL, "cannot read %s", path);
-    if (!text)
-        return 0;
     int links = 0;
     for (const char *p = strstr(text, "]("); p; p = strstr(p + 2, "](")) {
         const char *start = p + 2, *end = strpbrk(start, ")# \n");
@@ -37,7 +31,6 @@ static int check_links(hb_test_ctx *t, const char *dir, const char *name)
      * repository (named here in two pieces, so that a search for them finds their users, not this check) */
     CHECK(t, strstr(text, "SPEC" ".md") == NULL && strstr(text, "shared" "/") == NULL,
           "%s cites a file outside the repository", path);
-    free(text);
     return links;
 }
 
@@ -54,14 +47,9 @@ static int is_timing(const char *p)
 
 /* The number of timings of the file outside the blocks `make bench` writes (between
  * "<!-- make bench: ... begin -->" and "<!-- make bench: ... end -->"), each reported. */
-static int check_timings(hb_test_ctx *t, const char *dir, const char *name)
+static int check_timings(hb_test_ctx *t, const char *dir, const char *path, const char *text)
 {
-    char path[512];
-    snprintf(path, sizeof path, "%s%s", dir, name);
-    char *text = hb_test_read_file(path, NULL);
-    CHECK(t, text != NULL, "cannot read %s", path);
-    if (!text)
-        return 0;
+    (void)dir;
     int generated = 0, line = 1, found = 0;
     for (const char *p = text; *p; p++) {
         if (*p == '\n')
@@ -76,21 +64,34 @@ static int check_timings(hb_test_ctx *t, const char *dir, const char *name)
             found++;
         }
     }
-    free(text);
     return found;
 }
 
-/* check(t, dir, name) for README.md, CONTRIBUTING.md and every page of docs/; the sum of its results. */
-static int for_each_page(hb_test_ctx *t, int (*check)(hb_test_ctx *, const char *, const char *), int *pages)
+typedef int (*page_check)(hb_test_ctx *t, const char *dir, const char *path, const char *text);
+
+/* check(t, dir, path, text) of the page dir/name; 0 when it cannot be read (the test fails). */
+static int check_page(hb_test_ctx *t, page_check check, const char *dir, const char *name)
 {
-    int sum = check(t, "", "README.md") + check(t, "", "CONTRIBUTING.md");
+    char path[512];
+    snprintf(path, sizeof path, "%s%s", dir, name);
+    char *text = hb_test_read_file(path, NULL);
+    CHECK(t, text != NULL, "cannot read %s", path);
+    int result = text ? check(t, dir, path, text) : 0;
+    free(text);
+    return result;
+}
+
+/* check for README.md, CONTRIBUTING.md and every page of docs/; the sum of its results. */
+static int for_each_page(hb_test_ctx *t, page_check check, int *pages)
+{
+    int sum = check_page(t, check, "", "README.md") + check_page(t, check, "", "CONTRIBUTING.md");
     DIR *docs = opendir("docs");
     CHECK(t, docs != NULL, "no docs/ folder");
     *pages = 0;
     for (struct dirent *e; docs && (e = readdir(docs));) {
         size_t n = strlen(e->d_name);
         if (n > 3 && !strcmp(e->d_name + n - 3, ".md")) {
-            sum += check(t, "docs/", e->d_name);
+            sum += check_page(t, check, "docs/", e->d_name);
             (*pages)++;
         }
     }
