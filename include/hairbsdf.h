@@ -160,7 +160,7 @@ typedef enum hb_term {
 
 /* The modified Bessel function I0 inside dFH11 eq. 7. */
 typedef enum hb_i0 {
-    HB_I0_ABRAMOWITZ, /* A&S 9.8.1 / 9.8.2 in log space: accurate for v from 1e-4 to 10 */
+    HB_I0_ABRAMOWITZ, /* A&S 9.8.1 / 9.8.2 in log space: accurate for v from 1e-6 to 10 */
     HB_I0_PAPER       /* the 10-term series of dFH11 eq. 15: too small for large arguments (small v) */
 } hb_i0;
 

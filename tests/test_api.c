@@ -52,7 +52,7 @@ static void test_validation(hb_test_ctx *t)
         { "sigma_a.g", offsetof(hb_material, sigma_a) + sizeof(double), INFINITY },
         { "eumelanin", offsetof(hb_material, eumelanin), -1.0 },
         { "pheomelanin", offsetof(hb_material, pheomelanin), NAN },
-        { "beta_m", offsetof(hb_material, beta_m), 0.005 },
+        { "beta_m", offsetof(hb_material, beta_m), 0.0009 },
         { "beta_m", offsetof(hb_material, beta_m), -0.1 },
         { "beta_m", offsetof(hb_material, beta_m), 4.0 },
         { "beta_m", offsetof(hb_material, beta_m), NAN },

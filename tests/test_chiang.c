@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "sampling.h"
+#include "models/chiang/chiang.h"
 #include "models/plan.h"
 #include "ref/reference.h"
 
@@ -23,6 +24,7 @@ static const chiang_material materials[] = {
     { "rough", 0.9, 0.9, -0.05, { 0.25, 0.25, 0.25 }, 1.6 },
     { "sharp", 0.05, 0.05, 0.035, { 0.02, 0.05, 0.1 }, 1.55 },
     { "eta1", 0.4, 0.2, 0.035, { 0.1, 0.1, 0.1 }, 1.0001 },
+    { "glossy", 0.01, 0.05, 0.035, { 0.02, 0.05, 0.1 }, 1.55 }, /* v_TT = 1.35e-5, pbrt-v4's smooth end */
 };
 
 static hb_plan *chiang_plan_lobes(hb_test_ctx *t, const chiang_material *cm, hb_quality quality, hb_isa isa,
@@ -122,7 +124,7 @@ static double i0e_trapezoid(double x)
     return sum / n;
 }
 
-/* The reference's M_p against dFH11 eq. 7 with that exact Bessel function, for v from 1e-4 to 10
+/* The reference's M_p against dFH11 eq. 7 with that exact Bessel function, for v from 1e-6 to 10
  * across the lobe: within 1e-7 relative (measured: 4e-15; no switch error at x = 30). */
 /* Near-field calls of one sample (a path tracer's per hit: on the float M_p path the four terms
  * across the lanes, chiang_near_lanes; at high quality the scalar kernels) give what one batch call
@@ -154,7 +156,7 @@ static void test_chiang_longitudinal_exact(hb_test_ctx *t)
 {
     double worst = 0.0;
     for (int a = 0; a <= 20; a++) {
-        double v = pow(10.0, -4.0 + 5.0 * a / 20.0);
+        double v = pow(10.0, -6.0 + 7.0 * a / 20.0);
         for (int k = 0; k < 64; k++) {
             double theta_o = hb_test_range(t, -1.5, 1.5);
             double theta_i = -theta_o + sqrt(v) * hb_test_range(t, -4.0, 4.0);
@@ -496,7 +498,7 @@ static void test_chiang_pbrt_frame(hb_test_ctx *t)
 static void test_chiang_hard_cases(hb_test_ctx *t)
 {
     static const chiang_material hard[] = {
-        { "smooth", 0.027, 0.02, 0.2, { 0.0, 0.0, 0.0 }, 1.55 },
+        { "smooth", 0.0028, 0.02, 0.2, { 0.0, 0.0, 0.0 }, 1.55 }, /* v_TT = 1.04e-6 */
         { "rough", 1.0, 1.0, -0.2, { 1e30, 0.0, 1e-30 }, 1.0001 },
         { "dense", 0.1, 0.3, 0.035, { 1e4, 1e6, 1e30 }, 10.0 },
     };
@@ -572,9 +574,14 @@ static void test_chiang_api(hb_test_ctx *t)
     m.beta_m = 1.2;
     CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_PARAM && strstr(err.message, "beta_m"), "beta_m 1.2: %s",
           err.message);
-    m.beta_m = 0.02;
-    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_PARAM && strstr(err.message, "TT"), "beta_m 0.02: %s",
-          err.message);
+    m.beta_m = 0.0027463;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_PARAM &&
+                 strstr(err.message, "must be in [0.0027464, 1] for the chiang model"), "beta_m 0.0027463: %s", err.message);
+    /* the least beta_m is the fit's v_TT = 1e-6 rounded up in its last digit */
+    double v_least = hb_chiang_variance_r(HB_CHIANG_BETA_M_MIN) / 4.0;
+    double v_below = hb_chiang_variance_r(HB_CHIANG_BETA_M_MIN - 1e-7) / 4.0;
+    CHECK(t, v_least >= 1e-6 && v_below < 1e-6, "v_TT %.9g at beta_m %g, %.9g below", v_least, HB_CHIANG_BETA_M_MIN,
+          v_below);
     m.beta_m = 0.3;
     o.lobes = 1u << HB_LOBE_TRRT;
     CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_UNSUPPORTED && strstr(err.message, "residual"), "TRRT: %s",

@@ -148,10 +148,10 @@ static void test_hostile_inputs(hb_test_ctx *t)
     run_tool(t, "bake --model chiang -o x.hbt", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "the chiang model has no tables"), "bake chiang: %d %s", r.status, r.err);
     run_tool(t, "eval --model chiang --beta-m 1.0000001", "", &r);
-    CHECK(t, r.status == 2 && strstr(r.err, "beta_m = 1.0000001 must be in [0.01, 1] for the chiang model"),
+    CHECK(t, r.status == 2 && strstr(r.err, "beta_m = 1.0000001 must be in [0.0027464, 1] for the chiang model"),
           "a limit just missed: %s", r.err);
-    run_tool(t, "eval --beta-m 0.0099999998", "", &r);
-    CHECK(t, r.status == 2 && strstr(r.err, "beta_m = 0.0099999998 must be in [0.01, "), "the lower limit: %s", r.err);
+    run_tool(t, "eval --beta-m 0.00099999998", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "beta_m = 0.00099999998 must be in [0.001, "), "the lower limit: %s", r.err);
     run_tool(t, "eval --model chiang --beta-n 0.01", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "beta_n = 0.01 must be in [0.02, 1] for the chiang model"),
           "CBTB16's beta_n range: %s", r.err);

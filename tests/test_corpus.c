@@ -104,8 +104,8 @@ static hb_plan *row_plan(const corpus_row *r, const corpus_term *term, unsigned 
     m.sigma_a[0] = m.sigma_a[1] = m.sigma_a[2] = r->sigma_a;
     m.beta_m = r->beta_m, m.beta_n = r->beta_n, m.alpha = r->alpha, m.eccentricity = r->eccentricity;
     o.model = term->model, o.term = term->term, o.quality = quality, o.isa = isa, o.lobes = lobes;
-    if (term->model == HB_MODEL_CHIANG) { /* its roughnesses in [0, 1], beta_m from 0.027 (v_TT >= 1e-4) */
-        m.beta_m = fmax(0.027, fmin(r->beta_m, 1.0));
+    if (term->model == HB_MODEL_CHIANG) { /* its roughnesses in [0, 1], beta_m from 0.0028 (v_TT >= 1e-6) */
+        m.beta_m = fmax(0.0028, fmin(r->beta_m, 1.0));
         m.beta_n = fmin(r->beta_n, 1.0);
     }
     if (term->model == HB_MODEL_HUANG) {

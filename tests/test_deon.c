@@ -101,6 +101,7 @@ static const material_case materials[] = {
     { "brown", { 0.9, 1.5, 2.8 }, 0.15, 0.3, 0.05 },
     { "rough", { 0.2, 0.3, 0.5 }, 0.6, 1.2, 0.0 },
     { "sharp", { 0.05, 0.1, 0.2 }, 0.05, 0.1, 0.035 },
+    { "glossy", { 0.02, 0.05, 0.1 }, 0.005, 0.05, 0.035 },
 };
 
 static void set_material(hb_material *m, const material_case *c)
@@ -434,7 +435,7 @@ static void test_fig3_longitudinal_energy(hb_test_ctx *t)
 /* Extreme but valid materials and directions: every output finite and >= 0 on every ISA. */
 static void test_hard_cases_finite(hb_test_ctx *t)
 {
-    const double etas[] = { 1.0001, 2.5 }, sigmas[] = { 0.0, 1e3 }, beta_ms[] = { 0.01, 1.5 }, beta_ns[] = { 0.02, 3.0 };
+    const double etas[] = { 1.0001, 2.5 }, sigmas[] = { 0.0, 1e3 }, beta_ms[] = { 0.001, 1.5 }, beta_ns[] = { 0.02, 3.0 };
     const float edge[] = { 1.57079637f, -1.57079637f, 0.0f, -0.0f, 1e-40f, 1.5707960f, 3.14159274f, -3.14159274f };
     enum { N = 128 };
     float ti[N], pi[N], to[N], po[N], f[3][N];

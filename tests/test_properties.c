@@ -55,7 +55,7 @@ static void random_material(hb_test_ctx *t, hb_model model, int untilted, hb_mat
     for (int c = 0; c < 3; c++)
         m->sigma_a[c] = hb_test_uniform(t) < 0.3 ? 0.0 : 5.0 * pow(hb_test_uniform(t), 3);
     int unit_scale = model == HB_MODEL_CHIANG; /* CBTB16's beta_m and beta_n are in [0, 1] */
-    m->beta_m = exp(hb_test_range(t, log(0.02), log(unit_scale ? 1.0 : 1.5)));
+    m->beta_m = exp(hb_test_range(t, log(unit_scale ? 0.0028 : 0.001), log(unit_scale ? 1.0 : 1.5)));
     m->beta_n = exp(hb_test_range(t, log(0.05), log(unit_scale ? 1.0 : 2.0)));
     m->alpha = untilted ? 0.0 : hb_test_range(t, -0.1, 0.1);
     if (model == HB_MODEL_MARSCHNER) {
@@ -254,7 +254,7 @@ static void near_material(hb_test_ctx *t, hb_model model, int k, hb_material *m)
     for (int c = 0; c < 3; c++)
         m->sigma_a[c] = hb_test_uniform(t) < 0.3 ? 0.0 : pow(10.0, hb_test_range(t, -2.0, 3.0));
     double beta_max = model == HB_MODEL_CHIANG ? 1.0 : 1.5;
-    m->beta_m = exp(hb_test_range(t, log(model == HB_MODEL_CHIANG ? 0.03 : 0.02), log(beta_max)));
+    m->beta_m = exp(hb_test_range(t, log(model == HB_MODEL_CHIANG ? 0.01 : 0.005), log(beta_max)));
     m->beta_n = exp(hb_test_range(t, log(0.02), log(beta_max)));
     m->alpha = hb_test_range(t, -0.1, 0.1);
 }

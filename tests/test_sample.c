@@ -173,6 +173,7 @@ static void test_sample_reference(hb_test_ctx *t)
     static const struct { double beta_m, beta_n, alpha, sigma_a, theta_o; } cases[] = {
         { 0.3, 0.3, 0.035, 0.0, 0.5 }, { 0.1, 0.2, 0.035, 0.5, -1.2 }, { 0.02, 0.05, 0.0, 0.1, 0.3 },
         { 0.9, 1.5, -0.1, 3.0, 1.5 }, { 0.01, 0.02, 0.035, 0.0, 1.5707963 }, { 0.01, 0.3, 0.0, 1e3, -0.3 },
+        { 0.005, 0.02, 0.035, 0.0, 1.5707963 }, { 0.001, 0.3, 0.0, 1e3, -0.3 },
     };
     size_t n = t->quick ? 100 : 400;
     double worst_direction = 0.0, worst_pdf = 0.0, worst_weight = 0.0;

@@ -4,8 +4,8 @@
 
 #include "creation.h"
 
-/* Valid ranges. v = beta_m^2 in [1e-4, 10] is where M_p's accuracy is tested. */
-#define BETA_M_MIN 0.01
+/* Valid ranges. v = beta_m^2 in [1e-6, 10] is where M_p's accuracy is tested. */
+#define BETA_M_MIN 0.001
 #define BETA_M_MAX 3.1622776601683795
 #define BETA_N_MIN 0.02
 #define BETA_N_MAX 3.0
@@ -21,11 +21,12 @@ static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi;
 /* beta_m and beta_n against their ranges: radians, or the model's own scale where it has one (CBTB16's [0, 1]). */
 static hb_status validate_roughnesses(const hb_material *m, const hb_model_ops *ops, hb_error *error)
 {
+    double beta_m_min = ops->beta_m_min > 0.0 ? ops->beta_m_min : BETA_M_MIN;
     double beta_m_max = ops->beta_max > 0.0 ? ops->beta_max : BETA_M_MAX;
     double beta_n_max = ops->beta_max > 0.0 ? ops->beta_max : BETA_N_MAX;
-    if (!in_range(m->beta_m, BETA_M_MIN, beta_m_max))
-        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %s must be in [%s, %s] for the %s model (v = beta_m^2 >= 1e-4)",
-                            HB_NUM(m->beta_m), HB_NUM(BETA_M_MIN), HB_NUM(beta_m_max), ops->name);
+    if (!in_range(m->beta_m, beta_m_min, beta_m_max))
+        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %s must be in [%s, %s] for the %s model (a lobe's v >= 1e-6)",
+                            HB_NUM(m->beta_m), HB_NUM(beta_m_min), HB_NUM(beta_m_max), ops->name);
     for (int p = 0; p < HB_MAX_LOBES; p++)
         if (m->lobe_beta_m[p] != 0.0 && !in_range(m->lobe_beta_m[p], BETA_M_MIN, beta_m_max))
             return hb_plan_fail(error, HB_ERR_PARAM, "lobe_beta_m[%d] = %s must be 0 (derived) or in [%s, %s]", p,

@@ -116,6 +116,7 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
 const hb_model_ops hb_chiang_model = {
     .name = "chiang",
     .beta_max = 1.0, /* pbrt-v4's [0, 1] scale (docs/chiang.md) */
+    .beta_m_min = HB_CHIANG_BETA_M_MIN,
     .table_version = 1,
     .lobes = lobes,
     .validate = hb_chiang_validate,

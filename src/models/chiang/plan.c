@@ -7,9 +7,6 @@
 #include "math/quadrature.h"
 #include "models/derive.h"
 
-/* The smallest variance a lobe may have: v_TT = v_R / 4 >= 1e-4, where M_p's accuracy is tested. */
-#define HB_CHIANG_V_MIN 1e-4
-
 /* v_R = (0.726 beta_m + 0.812 beta_m^2 + 3.7 beta_m^20)^2 (CBTB16's fit). */
 double hb_chiang_variance_r(double beta_m)
 {
@@ -25,10 +22,6 @@ double hb_chiang_logistic_scale(double beta_n)
 
 hb_status hb_chiang_validate(const hb_material *m, const hb_options *o, hb_error *error)
 {
-    double v_tt = hb_chiang_variance_r(m->beta_m) / 4.0;
-    if (v_tt < HB_CHIANG_V_MIN)
-        return hb_plan_fail(error, HB_ERR_PARAM, "beta_m = %s gives the TT lobe v = %.3g, below %g (beta_m >= 0.027)",
-                            HB_NUM(m->beta_m), v_tt, HB_CHIANG_V_MIN);
     if (m->eccentricity > 0.0)
         return hb_plan_fail(error, HB_ERR_UNSUPPORTED, "eccentricity = %g: the chiang model is for circular fibres",
                             m->eccentricity);

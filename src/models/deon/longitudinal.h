@@ -6,7 +6,7 @@
  *     M_p = exp(log_norm - (1 - cos(theta_i + theta_o))/v - x) * I0(x),
  *         = exp(log_norm - (1 - cos(theta_i + theta_o))/v) * e^-x I0(x)   for x >= 0,
  * which never overflows, and whose large exponent (up to 2/v) is formed in double
- * precision, so M_p keeps float accuracy for v down to 1e-4.
+ * precision, so M_p keeps float accuracy for v down to 1e-6.
  * A tilt shift can push theta_o - alpha_p past a pole, where cos < 0 and the
  * exponent would be a cancellation of two large terms. eq. 7 is unchanged by the
  * reflection theta -> +-pi - theta (sin kept, cos negated, I0 even), so the shifted
