@@ -45,6 +45,7 @@ typedef struct row {
     int config; /* index in configs[] */
     hb_isa isa;
     double min_ns, median_ns, max_rel_err;
+    double ghz; /* the core's clock measured beside the timing (hb_cpu_clock_ghz) */
 } row;
 
 static int compare_double(const void *a, const void *b)
@@ -136,6 +137,7 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int
     int repeats = o->term == HB_TERM_FULL ? REPEATS / 10 : REPEATS;
     double t[REPEATS];
     run_op(plan, op, per_hit); /* warm up */
+    double ghz_before = hb_cpu_clock_ghz();
     for (int k = 0; k < repeats; k++) {
         double t0 = now_ns();
         run_op(plan, op, per_hit);
@@ -163,6 +165,7 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int
     }
     r->min_ns = t[0];
     r->median_ns = t[repeats / 2];
+    r->ghz = fmax(ghz_before, hb_cpu_clock_ghz()); /* the faster clock: the one the minimum ran at */
     r->isa = hb_plan_isa(plan);
     double peak = 0.0, worst = 0.0; /* docs/conventions.md, over the samples with a reference */
     for (int c = 0; c < 3; c++)
@@ -176,8 +179,8 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int
     return 1;
 }
 
-/* Budget lines: model term variant isa ns. Writes a verdict per row to verdicts and returns the
- * number of rows over budget. */
+/* Budget lines: model term variant isa cycles. Writes a verdict per row to verdicts, cycles with the
+ * ns at the measured clock beside them, and returns the number of rows over budget. */
 static int check_budgets(const char *path, const row *rows, int nrows, FILE *verdicts)
 {
     FILE *f = fopen(path, "r");
@@ -198,14 +201,12 @@ static int check_budgets(const char *path, const row *rows, int nrows, FILE *ver
                 strcmp(hb_isa_name(r->isa), isa))
                 continue;
             checked++;
-            if (r->min_ns > budget) {
-                fprintf(verdicts, "OVER BUDGET: %s %s %s on %s: %.2f ns/sample > %.2f\n", model, term, variant, isa,
-                        r->min_ns, budget);
-                over++;
-            } else {
-                fprintf(verdicts, "budget ok: %s %s %s on %s: %.2f ns/sample <= %.2f\n", model, term, variant, isa,
-                        r->min_ns, budget);
-            }
+            double cycles = r->min_ns * r->ghz;
+            int fits = r->ghz > 0.0 && cycles <= budget;
+            over += !fits;
+            fprintf(verdicts, "%s: %s %s %s on %s: %.0f cycles %s %.0f (%.2f ns at %.2f GHz)\n",
+                    fits ? "budget ok" : "OVER BUDGET", model, term, variant, isa, cycles, fits ? "<=" : ">", budget,
+                    r->min_ns, r->ghz);
         }
     }
     fclose(f);
@@ -693,15 +694,22 @@ static void write_summary(const char *path, const row *rows, int nrows)
     if (!region_open(&r))
         return;
     FILE *f = r.f;
-    fprintf(f, "| model and quality | ns/sample (%s) | max error |\n|---|---|---|\n", hb_isa_name(best));
+    static const double aims[] = { [HB_QUALITY_FAST] = 1e-2, [HB_QUALITY_BALANCED] = 1e-3, [HB_QUALITY_HIGH] = 1e-4 };
+    fprintf(f, "| model and quality | ns/sample (%s) | max error | the level's aim |\n|---|---|---|---|\n",
+            hb_isa_name(best));
     for (int k = 0; k < nrows; k++) {
         char label[64];
         snprintf(label, sizeof label, "%s/%s/%s", rows[k].model, rows[k].term, rows[k].variant);
         if (rows[k].isa != best || !is_demo_row(label))
             continue;
-        fprintf(f, "| %s |", configs[rows[k].config].label);
+        const config *c = &configs[rows[k].config];
+        fprintf(f, "| %s |", c->label);
         put_ns(f, rows[k].min_ns);
-        fprintf(f, " %.1e |\n", rows[k].max_rel_err);
+        double aim = c->quality < HB_QUALITY_REFERENCE ? aims[c->quality] : 0.0;
+        if (aim > 0.0)
+            fprintf(f, " %.1e | %.0e%s |\n", rows[k].max_rel_err, aim, rows[k].max_rel_err <= aim ? "" : ", missed");
+        else
+            fprintf(f, " %.1e | - |\n", rows[k].max_rel_err);
     }
     fprintf(f, "\n`make bench`, %s, %s, one core, batches of %d; every row on every ISA in "
                "[docs/benchmarks.md](docs/benchmarks.md).\n", r.date, r.cpu, BATCH);
@@ -867,7 +875,7 @@ int main(int argc, char **argv)
             hb_options o;
             options_of(c, &o);
             o.isa = (hb_isa)isa;
-            row r = { c->model, c->term, c->variant, (int)ci, HB_ISA_SCALAR, 0, 0, 0 };
+            row r = { c->model, c->term, c->variant, (int)ci, HB_ISA_SCALAR, 0, 0, 0, 0 };
             if (time_plan(&mc, &o, c->op, c->per_hit, &r))
                 rows[nrows++] = r;
         }
@@ -934,10 +942,10 @@ int main(int argc, char **argv)
         snprintf(path, sizeof path, "%s/calibration.csv", results_dir);
         FILE *f = fopen(path, "w");
         if (f) {
-            fprintf(f, "model,configuration,isa,ns_per_sample,max_error\n");
+            fprintf(f, "model,configuration,isa,ns_per_sample,max_error,ghz\n");
             for (int k = 0; k < nrows; k++)
-                fprintf(f, "%s,%s/%s,%s,%.3f,%.3e\n", rows[k].model, rows[k].term, rows[k].variant,
-                        hb_isa_name(rows[k].isa), rows[k].min_ns, rows[k].max_rel_err);
+                fprintf(f, "%s,%s/%s,%s,%.3f,%.3e,%.3f\n", rows[k].model, rows[k].term, rows[k].variant,
+                        hb_isa_name(rows[k].isa), rows[k].min_ns, rows[k].max_rel_err, rows[k].ghz);
         }
         if (!f || fclose(f) != 0)
             fprintf(stderr, "bench: cannot write %s\n", path);

@@ -279,7 +279,8 @@ typedef struct hb_options {
      * budget_ns > 0: the most accurate configuration whose calibrated cost per sample on the plan's ISA
      * fits. The two exclude each other; each overrides quality, quadrature_order and azimuthal (and
      * tt_trt for HHH22). Costs and errors come from `calibration`, a CSV written by `make bench`
-     * (bench/results/calibration.csv), or from the table built in (NULL). */
+     * (bench/results/calibration.csv), or from the table built in (NULL); costs are cycles, taken at
+     * the clock hb_cpu_clock_ghz measures at plan creation (docs/engines.md). */
     double tolerance;
     double budget_ns;
     const char *calibration;
@@ -565,6 +566,12 @@ HB_API const char *hb_isa_name(hb_isa isa);
 HB_API hb_isa hb_isa_from_name(const char *name); /* HB_ISA_COUNT if unknown */
 HB_API int hb_isa_available(hb_isa isa);          /* compiled in and supported by this CPU and OS */
 HB_API hb_isa hb_isa_best(void);                  /* what HB_ISA_AUTO picks without HB_ISA */
+
+/* The calling core's clock in GHz, measured now by a dependent chain of integer
+ * additions, one per cycle on x86-64 and AArch64. 0 where it cannot be measured (other CPUs, MSVC).
+ * make bench states costs in cycles with it; budget plans convert the built-in calibration's
+ * cycles to nanoseconds at this clock (docs/engines.md). */
+HB_API double hb_cpu_clock_ghz(void);
 
 #ifdef __cplusplus
 }

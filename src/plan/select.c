@@ -152,12 +152,14 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
             !(e = entry_for(&calibration, ops, &ops->presets[k], isa, &fallback)) || (sel->refused >> k & 1u))
             continue;
         candidates++;
-        fastest = !fastest || e->ns < fastest->ns ? e : fastest;
+        double ns = hb_calibration_ns(&calibration, e);
+        fastest = !fastest || ns < hb_calibration_ns(&calibration, fastest) ? e : fastest;
         most_accurate = !most_accurate || e->error < most_accurate->error ? e : most_accurate;
-        int fits = in->tolerance > 0.0 ? e->error <= allowed : e->ns <= in->budget_ns;
-        int better = !best_entry || (in->tolerance > 0.0 ? e->ns < best_entry->ns
+        int fits = in->tolerance > 0.0 ? e->error <= allowed : ns <= in->budget_ns;
+        int faster = best_entry && ns < hb_calibration_ns(&calibration, best_entry);
+        int better = !best_entry || (in->tolerance > 0.0 ? faster
                                                           : e->error < best_entry->error ||
-                                                                (e->error == best_entry->error && e->ns < best_entry->ns));
+                                                                (e->error == best_entry->error && faster));
         if (fits && better) {
             best = &ops->presets[k], best_entry = e;
             sel->ranked_by_scalar = fallback;
@@ -177,7 +179,7 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
     else if (!best)
         st = hb_plan_fail(error, HB_ERR_UNSUPPORTED,
                           "budget %g ns: no configuration fits on %s (the fastest, %s, takes %.3g ns)", in->budget_ns,
-                          hb_isa_name(isa), fastest->configuration, fastest->ns);
+                          hb_isa_name(isa), fastest->configuration, hb_calibration_ns(&calibration, fastest));
     if (st != HB_OK) {
         hb_calibration_close(&calibration);
         return st;
@@ -185,7 +187,7 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
     snprintf(sel->configuration, sizeof sel->configuration, "%s", best->name);
     sel->preset = (int)(best - ops->presets);
     sel->expected_error = best_entry->error + sel->dropped_bound;
-    sel->expected_ns = best_entry->ns;
+    sel->expected_ns = hb_calibration_ns(&calibration, best_entry);
     out->quality = best->quality;
     out->quadrature_order = best->quadrature_order;
     out->azimuthal = best->azimuthal;
@@ -209,7 +211,7 @@ int hb_plan_expected(const hb_plan *plan, char *configuration, size_t size, doub
         const hb_calibration_entry *e = entry_for(&c, ops, p, plan->isa, &fallback);
         if (e && !fallback) {
             snprintf(configuration, size, "%s", p->name);
-            *ns = e->ns, *err = e->error;
+            *ns = hb_calibration_ns(&c, e), *err = e->error;
             found = 1;
         }
         hb_calibration_close(&c);
