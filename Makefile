@@ -122,7 +122,7 @@ BENCH_BIN := $(B)/hairbsdf_bench$(EXE)
 REPLAYS := $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%$(EXE))
 FUZZ_TOOL_OBJS := $(B)/tools/csv.o $(B)/tools/cli_options.o $(B)/tools/cli_threads.o
 
-.PHONY: all test check tsan bench bench-instr bench-instr-check calibration demo images fuzz fuzz-run install abi clean
+.PHONY: all test check layers tsan bench bench-instr bench-instr-check calibration demo images fuzz fuzz-run install abi clean
 all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LINK)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE)
 
 $(B)/%.o: %.c
@@ -187,6 +187,11 @@ REPLAY_CORPUS = for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t$(EXE) tests/
 test: $(TEST_BIN) $(TOOL) $(REPLAYS)
 	@$(REPLAY_CORPUS)
 	@$(RUN_TESTS)
+
+# The include rules of docs/architecture.md: layer order, no model reading another, references
+# free of the fast path.
+layers:
+	sh tests/layers.sh
 
 check: $(TEST_BIN) $(TOOL) $(REPLAYS)
 	@$(REPLAY_CORPUS)

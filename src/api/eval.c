@@ -2,6 +2,7 @@
  * reference plan, the double-precision path. No allocation. */
 #include <math.h>
 
+#include "math/valid.h"
 #include "models/model.h"
 #include "ref/reference.h"
 
@@ -95,8 +96,8 @@ hb_status hb_eval_vectors_absorption(const hb_plan *plan, size_t n, hb_vectors_s
 
 static int near_valid(const hb_near_soa *in, size_t k)
 {
-    return fabsf(in->theta_i[k]) <= 1.57079637f && fabsf(in->theta_o[k]) <= 1.57079637f &&
-           fabsf(in->phi_i[k]) <= HB_PHI_LIMIT && fabsf(in->phi_o[k]) <= HB_PHI_LIMIT && fabsf(in->h[k]) <= 1.0f;
+    return hb_theta_valid(in->theta_i[k]) && hb_theta_valid(in->theta_o[k]) && hb_phi_valid(in->phi_i[k]) &&
+           hb_phi_valid(in->phi_o[k]) && hb_offset_valid(in->h[k]);
 }
 
 hb_status hb_eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, hb_eval_report *report)

@@ -5,6 +5,7 @@
 #include <math.h>
 
 #include "math/hash.h"
+#include "math/valid.h"
 #include "models/model.h"
 #include "ref/reference.h"
 
@@ -17,7 +18,7 @@ int hb_plan_sample_dimensions(const hb_plan *plan)
 
 static int angles_valid(double theta, double phi)
 {
-    return fabs(theta) <= 1.57079637f && fabs(phi) <= HB_PHI_LIMIT; /* false for NaN */
+    return hb_theta_valid(theta) && hb_phi_valid(phi);
 }
 
 /* Direction k of three streams (unit vectors, x, y, z) or two (theta, phi) as angles; 0 if invalid. */

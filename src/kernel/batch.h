@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "simd/simd.h"
+#include "math/valid.h"
 #include "math/vmath.h"
 #include "streams.h"
 
@@ -64,7 +65,7 @@ HB_INLINE size_t count_invalid(vm valid, size_t lanes)
 /* theta in [-pi/2, pi/2] (as floats), |phi| <= HB_PHI_LIMIT; false for NaN and Inf. */
 HB_INLINE vm angle_pair_valid(vf theta, vf phi)
 {
-    return vm_and(vf_le(vf_abs(theta), vf_set1(HB_PIO2_F)), vf_le(vf_abs(phi), vf_set1(HB_PHI_LIMIT)));
+    return vm_and(vf_le(vf_abs(theta), vf_set1(HB_THETA_LIMIT)), vf_le(vf_abs(phi), vf_set1(HB_PHI_LIMIT)));
 }
 
 HB_INLINE vm unit_vector_valid(const vf w[3])

@@ -2,10 +2,10 @@
  * reference plan, and the sampler and pdf of each model that has them. */
 #include <math.h>
 
+#include "math/valid.h"
 #include "models/plan.h"
 #include "reference.h"
 
-static int theta_valid(float theta) { return fabsf(theta) <= 1.57079637f; } /* false for NaN */
 
 /* The plan's term at one direction pair, in double; writes three channels. The oracle keeps its
  * own dispatch by model: it shares nothing with the fast path but the equations. */
@@ -48,8 +48,8 @@ size_t hb_ref_eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rg
     size_t invalid = 0;
     for (size_t k = 0; k < n; k++) {
         double f[3] = { 0.0, 0.0, 0.0 };
-        if (theta_valid(in.theta_i[k]) && theta_valid(in.theta_o[k]) && fabsf(in.phi_i[k]) <= HB_PHI_LIMIT &&
-            fabsf(in.phi_o[k]) <= HB_PHI_LIMIT)
+        if (hb_theta_valid(in.theta_i[k]) && hb_theta_valid(in.theta_o[k]) && hb_phi_valid(in.phi_i[k]) &&
+            hb_phi_valid(in.phi_o[k]))
             hb_ref_eval_pair(plan, in.theta_i[k], in.phi_i[k], in.theta_o[k], in.phi_o[k], f);
         else
             invalid++;

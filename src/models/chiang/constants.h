@@ -3,8 +3,8 @@
 #define HB_CHIANG_CONSTANTS_H
 
 #include "hairbsdf.h"
-#include "models/deon/constants.h"
-#include "models/dielectric.h"
+#include "models/common/longitudinal_constants.h"
+#include "models/common/dielectric.h"
 
 /* The explicit orders R, TT, TRT; every higher order is one residual lobe (CBTB16). */
 #define HB_CHIANG_ORDERS 3

@@ -5,8 +5,8 @@
 #define HB_CHIANG_EVAL_H
 
 #include "constants.h"
-#include "models/deon/longitudinal.h"
-#include "models/fresnel.h"
+#include "models/common/longitudinal.h"
+#include "models/common/fresnel.h"
 
 /* What the attenuations give at one offset h for w_o: A_p per channel (dFH11 eqs. 13, 14 at w_o's
  * side, as CBTB16 takes them, and its residual lobe), the sampler's lobe probabilities P_p (A_p's channel mean over the plan's
@@ -100,7 +100,7 @@ HB_INLINE void chiang_logistics(const hb_chiang *c, vf phi, const vf Phi[HB_CHIA
  * (as dFH11's groups do, longitudinal.h). */
 HB_INLINE void chiang_longitudinal_angles(const hb_chiang *c, vf theta_i, vf theta_o, vf M[HB_CHIANG_TERMS])
 {
-    deon_inclinations in = deon_inclinations_of(theta_i, theta_o);
+    mp_inclinations in = mp_inclinations_of(theta_i, theta_o);
     vf cone[HB_CHIANG_TERMS], x[HB_CHIANG_TERMS];
     for (int p = 0; p < HB_CHIANG_TERMS; p++)
         if (hb_chiang_term_on(c, p) && c->longitudinal[p].single)
@@ -163,7 +163,7 @@ HB_INLINE void chiang_near(const hb_chiang *c, const vf M[HB_CHIANG_TERMS], vf c
  * logistic at phi - Phi(L, h), or 1 / (2 pi) in the residual's lane) and M_p (longitudinal_lobe_lanes),
  * and f the sum over the lanes: one pass where chiang_near takes one per term. f comes back in every
  * lane. */
-HB_INLINE void chiang_near_lanes(const hb_chiang *c, const deon_inclinations *in, vf cos_theta_o, vf phi, vf h,
+HB_INLINE void chiang_near_lanes(const hb_chiang *c, const mp_inclinations *in, vf cos_theta_o, vf phi, vf h,
                                  vf f[3])
 {
     chiang_offset o;

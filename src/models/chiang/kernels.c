@@ -78,7 +78,7 @@ static void near_few_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb
 {
     vf f[3];
     HB_ONE_BY_ONE(load_near_one, 5, in, n, invalid,
-                  (chiang_near_lanes(c, &(deon_inclinations){ a[0], a[2], cos_theta_of(a[0]) }, cos_theta_of(a[2]),
+                  (chiang_near_lanes(c, &(mp_inclinations){ a[0], a[2], cos_theta_of(a[0]) }, cos_theta_of(a[2]),
                                      vf_sub(a[3], a[1]), a[4], f),
                    store_rgb_one(out, k, valid, f)));
 }

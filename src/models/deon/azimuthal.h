@@ -4,8 +4,8 @@
 #ifndef HB_DEON_AZIMUTHAL_H
 #define HB_DEON_AZIMUTHAL_H
 
-#include "longitudinal.h"
-#include "models/fresnel.h"
+#include "longitudinal_groups.h"
+#include "models/common/fresnel.h"
 #include "math/multilinear.h"
 
 /* cos(n phi) for n = 1..terms by the Chebyshev recurrence, for the Fourier detectors. */

@@ -97,7 +97,7 @@ HB_INLINE void deon_near_one_sample(const hb_deon *d, const vf a[5], hb_i0 i0, v
 {
     deon_geometry g;
     deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
-    deon_inclinations in = deon_inclinations_of(a[0], a[2]);
+    mp_inclinations in = mp_inclinations_of(a[0], a[2]);
     deon_near_lanes(d, &g, &in, a[4], i0, f);
 }
 

@@ -90,7 +90,7 @@ HB_INLINE void deon_near_shaped(const hb_deon *d, const deon_geometry *g, const 
  * (eq. 13; the residual's lane, L = pmax + 1, times 1 / (1 - f T)), Phi(p, h) (eq. 8), detector (eq. 11)
  * and M_p (longitudinal_lobe_lanes), and f the sum over the lanes: a pass for up to HB_W lobes where
  * deon_near takes one per lobe. f comes back in every lane. */
-HB_INLINE void deon_near_lanes(const hb_deon *d, const deon_geometry *g, const deon_inclinations *in, vf h, hb_i0 i0,
+HB_INLINE void deon_near_lanes(const hb_deon *d, const deon_geometry *g, const mp_inclinations *in, vf h, hb_i0 i0,
                                vf out[3])
 {
     const deon_shape shape = { 1, 3, 0 };

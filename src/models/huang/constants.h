@@ -5,7 +5,7 @@
 #include <stdint.h>
 
 #include "hairbsdf.h"
-#include "models/dielectric.h"
+#include "models/common/dielectric.h"
 
 /* HHH22's f_TT + f_TRT tabulated at plan creation (docs/huang.md): values
  * times 2 a cos(theta_o) (bounded where f has its 1 / cos(theta_o)) on a grid over theta_i,

@@ -8,7 +8,7 @@
 #define HB_HUANG_R_LOBE_H
 
 #include "microfacet.h"
-#include "models/fresnel.h"
+#include "models/common/fresnel.h"
 
 /* The two directions: inclinations and the azimuth between them, and for elliptical fibres
  * their absolute azimuths (the fibre's orientation). cos(theta) >= 0. */

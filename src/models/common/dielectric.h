@@ -1,4 +1,4 @@
-/* The smooth interface the dFH11 and HHH22 kernels share (src/models/fresnel.h evaluates it). */
+/* The smooth interface the dFH11 and HHH22 kernels share (fresnel.h evaluates it). */
 #ifndef HB_MODELS_DIELECTRIC_H
 #define HB_MODELS_DIELECTRIC_H
 

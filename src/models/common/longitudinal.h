@@ -1,4 +1,4 @@
-/* dFH11 longitudinal scattering M_p (eq. 7) over the SIMD vocabulary.
+/* dFH11 longitudinal scattering M_p (eq. 7) over the SIMD vocabulary, for every model that uses it.
  *
  * eq. 7:  M_p = csch(1/v) / (2v) * exp(-sin(theta_i) sin(theta_o) / v) * I0(cos(theta_i) cos(theta_o) / v).
  * With csch(1/v)/(2v) = e^(-1/v) / (v (1 - e^(-2/v))) and
@@ -11,11 +11,11 @@
  * exponent would be a cancellation of two large terms. eq. 7 is unchanged by the
  * reflection theta -> +-pi - theta (sin kept, cos negated, I0 even), so the shifted
  * angle is reflected back into [-pi/2, pi/2] first and x >= 0 always. */
-#ifndef HB_DEON_LONGITUDINAL_H
-#define HB_DEON_LONGITUDINAL_H
+#ifndef HB_COMMON_LONGITUDINAL_H
+#define HB_COMMON_LONGITUDINAL_H
 
 #include "math/vmath.h"
-#include "constants.h"
+#include "longitudinal_constants.h"
 
 /* log of dFH11 eq. 15, the 10-term series S(x) = sum_{i<=10} (x^2/4)^i / (i!)^2. For
  * u = x^2/4 > 1 it is evaluated as u^10 R(1/u) so that no power overflows. */
@@ -109,18 +109,18 @@ HB_INLINE vf pole_distance_low(vf t_hi, vf t_lo)
 
 /* What the M_p of one sample's groups share: its two inclinations and cos(theta_i), which the
  * float path forms once per sample rather than once per group. */
-typedef struct deon_inclinations {
+typedef struct mp_inclinations {
     vf theta_i, theta_o, cos_theta_i;
-} deon_inclinations;
+} mp_inclinations;
 
-HB_INLINE deon_inclinations deon_inclinations_of(vf theta_i, vf theta_o)
+HB_INLINE mp_inclinations mp_inclinations_of(vf theta_i, vf theta_o)
 {
-    deon_inclinations in = { theta_i, theta_o, cos_near_pole(theta_i, vf_set1(HB_PIO2_LO)) };
+    mp_inclinations in = { theta_i, theta_o, cos_near_pole(theta_i, vf_set1(HB_PIO2_LO)) };
     return in;
 }
 
 /* Where the float path reads its constants of M_p: one lobe's (hb_longitudinal) broadcast to every lane,
- * or a lobe per lane (constants.h, hb_lobe_lanes, from lane `first` on). */
+ * or a lobe per lane (longitudinal_constants.h, hb_lobe_lanes, from lane `first` on). */
 typedef struct longitudinal_consts {
     const float *inv_v, *inv_v_log2e, *log2_norm, *shift_hi[3], *shift_lo[3];
     int per_lane;
@@ -153,12 +153,12 @@ HB_INLINE longitudinal_consts longitudinal_consts_lanes(const hb_lobe_lanes *l, 
  * a = (theta_i + theta_o'')/2 and theta_o'' itself come from exact TwoSums, so their errors
  * stay relative near the cone (a -> 0) and pi/2 - |theta_o''| near a pole. Then
  *     1 - cos(theta_i + theta_o'') = 2 sin^2 a,  x = cos(theta_i) cos(theta_o'') / v. */
-HB_INLINE void longitudinal_cone_consts(const longitudinal_consts *k, const deon_inclinations *in, vf *cone_bits,
+HB_INLINE void longitudinal_cone_consts(const longitudinal_consts *k, const mp_inclinations *in, vf *cone_bits,
                                         vf *x)
 {
     vf theta_i = in->theta_i, theta_o = in->theta_o;
     vf t = vf_sub(theta_o, longitudinal_const(k, k->shift_hi[0]));
-    vm over = vf_gt(t, vf_set1(1.57079637f)), under = vf_lt(t, vf_set1(-1.57079637f));
+    vm over = vf_gt(t, vf_set1(HB_PIO2_F)), under = vf_lt(t, vf_set1(-HB_PIO2_F));
     vf signed_o = vf_select(vm_or(over, under), vf_neg(theta_o), theta_o);
     vf c_hi = vf_select(over, longitudinal_const(k, k->shift_hi[1]),
                         vf_select(under, longitudinal_const(k, k->shift_hi[2]), longitudinal_const(k, k->shift_hi[0])));
@@ -174,14 +174,14 @@ HB_INLINE void longitudinal_cone_consts(const longitudinal_consts *k, const deon
     *x = vf_mul(cos_product, longitudinal_const(k, k->inv_v));
 }
 
-HB_INLINE void longitudinal_cone_angles(const hb_longitudinal *lobe, const deon_inclinations *in, vf *cone_bits,
+HB_INLINE void longitudinal_cone_angles(const hb_longitudinal *lobe, const mp_inclinations *in, vf *cone_bits,
                                         vf *x)
 {
     longitudinal_consts k = longitudinal_consts_of(lobe);
     longitudinal_cone_consts(&k, in, cone_bits, x);
 }
 
-HB_INLINE vf longitudinal_deon_angles_single(const hb_longitudinal *lobe, const deon_inclinations *in, hb_i0 i0)
+HB_INLINE vf longitudinal_deon_angles_single(const hb_longitudinal *lobe, const mp_inclinations *in, hb_i0 i0)
 {
     vf cone_bits, x;
     longitudinal_cone_angles(lobe, in, &cone_bits, &x);
@@ -190,7 +190,7 @@ HB_INLINE vf longitudinal_deon_angles_single(const hb_longitudinal *lobe, const 
 
 /* M_p of one sample (its angles in every lane) for the lobes in lanes first .. first + HB_W - 1 of
  * hb_lobe_lanes: one pass of the float path for up to HB_W lobes, bit for bit each lobe's own. */
-HB_INLINE vf longitudinal_lobe_lanes(const hb_lobe_lanes *lanes, int first, const deon_inclinations *in,
+HB_INLINE vf longitudinal_lobe_lanes(const hb_lobe_lanes *lanes, int first, const mp_inclinations *in,
                                      hb_i0 i0)
 {
     longitudinal_consts k = longitudinal_consts_lanes(lanes, first);
@@ -213,7 +213,7 @@ HB_INLINE vdw inclination_reflected(vf theta, double shift)
  * a = (theta_i + theta_o')/2 and b = (theta_i - theta_o')/2:
  *     1 - cos(theta_i + theta_o') = 2 sin^2 a,  cos(theta_i) cos(theta_o') = 1 - sin^2 a - sin^2 b.
  * theta_i and theta_o take the same path, so without a shift M_p(a, b) == M_p(b, a) bit for bit. */
-HB_INLINE vf longitudinal_deon_inclinations(const hb_longitudinal *lobe, const deon_inclinations *in, hb_i0 i0)
+HB_INLINE vf longitudinal_deon_inclinations(const hb_longitudinal *lobe, const mp_inclinations *in, hb_i0 i0)
 {
     if (lobe->single)
         return longitudinal_deon_angles_single(lobe, in, i0);
@@ -231,7 +231,7 @@ HB_INLINE vf longitudinal_deon_inclinations(const hb_longitudinal *lobe, const d
 /* M_p of one lobe from angles. */
 HB_INLINE vf longitudinal_deon_angles(const hb_longitudinal *lobe, vf theta_i, vf theta_o, hb_i0 i0)
 {
-    deon_inclinations in = deon_inclinations_of(theta_i, theta_o);
+    mp_inclinations in = mp_inclinations_of(theta_i, theta_o);
     return longitudinal_deon_inclinations(lobe, &in, i0);
 }
 
@@ -316,66 +316,6 @@ HB_INLINE vf longitudinal_sample(vf v, vf e2, vf cos_shift, vf sin_shift, vf the
     vf sin_i = vf_fma(vf_mul(sin_psi, cos_azimuth), cos_o,
                       vf_mul(vf_sub(one_minus_cos_psi, vf_set1(1.0f)), sin_o)); /* mirror: theta = -(theta_o - shift) */
     return vf_asin(vf_clamp(sin_i, -1.0f, 1.0f));
-}
-
-/* M[p] for every group leader p of plan d at one sample. Each M_p is a chain of some forty dependent
- * operations and the kernels are bound by its latency, not by throughput: the float path's first
- * stage runs for every group before any second stage (I0 and the exponential), so the groups'
- * chains lie side by side in the instruction stream and overlap (dFH11 table path on AVX2: 13.0 ->
- * 11.2 ns per sample, balanced 39.6 -> 37.0). cone_of_lobe(lobe, &cone_bits, &x) is that first
- * stage at the sample, longitudinal_of_lobe(lobe) the whole of M_p (the double path). */
-#define HB_DEON_GROUPS_M(d, M, i0, cone_of_lobe, longitudinal_of_lobe)                                 \
-    do {                                                                                              \
-        vf cone_[HB_MAX_LOBES + 1], x_[HB_MAX_LOBES + 1];                                             \
-        for (int g_ = 0; g_ < (d)->groups; g_++) {                                                    \
-            const hb_longitudinal *lobe_ = &(d)->longitudinal[(d)->group_leader[g_]];                 \
-            if (lobe_->single)                                                                        \
-                cone_of_lobe(lobe_, &cone_[g_], &x_[g_]);                                             \
-        }                                                                                             \
-        for (int g_ = 0; g_ < (d)->groups; g_++) {                                                    \
-            const hb_longitudinal *lobe_ = &(d)->longitudinal[(d)->group_leader[g_]];                 \
-            (M)[(d)->group_leader[g_]] = lobe_->single ? longitudinal_deon_single(lobe_, cone_[g_], x_[g_], (i0)) \
-                                                       : longitudinal_of_lobe(lobe_);                 \
-        }                                                                                             \
-    } while (0)
-
-/* HB_DEON_GROUPS_M from angles; M of the other lobes is left as it is. */
-HB_INLINE void longitudinal_deon_groups_angles(const hb_deon *d, vf theta_i, vf theta_o, hb_i0 i0,
-                                               vf M[HB_MAX_LOBES + 1])
-{
-    deon_inclinations in = deon_inclinations_of(theta_i, theta_o);
-#define HB_CONE_ANGLES(lobe, cone_bits, x) longitudinal_cone_angles((lobe), &in, (cone_bits), (x))
-#define HB_M_ANGLES(lobe) longitudinal_deon_inclinations((lobe), &in, i0)
-    HB_DEON_GROUPS_M(d, M, i0, HB_CONE_ANGLES, HB_M_ANGLES);
-#undef HB_M_ANGLES
-#undef HB_CONE_ANGLES
-}
-
-/* M[p] for every lobe of the standard shape at one sample whose angles fill every lane, the lobes across
- * the lanes (longitudinal_lobe_lanes) instead of a pass per group; the float path only (plans below
- * HB_QUALITY_HIGH). Each lobe's M equals its group leader's bit for bit (the same constants). */
-HB_INLINE void longitudinal_deon_lobes_one(const hb_deon *d, vf theta_i, vf theta_o, hb_i0 i0,
-                                           vf M[HB_MAX_LOBES + 1])
-{
-    deon_inclinations in = deon_inclinations_of(theta_i, theta_o);
-    float m[HB_LOBE_LANES];
-    for (int first = 0; first < HB_LOBE_LANES; first += HB_W)
-        vf_store_first(m + first, longitudinal_lobe_lanes(&d->lobe_lanes, first, &in, i0),
-                       HB_LOBE_LANES - first < HB_W ? HB_LOBE_LANES - first : HB_W);
-    HB_UNROLL
-    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        M[p] = vf_set1(p <= HB_STANDARD_PMAX ? m[p] : p == HB_LOBE_RESIDUAL ? m[HB_LOBE_LANES - 1] : 0.0f);
-}
-
-/* HB_DEON_GROUPS_M from unit vectors. */
-HB_INLINE void longitudinal_deon_groups_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb_i0 i0,
-                                                vf M[HB_MAX_LOBES + 1])
-{
-#define HB_CONE_VECTORS(lobe, cone_bits, x) longitudinal_cone_vectors((lobe), wi, wo, (cone_bits), (x))
-#define HB_M_VECTORS(lobe) longitudinal_deon_vectors((lobe), wi, wo, i0)
-    HB_DEON_GROUPS_M(d, M, i0, HB_CONE_VECTORS, HB_M_VECTORS);
-#undef HB_M_VECTORS
-#undef HB_CONE_VECTORS
 }
 
 #endif

@@ -1,0 +1,55 @@
+#!/bin/sh
+# make layers: the include rules of docs/architecture.md, checked on every file under src/.
+# - A layer includes only its own folder and the layers below it:
+#   simd < math < kernel < models < plan < api, and ref (the reference) below api only.
+# - A model's folder includes no other model's folder (what two models share is in models/common/).
+# - The reference includes nothing of the fast path: no simd/, kernel/ or vector math, and of
+#   models/ only the plan's data (models/plan.h).
+# Prints each break as file:line and exits 1 if there is one.
+cd "$(dirname "$0")/.." || exit 2
+rank() {
+    case "$1" in
+    simd) echo 0 ;; math) echo 1 ;; kernel) echo 2 ;; models) echo 3 ;; ref) echo 4 ;; plan) echo 4 ;;
+    api) echo 5 ;; *) echo -1 ;;
+    esac
+}
+status=0
+for file in $(find src -name '*.c' -o -name '*.h' | sort); do
+    layer=$(echo "$file" | cut -d/ -f2)
+    model=$(echo "$file" | sed -n 's|^src/models/\([^/]*\)/.*|\1|p')
+    grep -n '^#include "' "$file" | while IFS= read -r line; do
+        number=${line%%:*}
+        target=$(echo "$line" | sed 's/^[0-9]*:#include "\([^"]*\)".*/\1/')
+        case "$target" in */*) ;; *) continue ;; esac # the folder's own headers and hairbsdf.h
+        top=${target%%/*}
+        [ "$(rank "$top")" -ge 0 ] || continue
+        why=""
+        if [ "$layer" = ref ]; then
+            case "$target" in
+            simd/* | kernel/* | math/vmath.h) why="the reference includes the fast path's $target" ;;
+            models/plan.h) ;;
+            models/*) why="the reference includes $target, a model's fast path (only models/plan.h)" ;;
+            esac
+        elif [ "$top" = ref ] && [ "$layer" != api ] && [ "$layer" != plan ]; then
+            why="$layer includes the reference ($target)"
+        elif [ "$(rank "$top")" -gt "$(rank "$layer")" ]; then
+            why="$layer includes $target, a layer above it"
+        fi
+        if [ -z "$why" ] && [ -n "$model" ] && [ "$model" != common ]; then
+            other=$(echo "$target" | sed -n 's|^models/\([^/]*\)/.*|\1|p')
+            [ -n "$other" ] && [ "$other" != "$model" ] && [ "$other" != common ] &&
+                why="model $model includes model $other's $target"
+        fi
+        if [ -n "$why" ]; then
+            echo "$file:$number: $why"
+            echo x >> "${TMPDIR:-/tmp}/hb_layers.$$"
+        fi
+    done
+done
+if [ -s "${TMPDIR:-/tmp}/hb_layers.$$" ]; then
+    rm -f "${TMPDIR:-/tmp}/hb_layers.$$"
+    echo "layers: the includes above break docs/architecture.md's rules"
+    exit 1
+fi
+rm -f "${TMPDIR:-/tmp}/hb_layers.$$"
+echo "layers: every include under src/ keeps docs/architecture.md's rules"
