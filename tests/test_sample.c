@@ -212,7 +212,7 @@ static void test_sample_reference(hb_test_ctx *t)
     hb_test_note(t, "directions: %zu of %zu flip a discrete choice, the rest within %.1e rad; pdf within %.1e; weight = f/pdf to %.1e",
                  flips, total, worst_direction, worst_pdf, worst_weight);
     CHECK(t, flips * 100 <= total, "%zu of %zu samples differ from the reference's", flips, total);
-    CHECK(t, worst_direction <= 2e-4, "sampled direction off the reference by %.2e rad", worst_direction);
+    CHECK(t, worst_direction <= 1e-5, "sampled direction off the reference by %.2e rad", worst_direction);
     CHECK(t, worst_pdf <= 2e-4, "pdf off the reference by %.2e", worst_pdf);
     CHECK(t, worst_weight <= 1e-6, "weight differs from f / pdf by %.2e", worst_weight);
 }

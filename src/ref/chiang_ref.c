@@ -126,10 +126,7 @@ void hb_ref_chiang_sample_near(const hb_plan *plan, double theta_o, double phi_o
         cumulative += P[p];
     }
     double v = plan->chiang_v[chosen], t = shifted(theta_o, shift_ratio[chosen] * plan->material.alpha);
-    double one_minus_cos_psi = fmin(-v * log(u[1] + (1.0 - u[1]) * exp(-2.0 / v)), 2.0);
-    double sin_psi = sqrt(fmax(one_minus_cos_psi * (2.0 - one_minus_cos_psi), 0.0));
-    double sin_i = sin_psi * cos(2.0 * M_PI * u[2]) * cos(t) + (one_minus_cos_psi - 1.0) * sin(t);
-    *theta_i = asin(fmax(-1.0, fmin(1.0, sin_i)));
+    *theta_i = hb_ref_longitudinal_sample(v, t, u[1], u[2]);
     double s = plan->chiang_s, phi;
     if (chosen == HB_CHIANG_ORDERS) {
         phi = (2.0 * u[3] - 1.0) * M_PI;

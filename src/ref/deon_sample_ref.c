@@ -106,11 +106,7 @@ static double sample_theta(const hb_plan *plan, double theta_o, const double *u,
     if (rest)
         *rest = fmin(fmax((target - below) / fmax(c[g], 1e-300), 0.0), 1.0 - 0x1p-24);
     double v = plan->v[g], shift = d->longitudinal[g].shift;
-    double sin_o = sin(theta_o - shift), cos_o = fabs(cos(theta_o - shift));
-    double one_minus_cos_psi = fmin(-v * log(u[1] + (1.0 - u[1]) * exp(-2.0 / v)), 2.0); /* vMF about the mirror */
-    double sin_psi = sqrt(fmax(one_minus_cos_psi * (2.0 - one_minus_cos_psi), 0.0));
-    double sin_i = (one_minus_cos_psi - 1.0) * sin_o + sin_psi * cos(2.0 * M_PI * u[2]) * cos_o;
-    return asin(fmax(-1.0, fmin(1.0, sin_i)));
+    return hb_ref_longitudinal_sample(v, theta_o - shift, u[1], u[2]);
 }
 
 void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const double u[5], double *theta_i,

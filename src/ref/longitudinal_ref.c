@@ -67,3 +67,17 @@ double hb_ref_deon_longitudinal(double v, double theta_i, double theta_o, hb_i0 
     return exp(exponent + ax) * hb_ref_bessel_i0e(ax);
 }
 
+/* dFH11 eq. 7 is a von Mises-Fisher lobe of concentration 1/v about the mirror direction, projected
+ * on the fibre axis: 1 - cos psi = -v log(u1 + (1 - u1) e^(-2/v)), azimuth 2 pi u2. theta_i is the
+ * atan2 of the direction's axial and across-axis parts, so it keeps its digits at the poles, where
+ * asin of the axial part alone loses half of them. */
+double hb_ref_longitudinal_sample(double v, double t, double u1, double u2)
+{
+    double sin_o = sin(t), cos_o = fabs(cos(t)), zeta = 2.0 * M_PI * u2;
+    double one_minus_cos_psi = fmin(-v * log(u1 + (1.0 - u1) * exp(-2.0 / v)), 2.0);
+    double cos_psi = 1.0 - one_minus_cos_psi, sin_psi = sqrt(fmax(one_minus_cos_psi * (2.0 - one_minus_cos_psi), 0.0));
+    double axial = sin_psi * cos(zeta) * cos_o - cos_psi * sin_o;   /* the mirror is at -t */
+    double across = cos_psi * cos_o + sin_psi * cos(zeta) * sin_o;  /* in the plane of the axis and the mirror */
+    double aside = sin_psi * sin(zeta);                             /* out of that plane */
+    return atan2(axial, hypot(across, aside));
+}

@@ -13,6 +13,9 @@ double hb_ref_log_bessel_i0(double x);
 
 /* dFH11 eq. 7, M_p(v, theta_i, theta_o); with HB_I0_PAPER, I0 is the series of eq. 15. */
 double hb_ref_deon_longitudinal(double v, double theta_i, double theta_o, hb_i0 i0);
+/* theta_i drawn from eq. 7's M_p(v, theta_i, t) cos(theta_i) by the vMF inverse CDF (u1 the polar
+ * angle, u2 its azimuth about the mirror direction -t), t = theta_o - shift in [-pi/2, pi/2]. */
+double hb_ref_longitudinal_sample(double v, double t, double u1, double u2);
 
 /* MJC03's longitudinal term g(mean, beta; theta_h) cos(theta_i) / cos^2(theta_d), with
  * cos^2(theta_d) floored at 1e-8 as in the kernels. */

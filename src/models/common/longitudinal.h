@@ -302,7 +302,9 @@ HB_INLINE vf longitudinal_deon_vectors(const hb_longitudinal *lobe, const vf wi[
 /* theta_i drawn from M_p(v, theta_i, theta_o - shift) cos(theta_i) (dFH11 eq. 7 is the projection
  * of a von Mises-Fisher lobe about the mirror direction; d'Eon et al. 2013): the lobe's polar angle
  * psi by its inverse CDF, 1 - cos psi = -v log(u1 + (1 - u1) e^(-2/v)) (e2 = e^(-2/v), stable as
- * v -> 0), its azimuth 2 pi u2, projected on the fibre axis. */
+ * v -> 0), its azimuth 2 pi u2. theta_i comes from the direction's axial part and its across-axis
+ * length together, which keeps its digits at the poles (asin of the axial part alone is off by up
+ * to sqrt(2 eps) = 3.5e-4 rad there). */
 HB_INLINE vf longitudinal_sample(vf v, vf e2, vf cos_shift, vf sin_shift, vf theta_o, vf u1, vf u2)
 {
     vf so, co;
@@ -312,10 +314,14 @@ HB_INLINE vf longitudinal_sample(vf v, vf e2, vf cos_shift, vf sin_shift, vf the
     vf inner = vf_fma(vf_sub(vf_set1(1.0f), u1), e2, u1);
     vf one_minus_cos_psi = vf_min(vf_mul(vf_neg(v), vf_log(inner)), vf_set1(2.0f));
     vf sin_psi = vf_sqrt(vf_max(vf_mul(one_minus_cos_psi, vf_sub(vf_set1(2.0f), one_minus_cos_psi)), vf_set1(0.0f)));
-    vf cos_azimuth = vf_cos(vf_mul(u2, vf_set1(HB_TWO_PI_F)));
-    vf sin_i = vf_fma(vf_mul(sin_psi, cos_azimuth), cos_o,
-                      vf_mul(vf_sub(one_minus_cos_psi, vf_set1(1.0f)), sin_o)); /* mirror: theta = -(theta_o - shift) */
-    return vf_asin(vf_clamp(sin_i, -1.0f, 1.0f));
+    vf cos_psi = vf_sub(vf_set1(1.0f), one_minus_cos_psi), sin_azimuth, cos_azimuth;
+    vf_sincos(vf_mul(u2, vf_set1(HB_TWO_PI_F)), &sin_azimuth, &cos_azimuth);
+    vf tilt = vf_mul(sin_psi, cos_azimuth);
+    vf axial = vf_fnma(cos_psi, sin_o, vf_mul(tilt, cos_o)); /* the mirror direction is at -(theta_o - shift) */
+    vf across = vf_fma(cos_psi, cos_o, vf_mul(tilt, sin_o));
+    vf aside = vf_mul(sin_psi, sin_azimuth);
+    vf cos_i = vf_sqrt(vf_fma(across, across, vf_mul(aside, aside))); /* a unit vector's parts to 1e-7 */
+    return vf_asin_with_cos(axial, cos_i);
 }
 
 #endif
