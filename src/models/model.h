@@ -106,8 +106,7 @@ static inline void hb_spread_channels(size_t n, hb_rgb_soa out)
 
 /* The kernels for a call of n samples: a call of one sample runs on the scalar kernels where the plan's
  * ISA is wider, since a vector block costs as much for one sample as for all its lanes (make bench,
- * per-hit rows on AVX2: MJC03 606 -> 383 ns, HHH22's closed-form R 255 -> 177, the near fields 305 ->
- * 188). Results agree with the wide kernels' within the ISAs' stated bound. */
+ * the per-hit rows). Results agree with the wide kernels' within the ISAs' stated bound. */
 static inline const void *hb_kernels_for(const hb_plan *plan, size_t n)
 {
     return n == 1 && plan->narrow_kernels ? plan->narrow_kernels : plan->kernels;

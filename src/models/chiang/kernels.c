@@ -71,9 +71,8 @@ static void near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa
 
 /* A call of a few samples of the near field (a path tracer's call per hit), each alone with its
  * terms across the lanes (eval.h, chiang_near_lanes): model.c sends such calls of a plan on the float
- * M_p path here, up to near_few_max samples. One sample costs less so than on the scalar kernels
- * (make bench, balanced, ns per call: AVX2 133, SSE4.1 138, AVX-512 159, against 184); two would cost
- * 266 on AVX2, more than a block (16 lanes at the batch row's 15 ns). */
+ * M_p path here, up to near_few_max samples. One sample costs less so than on the scalar kernels,
+ * two more than a whole block (make bench, the per-hit and near rows). */
 static void near_few_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
 {
     vf f[3];

@@ -14,7 +14,7 @@ static int few(const hb_plan *plan, size_t n, int most)
 
 /* How many samples at the end of a batch of n the few-sample kernels take: the partial last block
  * (n mod the block's width) when it has at most `most` samples, else none. A partial block costs a
- * whole one (AVX2, balanced: 764 ns for five samples, where five one-sample calls cost 598). */
+ * whole one, more than its samples' one-sample calls (make bench, the per-hit rows). */
 static size_t few_tail(const hb_plan *plan, size_t n, int most)
 {
     const hb_deon_kernels *wide = plan->kernels;

@@ -8,7 +8,7 @@
 
 /* The largest table: 4097 azimuths x 513 values of cos(theta_d) (a beta_n near 0.01 at 1e-4), and the
  * most quadrature-node evaluations one build attempt may make (its grids of nodes x quadrature nodes):
- * about 0.2 s on one AVX2 core. */
+ * a fraction of a second on one core. */
 #define HB_DEON_TABLE_MAX_PHI 4097
 #define HB_DEON_TABLE_MAX_CD 513
 #define HB_DEON_TABLE_MAX_WORK 1e8

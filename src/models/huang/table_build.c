@@ -44,10 +44,10 @@ int hb_huang_table_grid_of(hb_quality quality)
     return quality == HB_QUALITY_FAST ? 0 : quality == HB_QUALITY_BALANCED ? 2 : 3;
 }
 
-/* The most exit-to-node connections a build may make: about 3.5 minutes on one AVX2 core (2.1 ns
- * each, measured; threads divide it). A circular fibre needs 4.7e9 at roughness 0.2 and 2.2e10 at
- * 0.1 on the balanced grid (refused below about 0.05), 3.7e10 at 0.2 on the high grid (refused
- * below about 0.13). */
+/* The most exit-to-node connections a build may make: a few minutes on one AVX2 core (the cost per
+ * connection is `make bench --only huang-table`'s; threads divide it). A circular fibre needs 4.7e9
+ * at roughness 0.2 and 2.2e10 at 0.1 on the balanced grid (refused below about 0.05), 3.7e10 at 0.2
+ * on the high grid (refused below about 0.13). */
 #define MAX_CONNECTIONS 1e11
 
 static int nodes_for(double range, double step, int least, int most)
@@ -68,8 +68,7 @@ static hb_status out_of_memory(hb_error *error, void *a, void *b, void *c)
     return HB_ERR_NOMEM;
 }
 
-/* Exit-to-node connections a build of the plan's grid makes with `paths` per node (its cost, 2.1 ns
- * each on AVX2). */
+/* Exit-to-node connections a build of the plan's grid makes with `paths` per node: its cost. */
 static double connections_with(const hb_huang_table *t, int paths)
 {
     double rows = (double)t->n_theta_i * t->n_phi_i, nodes = (double)t->n_sum * t->n_delta;
@@ -175,8 +174,8 @@ static double table_connections(hb_plan *plan)
     return connections_with(&plan->huang.table, plan->huang.table.paths);
 }
 
-/* HB_TT_TRT_AUTO builds the table where it takes about a second on one core at most (1.3 s: on
- * the second grid circular fibres down to roughness 0.1; elliptical ones of e = 0.8 from about 0.3). */
+/* HB_TT_TRT_AUTO builds the table where it takes about a second on one core at most (on the second
+ * grid circular fibres down to roughness 0.1; elliptical ones of e = 0.8 from about 0.3). */
 #define AUTO_CONNECTIONS 5e8
 
 int hb_huang_table_fits(hb_plan *plan) { return table_connections(plan) <= AUTO_CONNECTIONS; }
