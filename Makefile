@@ -189,7 +189,7 @@ test: $(TEST_BIN) $(TOOL) $(REPLAYS)
 	@$(RUN_TESTS)
 
 # The include rules of docs/architecture.md: layer order, no model reading another, references
-# free of the fast path.
+# free of the fast path, no branch on a model id outside src/models/.
 layers:
 	sh tests/layers.sh
 

@@ -5,6 +5,7 @@
 # - A model's folder includes no other model's folder (what two models share is in models/common/).
 # - The reference includes nothing of the fast path: no simd/, kernel/ or vector math, and of
 #   models/ only the plan's data (models/plan.h).
+# - No file outside src/models/ branches on a model id: the model's operations do.
 # Prints each break as file:line and exits 1 if there is one.
 cd "$(dirname "$0")/.." || exit 2
 rank() {
@@ -46,6 +47,11 @@ for file in $(find src -name '*.c' -o -name '*.h' | sort); do
         fi
     done
 done
+grep -rnE '(==|!=) *HB_MODEL_|case HB_MODEL_' src --include='*.c' --include='*.h' | grep -v '^src/models/' |
+    while IFS= read -r line; do
+        echo "${line%%:*}:$(echo "$line" | cut -d: -f2): branches on a model id outside src/models/"
+        echo x >> "${TMPDIR:-/tmp}/hb_layers.$$"
+    done
 if [ -s "${TMPDIR:-/tmp}/hb_layers.$$" ]; then
     rm -f "${TMPDIR:-/tmp}/hb_layers.$$"
     echo "layers: the includes above break docs/architecture.md's rules"

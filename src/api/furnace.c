@@ -62,17 +62,18 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
     return HB_OK;
 }
 
-/* By scattering order: HHH22's random walk, which the reference holds (no other model has one). */
+/* By scattering order: a random walk through a circular fibre, where the model's reference has one
+ * (HHH22's). */
 hb_status hb_furnace_orders(const hb_plan *plan, double theta, long paths, unsigned long long seed,
                             double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS])
 {
     if (!plan || !energy)
         return HB_ERR_NULL;
-    if (plan->options.model != HB_MODEL_HUANG || plan->material.eccentricity != 0.0)
+    if (!plan->reference->orders || plan->material.eccentricity != 0.0)
         return HB_ERR_UNSUPPORTED;
     if (!(fabs(theta) < M_PI_2) || paths < 1)
         return HB_ERR_PARAM;
     double unused[HB_ORDER_GROUPS];
-    hb_ref_huang_orders(plan, theta, paths, seed, energy, standard_error ? standard_error : unused);
+    plan->reference->orders(plan, theta, paths, seed, energy, standard_error ? standard_error : unused);
     return HB_OK;
 }

@@ -30,6 +30,7 @@ typedef struct hb_preset {
 
 typedef struct hb_model_ops {
     const char *name; /* "deon": as the CLI, the bench and the calibration name the model */
+    const struct hb_reference_ops *reference; /* its double-precision procedures, in src/ref/ */
     double beta_max; /* beta_m and beta_n at most this on the model's own scale (CBTB16: 1); 0: radians, the shared ranges */
     double beta_m_min; /* beta_m at least this on the model's own scale; 0: the shared range */
 

@@ -32,6 +32,7 @@ struct hb_plan {
     hb_options options;
     const void *kernels; /* the model's kernel table for the plan's ISA; NULL: the double reference */
     const void *narrow_kernels; /* the scalar ISA's table where the plan's ISA is wider, else NULL (model.h) */
+    const struct hb_reference_ops *reference; /* the model's double-precision procedures (src/ref/reference.h) */
     hb_isa isa;
     double sigma_a[3];   /* sigma_a plus melanin */
     /* dFH11 (src/models/deon/plan.c) */

@@ -104,6 +104,7 @@ hb_status hb_plan_build(const hb_material *material, const hb_options *options, 
     plan->isa = isa;
     hb_material_absorption(material, plan->sigma_a);
     const hb_model_ops *ops = hb_model_ops_of(options->model);
+    plan->reference = ops->reference;
     hb_status st = ops->derive(plan, error);
     hb_table_view view;
     int channels;

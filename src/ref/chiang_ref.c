@@ -136,3 +136,41 @@ void hb_ref_chiang_sample_near(const hb_plan *plan, double theta_o, double phi_o
     }
     *phi_i = remainder(phi_o - phi, 2.0 * M_PI);
 }
+
+static void chiang_eval_far(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                            double f[3])
+{
+    hb_ref_chiang_far(plan, theta_i, phi_i, theta_o, phi_o, f, NULL);
+}
+
+static void chiang_eval_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                             double h, double f[3])
+{
+    hb_ref_chiang_near(plan, theta_i, phi_i, theta_o, phi_o, h, f, NULL);
+}
+
+/* The far-field sampler draws h uniformly from the number after the near field's. */
+static void chiang_sample_far(const hb_plan *plan, double theta_o, double phi_o, const double *u, double *theta_i,
+                              double *phi_i)
+{
+    hb_ref_chiang_sample_near(plan, theta_o, phi_o, 2.0 * u[HB_CHIANG_NEAR_DIMENSIONS] - 1.0, u, theta_i, phi_i);
+}
+
+static double chiang_pdf_far(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o)
+{
+    double f[3], pdf;
+    hb_ref_chiang_far(plan, theta_i, phi_i, theta_o, phi_o, f, &pdf);
+    return pdf;
+}
+
+static double chiang_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h)
+{
+    double f[3], pdf;
+    hb_ref_chiang_near(plan, theta_i, phi_i, theta_o, phi_o, h, f, &pdf);
+    return pdf;
+}
+
+const hb_reference_ops hb_ref_chiang_ops = {
+    .eval = chiang_eval_far, .eval_near = chiang_eval_near, .sample = chiang_sample_far, .pdf = chiang_pdf_far,
+    .sample_near = hb_ref_chiang_sample_near, .pdf_near = chiang_pdf_near,
+};

@@ -185,3 +185,19 @@ double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, d
     detected += mass[HB_LOBE_RESIDUAL] * 0.5 / M_PI;
     return mixture / c_total * detected / total;
 }
+
+/* The plan's term: eq. 7 of the R lobe alone (HB_TERM_LONGITUDINAL), or the whole of f. */
+static void deon_eval(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
+{
+    if (plan->options.term == HB_TERM_LONGITUDINAL)
+        f[0] = f[1] = f[2] = hb_ref_deon_longitudinal(plan->v[HB_LOBE_R], theta_i,
+                                                      theta_o - plan->deon.longitudinal[HB_LOBE_R].shift,
+                                                      plan->options.i0);
+    else
+        hb_ref_deon(plan, theta_i, phi_i, theta_o, phi_o, f);
+}
+
+const hb_reference_ops hb_ref_deon_ops = {
+    .eval = deon_eval, .eval_near = hb_ref_deon_near, .sample = hb_ref_deon_sample, .pdf = hb_ref_deon_pdf,
+    .sample_near = hb_ref_deon_sample_near, .pdf_near = hb_ref_deon_pdf_near,
+};

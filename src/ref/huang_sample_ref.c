@@ -88,3 +88,7 @@ void hb_ref_huang_sample(const hb_plan *plan, double theta_o, double phi_o, cons
     *theta_i = atan2(wi[1], hypot(wi[0], wi[2]));
     *phi_i = remainder(phi_o + atan2(wi[0], wi[2]), 2.0 * M_PI);
 }
+
+const hb_reference_ops hb_ref_huang_ops = {
+    .eval = hb_ref_huang, .sample = hb_ref_huang_sample, .pdf = hb_ref_huang_pdf, .orders = hb_ref_huang_orders,
+};

@@ -189,3 +189,17 @@ void hb_ref_marschner(const hb_plan *plan, double theta_i, double phi_i, double 
     for (int c = 0; c < 3; c++)
         f[c] *= projection;
 }
+
+/* The plan's term: the R lobe's longitudinal term alone (HB_TERM_LONGITUDINAL), or the whole of f.
+ * MJC03 has no double-precision sampler: a reference plan cannot sample. */
+static void marschner_eval(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                           double f[3])
+{
+    if (plan->options.term == HB_TERM_LONGITUDINAL)
+        f[0] = f[1] = f[2] = hb_ref_marschner_longitudinal(plan->marschner_beta[HB_LOBE_R],
+                                                           plan->marschner_mean[HB_LOBE_R], theta_i, theta_o);
+    else
+        hb_ref_marschner(plan, theta_i, phi_i, theta_o, phi_o, f);
+}
+
+const hb_reference_ops hb_ref_marschner_ops = { .eval = marschner_eval };

@@ -139,6 +139,26 @@ void hb_ref_chiang_far(const hb_plan *plan, double theta_i, double phi_i, double
 void hb_ref_chiang_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double u[4],
                                double *theta_i, double *phi_i);
 
+/* A model's double-precision procedures, as its model.c names them (hb_model_ops.reference) and
+ * the plan carries them (hb_plan.reference): f of the plan's term, the sampler and its pdf, and at
+ * an offset h for a near-field model, the furnace by order. NULL where the model has none. */
+typedef struct hb_reference_ops {
+    void (*eval)(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
+    void (*eval_near)(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                      double f[3]);
+    void (*sample)(const hb_plan *plan, double theta_o, double phi_o, const double *u, double *theta_i,
+                   double *phi_i);
+    double (*pdf)(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o);
+    void (*sample_near)(const hb_plan *plan, double theta_o, double phi_o, double h, const double *u,
+                        double *theta_i, double *phi_i);
+    double (*pdf_near)(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h);
+    /* The white furnace by scattering order, from a random walk through a circular fibre (hb_furnace_orders). */
+    void (*orders)(const hb_plan *plan, double theta, long paths, unsigned long long seed,
+                   double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS]);
+} hb_reference_ops;
+
+extern const hb_reference_ops hb_ref_deon_ops, hb_ref_marschner_ops, hb_ref_huang_ops, hb_ref_chiang_ops;
+
 /* theta and phi of a fibre-frame vector (atan2 of its parts, in double); 0 when it is not a unit
  * vector within HB_UNIT_TOLERANCE or not finite. */
 int hb_ref_direction(float x, float y, float z, double *theta, double *phi);

@@ -113,8 +113,12 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
     return p->quality == o->quality && o->quadrature_order == 0;
 }
 
+/* its double-precision procedures (src/ref/chiang_ref*.c) */
+extern const struct hb_reference_ops hb_ref_chiang_ops;
+
 const hb_model_ops hb_chiang_model = {
     .name = "chiang",
+    .reference = &hb_ref_chiang_ops,
     .beta_max = 1.0, /* pbrt-v4's [0, 1] scale (docs/chiang.md) */
     .beta_m_min = HB_CHIANG_BETA_M_MIN,
     .table_version = 1,

@@ -220,8 +220,12 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
     return p->quality == o->quality && p->quadrature_order == o->quadrature_order && p->azimuthal == o->azimuthal;
 }
 
+/* its double-precision procedures (src/ref/deon_ref*.c) */
+extern const struct hb_reference_ops hb_ref_deon_ops;
+
 const hb_model_ops hb_deon_model = {
     .name = "deon",
+    .reference = &hb_ref_deon_ops,
     .table_version = 1,
     .lobes = lobes,
     .validate = hb_deon_validate,

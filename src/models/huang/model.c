@@ -143,8 +143,12 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
            (lobe_mask == 1u || table_if_auto(p->tt_trt) == table_if_auto(o->tt_trt));
 }
 
+/* its double-precision procedures (src/ref/huang_ref*.c) */
+extern const struct hb_reference_ops hb_ref_huang_ops;
+
 const hb_model_ops hb_huang_model = {
     .name = "huang",
+    .reference = &hb_ref_huang_ops,
     .table_version = 1,
     .lobes = lobes,
     .validate = hb_huang_validate,

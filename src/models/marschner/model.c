@@ -99,8 +99,12 @@ static int any_preset(const hb_preset *p, const hb_material *m, const hb_options
     return 1;
 }
 
+/* its double-precision procedures (src/ref/marschner_ref*.c) */
+extern const struct hb_reference_ops hb_ref_marschner_ops;
+
 const hb_model_ops hb_marschner_model = {
     .name = "marschner",
+    .reference = &hb_ref_marschner_ops,
     .table_version = 1,
     .lobes = lobes,
     .validate = hb_marschner_validate,
