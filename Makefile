@@ -122,7 +122,7 @@ BENCH_BIN := $(B)/hairbsdf_bench$(EXE)
 REPLAYS := $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%$(EXE))
 FUZZ_TOOL_OBJS := $(B)/tools/csv.o $(B)/tools/cli_options.o $(B)/tools/cli_threads.o
 
-.PHONY: all test check layers tsan bench bench-instr bench-instr-check calibration demo images fuzz fuzz-run install abi clean
+.PHONY: all test check figures layers tsan bench bench-instr bench-instr-check calibration demo images fuzz fuzz-run install abi clean
 all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LINK)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE)
 
 $(B)/%.o: %.c
@@ -135,7 +135,7 @@ $(B)/src/%.o: ALL_CFLAGS += $(LIB_ONLY_CFLAGS)
 
 # The tests gain nothing from auto-vectorisation, and aarch64 gcc 12's vectoriser crashes
 # (an internal compiler error) on some of their max-reductions.
-$(B)/tests/%.o: ALL_CFLAGS += -fno-tree-vectorize -Itools
+$(B)/tests/%.o: ALL_CFLAGS += -fno-tree-vectorize -Itools -Ibench
 
 # Kernel units carry line tables and function names (-g1: backtraces, perf and callgrind annotate
 # by line): the locations of every variable of their inlined vector code took two thirds of their
@@ -167,7 +167,7 @@ $(EXAMPLE): $(B)/examples/minimal.o $(STATIC_LIB)
 $(ENGINE_EXAMPLE): $(B)/examples/engine.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
 
-$(TEST_BIN): $(TEST_SRCS:%.c=$(B)/%.o) $(TEST_HOOK_OBJS) $(B)/tools/image.o $(B)/tools/image_exr.o $(STATIC_LIB)
+$(TEST_BIN): $(TEST_SRCS:%.c=$(B)/%.o) $(TEST_HOOK_OBJS) $(B)/tools/image.o $(B)/tools/image_exr.o $(B)/bench/readme.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS) $(EXR_LIBS) -lpthread
 
 $(B)/bench/%.o: ALL_CFLAGS += -Itools
@@ -196,6 +196,11 @@ layers:
 check: $(TEST_BIN) $(TOOL) $(REPLAYS)
 	@$(REPLAY_CORPUS)
 	@$(RUN_TESTS) --long
+
+# The long tier, writing what each test measured into the blocks of README.md and docs/ that name
+# it (tests/figures.h).
+figures: $(TEST_BIN) $(TOOL)
+	@$(RUN_TESTS) --long --figures
 
 # ThreadSanitizer (clang) over the test that shares plans between threads, kernels instrumented.
 tsan:

@@ -45,7 +45,7 @@ int bench_update_region(const char *path, const char *begin_marker, const char *
     char *after_begin = begin ? strchr(begin, '\n') : NULL;
     char *end = after_begin ? marker_line(after_begin + 1, end_marker) : NULL;
     if (!end) {
-        fprintf(stderr, "bench: %s has no %s ... %s region; its table is not written\n", path, begin_marker,
+        fprintf(stderr, "%s has no %s ... %s region; its text is not written\n", path, begin_marker,
                 end_marker);
         free(old);
         return 1;
@@ -61,7 +61,7 @@ int bench_update_region(const char *path, const char *begin_marker, const char *
         failed = fclose(f) != 0 || rename(tmp, path) != 0;
     }
     if (failed)
-        fprintf(stderr, "bench: cannot rewrite %s\n", path);
+        fprintf(stderr, "cannot rewrite %s\n", path);
     free(old);
     return failed;
 }

@@ -3,12 +3,13 @@
  * ($HB_TEST_EMULATED, qemu) the quick tier runs the tests that depend on the ISA: the others check
  * the same C code that the native run checks, at twenty times the cost. Options: --long (the long tier: every test's full case set; the
  * default is the quick tier's subset of cases), --verbose (each test's measurements), --filter
- * SUBSTRING, --seed N, --list. */
+ * SUBSTRING, --seed N, --list, --figures (writes the measurements into the pages' blocks, figures.h). */
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
+#include "figures.h"
 #include "test.h"
 
 /* A failing check prints this many lines per test and ISA, then a count of the rest. */
@@ -28,15 +29,30 @@ void hb_test_fail(hb_test_ctx *t, const char *file, int line, const char *fmt, .
     }
 }
 
+/* Prints a note with --verbose; a measurement (keep) is also kept for --figures. */
+static void report(hb_test_ctx *t, int keep, const char *fmt, va_list ap)
+{
+    char line[1024];
+    vsnprintf(line, sizeof line, fmt, ap);
+    if (verbose)
+        printf("    %s [%s]: %s\n", t->name, t->isa == HB_ISA_AUTO ? "-" : hb_isa_name(t->isa), line);
+    if (keep && hb_figures_enabled())
+        hb_figures_record(t->name, t->isa, line);
+}
+
 void hb_test_note(hb_test_ctx *t, const char *fmt, ...)
 {
-    if (!verbose)
-        return;
     va_list ap;
     va_start(ap, fmt);
-    printf("    %s [%s]: ", t->name, t->isa == HB_ISA_AUTO ? "-" : hb_isa_name(t->isa));
-    vprintf(fmt, ap);
-    printf("\n");
+    report(t, 1, fmt, ap);
+    va_end(ap);
+}
+
+void hb_test_detail(hb_test_ctx *t, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    report(t, 0, fmt, ap);
     va_end(ap);
 }
 
@@ -133,6 +149,32 @@ void hb_test_longitudinal_setup(const hb_test_ctx *t, hb_material *m, hb_options
 static const hb_test *const suites[] = { hb_tests_api, hb_tests_vmath, hb_tests_longitudinal, hb_tests_deon,
                                           hb_tests_marschner, hb_tests_marschner_full, hb_tests_huang, hb_tests_huang_paper, hb_tests_sample, hb_tests_sample_huang, hb_tests_huang_internal, hb_tests_huang_table, hb_tests_properties, hb_tests_corpus, hb_tests_cli, hb_tests_images, hb_tests_deon_table, hb_tests_table_file, hb_tests_table_build, hb_tests_absorption, hb_tests_shaders, hb_tests_colour_table, hb_tests_plan_select, hb_tests_threads, hb_tests_chiang, hb_tests_renderer_calls, hb_tests_colour, hb_tests_deon_near, hb_tests_marschner_sample, hb_tests_docs };
 
+const hb_test *hb_test_find(const char *name)
+{
+    size_t n = strlen(name);
+    int prefix = n && name[n - 1] == '*';
+    for (size_t s = 0; s < sizeof suites / sizeof suites[0]; s++)
+        for (const hb_test *test = suites[s]; test->name; test++)
+            if (prefix ? !strncmp(test->name, name, n - 1) : !strcmp(test->name, name))
+                return test;
+    return NULL;
+}
+
+/* The line under each block `make figures` writes: the date, the compiler, the tier and seed. */
+static void figures_run(char *run, size_t capacity, uint64_t seed)
+{
+    char date[16];
+    time_t now = time(NULL);
+    strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
+#ifdef __clang__
+    const char *compiler = "clang";
+#else
+    const char *compiler = "gcc";
+#endif
+    snprintf(run, capacity, "`make figures`, %s, %s %s, long tier, seed %llu", date, compiler, __VERSION__,
+             (unsigned long long)seed);
+}
+
 static uint64_t name_hash(const char *s)
 {
     uint64_t h = 1469598103934665603ull;
@@ -175,8 +217,11 @@ int main(int argc, char **argv)
             long_tier = 1;
         else if (strcmp(argv[i], "--verbose") == 0 || strcmp(argv[i], "-v") == 0)
             verbose = 1;
+        else if (strcmp(argv[i], "--figures") == 0)
+            hb_figures_enable();
         else {
-            fprintf(stderr, "usage: %s [--long] [--verbose] [--filter SUBSTRING] [--seed N] [--list]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--long] [--verbose] [--filter SUBSTRING] [--seed N] [--list] [--figures]\n",
+                    argv[0]);
             return 2;
         }
     }
@@ -249,6 +294,12 @@ int main(int argc, char **argv)
     if (list)
         return 0;
     printf("%.1f s\n", seconds_now() - start);
+    if (hb_figures_enabled()) {
+        char run[256];
+        figures_run(run, sizeof run, seed);
+        if (hb_figures_write(run))
+            failed++;
+    }
     if (skipped)
         printf("%u passed, %u failed, %u skipped\n", passed, failed, skipped);
     else

@@ -32,13 +32,20 @@ typedef struct hb_test {
 } hb_test;
 
 void hb_test_fail(hb_test_ctx *t, const char *file, int line, const char *fmt, ...) HB_PRINTF_FORMAT(4, 5);
+/* A measurement, printed with --verbose and kept for the pages' blocks by --figures (figures.h). */
 void hb_test_note(hb_test_ctx *t, const char *fmt, ...) HB_PRINTF_FORMAT(2, 3);
+/* A diagnostic (where a worst case lies), printed with --verbose only. */
+void hb_test_detail(hb_test_ctx *t, const char *fmt, ...) HB_PRINTF_FORMAT(2, 3);
 
 #define CHECK(t, cond, ...)                                         \
     do {                                                            \
         if (!(cond))                                                \
             hb_test_fail((t), __FILE__, __LINE__, __VA_ARGS__);     \
     } while (0)
+
+/* The test of that name (the first whose name starts with it, for a name ending in '*'), NULL when
+ * there is none. */
+const hb_test *hb_test_find(const char *name);
 
 /* Marks the test as skipped here, for the reason the runner prints. */
 void hb_test_skip(hb_test_ctx *t, const char *reason);

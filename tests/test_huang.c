@@ -157,7 +157,7 @@ static double kernel_error(hb_test_ctx *t, const huang_setup *s, const float *ti
         size_t worst;
         err = hb_test_spec_error(fp, gp, N, &worst);
         if (err > 1e-3)
-            hb_test_note(t, "  worst (r %g alpha %g ndf %d G %d e %g): (%.9g, %.9g, %.9g, %.9g) f %.6g ref %.6g", s->roughness,
+            hb_test_detail(t, "  worst (r %g alpha %g ndf %d G %d e %g): (%.9g, %.9g, %.9g, %.9g) f %.6g ref %.6g", s->roughness,
                          s->alpha, (int)s->ndf, (int)s->shadowing, s->eccentricity, ti[worst], pi[worst], to[worst],
                          po[worst], f[0][worst], g[0][worst]);
     }
@@ -373,9 +373,9 @@ static void refusals(hb_test_ctx *t)
 
 /* The white furnace of a lossless fibre near and at the poles (the float nearest pi/2 and the one
  * below it, both signs) stays bounded: eq. 10's width 2 cos(theta_o) is kept above the scales' and,
- * without G, the rough surface's own (docs/huang.md, "At the poles"). Without the floor these
- * furnaces read 1e5 to 6e5 at the float pole. The bounds are the model's own excess over 1 away
- * from the poles (no G) and 1 with G. */
+ * without G, the rough surface's own (docs/huang.md, "At the poles"). The bounds are the model's own
+ * excess over 1 away from the poles (no G) and 1 with G. The paper's form, noted beside, grows as
+ * 1 / cos(theta_o) at the float pole. */
 static void pole_energy(hb_test_ctx *t)
 {
     static const struct {
@@ -421,7 +421,14 @@ static void pole_energy(hb_test_ctx *t)
                 if (!(energy[0] <= most))
                     most = energy[0], at = theta;
             }
-        hb_test_note(t, "%s: largest E %.4f at theta_o %.7f", cases[c].name, most, at);
+        hb_plan_destroy(plan);
+        o.pole_floor = HB_POLE_FLOOR_PAPER;
+        double paper[3] = { NAN, NAN, NAN };
+        CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_OK, "%s, the paper's form: %s", cases[c].name, e.message);
+        CHECK(t, plan && hb_furnace(plan, -(double)1.57079637f < -M_PI_2 ? -M_PI_2 : -(double)1.57079637f, paper) == HB_OK,
+              "%s: the paper's furnace", cases[c].name);
+        hb_test_note(t, "%s: largest E %.4f at theta_o %.7f; the paper's form at theta_o = -pi/2: %.2g", cases[c].name,
+                     most, at, paper[0]);
         hb_plan_destroy(plan);
     }
 }

@@ -391,11 +391,55 @@ static void test_internal_orders(hb_test_ctx *t)
     hb_plan_destroy(oval);
 }
 
+/* HHH22 Fig. 16 by the CLI (`hairbsdf furnace --model huang --fig16`, 20000 paths per row): the
+ * share beyond TRT falls with melanin at every theta (lossless, blond, brown, black) and a black
+ * fibre's is under 1e-3; what the lossless fibre sends out is at most 1 within four standard errors.
+ * Long tier only: it takes the walk 20 s. Its rows are docs/huang.md's table. */
+static void test_internal_fig16(hb_test_ctx *t)
+{
+    if (t->quick) {
+        hb_test_skip(t, "the long tier's");
+        return;
+    }
+    hb_tool_run r;
+    if (!hb_test_run_tool(t, "furnace --model huang --fig16 --theta-o -1.2,-0.6,0,0.6,1.2", NULL, 0, &r))
+        return;
+    CHECK(t, r.status == 0, "furnace --fig16: status %d, %s", r.status, r.err);
+    enum { THETAS = 5, FIBRES = 4 };
+    double share[FIBRES][THETAS];
+    int rows = 0;
+    char *header_end = strchr(r.out, '\n');
+    if (header_end)
+        hb_test_note(t, "%.*s", (int)(header_end - r.out), r.out);
+    for (char *line = header_end; line && line[1]; line = strchr(line + 1, '\n')) {
+        char fibre[16];
+        double theta, e_r, e_tt, e_trt, beyond, se, part;
+        if (sscanf(line + 1, "%15[^,],%lf,%lf,%lf,%lf,%lf,%lf,%lf", fibre, &theta, &e_r, &e_tt, &e_trt, &beyond, &se,
+                   &part) != 8 || rows >= FIBRES * THETAS)
+            break;
+        share[rows / THETAS][rows % THETAS] = part;
+        if (rows < THETAS)
+            CHECK(t, e_r + e_tt + e_trt + beyond <= 1.0 + 4.0 * se, "lossless at theta %g: %.5f leaves", theta,
+                  e_r + e_tt + e_trt + beyond);
+        rows++;
+        char *end = strchr(line + 1, '\n');
+        hb_test_note(t, "%.*s", end ? (int)(end - line - 1) : (int)strlen(line + 1), line + 1);
+    }
+    CHECK(t, rows == FIBRES * THETAS, "furnace --fig16 printed %d rows", rows);
+    for (int k = 0; rows == FIBRES * THETAS && k < THETAS; k++) {
+        for (int f = 1; f < FIBRES; f++)
+            CHECK(t, share[f][k] < share[f - 1][k], "theta %d: fibre %d's share beyond TRT %.4f, fibre %d's %.4f", k, f,
+                  share[f][k], f - 1, share[f - 1][k]);
+        CHECK(t, share[FIBRES - 1][k] < 1e-3, "theta %d: the black fibre's share beyond TRT %.4f", k, share[FIBRES - 1][k]);
+    }
+}
+
 const hb_test hb_tests_huang_internal[] = {
     { "huang_internal_matches_double", test_internal_matches_double, 1 },
     { "huang_internal_unbiased", test_internal_unbiased, 0 },
     { "huang_internal_reciprocal", test_internal_reciprocal, 0 },
     { "huang_internal_orders", test_internal_orders, 0 },
+    { "huang_internal_fig16", test_internal_fig16, 0 },
     { "huang_internal_seed", test_internal_seed, 1 },
     { "huang_internal_hard_cases", test_internal_hard_cases, 1 },
     { "huang_internal_no_g_bounded", test_internal_no_g_bounded, 1 },

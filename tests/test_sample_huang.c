@@ -165,7 +165,7 @@ static void test_huang_sample_reference(hb_test_ctx *t)
             double cos_angle = sin(ti) * sin(buf->ti[i]) + cos(ti) * cos(buf->ti[i]) * cos(pi - buf->pi[i]);
             double angle = 2.0 * asin(fmin(1.0, sqrt(fmax(0.0, 0.5 * (1.0 - cos_angle)))));
             if (angle > 1e-4)
-                hb_test_note(t, "%s: u %.9g %.9g %.9g: %.7f %.7f vs ref %.7f %.7f", text, u[0], u[1], u[2], buf->ti[i], buf->pi[i], ti, pi);
+                hb_test_detail(t, "%s: u %.9g %.9g %.9g: %.7f %.7f vs ref %.7f %.7f", text, u[0], u[1], u[2], buf->ti[i], buf->pi[i], ti, pi);
             worst_direction = fmax(worst_direction, angle);
             worst_pdf = fmax(worst_pdf, fabs(buf->pdf[i] - ref_pdf[i]) / fmax(ref_pdf[i], 1e-3 * peak));
         }
@@ -213,7 +213,7 @@ static void test_huang_sample_beckmann_top(hb_test_ctx *t)
             double angle = 2.0 * asin(fmin(1.0, sqrt(fmax(0.0, 0.5 * (1.0 - cos_angle))))), rest = 1.0 - u[1];
             double excess = angle / (2e-5 + 3e-9 / rest);
             if (excess > worst_excess)
-                hb_test_note(t, "%s: 1 - u1 = %.3g: %.3g rad", text, rest, angle);
+                hb_test_detail(t, "%s: 1 - u1 = %.3g: %.3g rad", text, rest, angle);
             worst_excess = fmax(worst_excess, excess);
             if (rest >= 1e-3)
                 worst_near = fmax(worst_near, angle);
