@@ -3,8 +3,10 @@
 # - A layer includes only its own folder and the layers below it:
 #   simd < math < kernel < models < plan < api, and ref (the reference) below api only.
 # - A model's folder includes no other model's folder (what two models share is in models/common/).
-# - The reference includes nothing of the fast path: no simd/, kernel/ or vector math, and of
-#   models/ only the plan's data (models/plan.h).
+# - The reference includes nothing of the fast path: no simd/, kernel/ or vector math. The shared
+#   reference (src/ref/) reads of models/ only the plan's data (models/plan.h); a model's own
+#   reference (src/models/<model>/reference*) also its folder's constants.h, state.h and
+#   reference.h, and nothing else of models/; no fast-path file includes a reference.
 # - No file outside src/models/ branches on a model id: the model's operations do.
 # Prints each break as file:line and exits 1 if there is one.
 cd "$(dirname "$0")/.." || exit 2
@@ -18,14 +20,37 @@ status=0
 for file in $(find src -name '*.c' -o -name '*.h' | sort); do
     layer=$(echo "$file" | cut -d/ -f2)
     model=$(echo "$file" | sed -n 's|^src/models/\([^/]*\)/.*|\1|p')
+    oracle=""
+    case "$file" in src/models/*/reference*) oracle=yes ;; esac
     grep -n '^#include "' "$file" | while IFS= read -r line; do
         number=${line%%:*}
         target=$(echo "$line" | sed 's/^[0-9]*:#include "\([^"]*\)".*/\1/')
-        case "$target" in */*) ;; *) continue ;; esac # the folder's own headers and hairbsdf.h
+        case "$target" in
+        */*) ;;
+        hairbsdf.h) continue ;;
+        *) # the folder's own headers: a model's reference reads only its data and its reference
+            why=""
+            if [ -n "$oracle" ]; then
+                case "$target" in constants.h | state.h | reference.h) ;; *) why="the reference includes its model's $target" ;; esac
+            elif [ -n "$model" ] && [ "$target" = reference.h ]; then
+                why="a fast-path file includes its model's reference"
+            fi
+            if [ -n "$why" ]; then
+                echo "$file:$number: $why"
+                echo x >> "${TMPDIR:-/tmp}/hb_layers.$$"
+            fi
+            continue ;;
+        esac
         top=${target%%/*}
         [ "$(rank "$top")" -ge 0 ] || continue
         why=""
-        if [ "$layer" = ref ]; then
+        if [ -n "$oracle" ]; then
+            case "$target" in
+            simd/* | kernel/* | math/vmath.h) why="the reference includes the fast path's $target" ;;
+            models/plan.h | ref/* | "models/$model/constants.h" | "models/$model/state.h" | "models/$model/reference.h") ;;
+            models/*) why="the reference includes $target, a model's fast path" ;;
+            esac
+        elif [ "$layer" = ref ]; then
             case "$target" in
             simd/* | kernel/* | math/vmath.h) why="the reference includes the fast path's $target" ;;
             models/plan.h) ;;

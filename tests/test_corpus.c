@@ -7,6 +7,7 @@
 
 #include "test.h"
 #include "ref/reference.h"
+#include "models/huang/reference.h"
 
 typedef struct corpus_row {
     double eta, sigma_a, beta_m, beta_n, alpha, eccentricity;

@@ -8,6 +8,8 @@
 #include "models/plan.h"
 #include "math/quadrature.h"
 #include "ref/reference.h"
+#include "models/deon/reference.h"
+#include "models/deon/state.h"
 
 static hb_plan *deon_plan(hb_test_ctx *t, const hb_material *m, hb_quality quality, unsigned lobes)
 {
@@ -66,7 +68,7 @@ static void test_detector_kernel(hb_test_ctx *t)
             o.isa = t->isa;
             hb_plan *plan;
             hb_plan_create(&m, &o, &plan, NULL);
-            const hb_detector *d = &plan->deon.detector[0];
+            const hb_detector *d = &hb_deon_of(plan)->kernel.detector[0];
             double peak = fmax(1.0 / (betas[b] * sqrt(2 * M_PI)), 0.5 / M_PI);
             for (int k = 0; k < N; k++)
                 x[k] = (float)(-M_PI + 2 * M_PI * k / N);
@@ -251,7 +253,7 @@ static void test_tt_smooth_limit(hb_test_ctx *t)
     double ti = 0.2, to = -0.1, eta = m.eta, td = 0.5 * (to - ti);
     double eta_prime = sqrt(eta * eta - sin(td) * sin(td)) / cos(td), a = 1.0 / eta_prime;
     double mu = m.sigma_a[0] / sqrt(1.0 - sin(td) * sin(td) / (eta * eta));
-    double M = hb_ref_deon_longitudinal(plan->v[1], ti, to, HB_I0_ABRAMOWITZ);
+    double M = hb_ref_longitudinal(hb_deon_of(plan)->v[1], ti, to, HB_I0_ABRAMOWITZ);
     const double phis[] = { 2.9, 2.6, -2.7, 3.1, -3.05 };
     for (int k = 0; k < 5; k++) {
         double phi = phis[k], s = phi >= 0 ? 1.0 : -1.0;
@@ -294,7 +296,7 @@ static void test_nr_integral(hb_test_ctx *t)
             CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "plan");
             if (!plan)
                 return;
-            double ti = 0.4, to = -0.25, M = hb_ref_deon_longitudinal(plan->v[0], ti, to, HB_I0_ABRAMOWITZ);
+            double ti = 0.4, to = -0.25, M = hb_ref_longitudinal(hb_deon_of(plan)->v[0], ti, to, HB_I0_ABRAMOWITZ);
             double sum = 0.0, expected = 1.0;
             enum { N = 2048 };
             for (int k = 0; k < N; k++) {
@@ -344,7 +346,7 @@ static void test_half_range_symmetry(hb_test_ctx *t)
             full *= M_PI / N;
             double f_ref[3];
             hb_ref_deon(plan, ti, 0.0, to, phi, f_ref);
-            double half = f_ref[0] / hb_ref_deon_longitudinal(plan->v[p], ti, to - plan->deon.longitudinal[p].shift,
+            double half = f_ref[0] / hb_ref_longitudinal(hb_deon_of(plan)->v[p], ti, to - hb_deon_of(plan)->kernel.longitudinal[p].shift,
                                                               HB_I0_ABRAMOWITZ);
             CHECK(t, fabs(half - full) <= 1e-7 * fmax(full, 1e-3), "p %d phi %g: half range %.10g, full %.10g", p,
                   phi, half, full);

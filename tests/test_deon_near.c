@@ -5,6 +5,7 @@
 
 #include "sampling.h"
 #include "ref/reference.h"
+#include "models/deon/reference.h"
 
 typedef struct near_material {
     const char *name;

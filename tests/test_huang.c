@@ -7,6 +7,7 @@
 #include "test.h"
 #include "models/plan.h"
 #include "ref/reference.h"
+#include "models/huang/reference.h"
 
 #define DEG (M_PI / 180.0)
 

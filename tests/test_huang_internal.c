@@ -8,6 +8,7 @@
 #include "test.h"
 #include "models/plan.h"
 #include "ref/reference.h"
+#include "models/huang/reference.h"
 
 typedef struct internal_case {
     hb_ndf ndf;

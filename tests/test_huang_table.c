@@ -8,6 +8,7 @@
 
 #include "test.h"
 #include "ref/reference.h"
+#include "models/huang/reference.h"
 
 typedef struct table_case {
     hb_ndf ndf;

@@ -3,6 +3,7 @@
 
 #include "test.h"
 #include "ref/reference.h"
+#include "models/marschner/reference.h"
 
 static hb_plan *marschner_plan(hb_test_ctx *t, double beta, double alpha, hb_quality quality)
 {

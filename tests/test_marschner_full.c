@@ -7,6 +7,8 @@
 #include "test.h"
 #include "models/plan.h"
 #include "ref/reference.h"
+#include "models/marschner/reference.h"
+#include "models/marschner/state.h"
 
 typedef struct mjc_case {
     const char *name;
@@ -135,7 +137,7 @@ static void test_nr_closed_form(hb_test_ctx *t)
         double td = 0.5 * ((double)to - ti), eta = plan->material.eta;
         double eta_perp = sqrt(eta * eta - sin(td) * sin(td)) / cos(td), eta_par = eta * eta / eta_perp;
         double N_R = hb_ref_marschner_fresnel(eta_perp, eta_par, -0.5 * phi) * fabs(cos(0.5 * phi)) / 4.0;
-        double M = hb_ref_marschner_longitudinal(plan->marschner_beta[0], plan->marschner_mean[0], ti, to);
+        double M = hb_ref_marschner_longitudinal(hb_marschner_of(plan)->beta[0], hb_marschner_of(plan)->mean[0], ti, to);
         double want = M * N_R;
         if (want > 1e-6)
             worst = fmax(worst, fabs(f[0] / want - 1.0));

@@ -7,6 +7,7 @@
 #include "sampling.h"
 #include "models/plan.h"
 #include "ref/reference.h"
+#include "models/deon/reference.h"
 
 #define MAX_SAMPLES HB_TEST_MAX_SAMPLES
 

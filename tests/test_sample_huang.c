@@ -6,6 +6,7 @@
 #include "sampling.h"
 #include "models/plan.h"
 #include "ref/reference.h"
+#include "models/huang/reference.h"
 
 static hb_sample_buffers *const buf = &hb_samples;
 

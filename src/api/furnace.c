@@ -1,8 +1,10 @@
 /* White furnace E(w_o) = integral over the sphere of f(w_i, w_o) dw_i (docs/conventions.md):
  * Gauss-Legendre panels in theta_i and the midpoint rule in the periodic phi_i, both fine
- * enough for the plan's narrowest lobe (its model's furnace rule). Evaluated in stack chunks:
- * no allocation. */
+ * enough for the plan's narrowest lobe (its model's furnace rule). Evaluated in stack chunks; a
+ * model whose estimator is re-keyed per chunk gets one copy of the plan, freed at the end. */
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "math/quadrature.h"
 #include "models/model.h"
@@ -27,7 +29,14 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
     double sum[3] = { 0.0, 0.0, 0.0 };
     int count = 0;
     unsigned long long chunks = 0;
-    hb_plan varied = *plan; /* a shallow copy: it shares the plan's tables and is never freed */
+    /* a shallow copy, head and state: it shares the plan's tables, and only it is freed */
+    size_t bytes = sizeof *plan + plan->state_size;
+    hb_plan *varied = ops->rekey ? malloc(bytes) : NULL;
+    if (ops->rekey && !varied)
+        return HB_ERR_NOMEM;
+    if (varied)
+        memcpy(varied, plan, bytes);
+    const hb_plan *evaluated = varied ? varied : plan;
     for (int pass = 0; pass < passes; pass++)
         for (int panel = 0; panel < panels; panel++) {
             hb_gauss_legendre(RULE, -M_PI_2 + M_PI * panel / panels, -M_PI_2 + M_PI * (panel + 1) / panels, x, w);
@@ -44,12 +53,12 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
                         hb_angles_soa in = { ti, pi, to, po };
                         hb_rgb_soa out = { f[0], f[1], f[2] };
                         size_t invalid = 0;
-                        if (ops->rekey)
-                            ops->rekey(&varied, plan, ++chunks);
+                        if (varied)
+                            ops->rekey(varied, plan, ++chunks);
                         if (plan->kernels)
-                            ops->eval_angles(&varied, (size_t)count, in, out, &invalid);
+                            ops->eval_angles(evaluated, (size_t)count, in, out, &invalid);
                         else
-                            hb_ref_eval_angles(&varied, (size_t)count, in, out);
+                            hb_ref_eval_angles(evaluated, (size_t)count, in, out);
                         for (int c = 0; c < 3; c++)
                             for (int k = 0; k < count; k++)
                                 sum[c] += weight[k] * f[c][k];
@@ -57,6 +66,7 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
                     }
                 }
         }
+    free(varied);
     for (int c = 0; c < 3; c++)
         energy[c] = sum[c];
     return HB_OK;

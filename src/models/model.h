@@ -30,9 +30,10 @@ typedef struct hb_preset {
 
 typedef struct hb_model_ops {
     const char *name; /* "deon": as the CLI, the bench and the calibration name the model */
-    const struct hb_reference_ops *reference; /* its double-precision procedures, in src/ref/ */
+    const struct hb_reference_ops *reference; /* its double-precision procedures (its reference.h) */
     double beta_max; /* beta_m and beta_n at most this on the model's own scale (CBTB16: 1); 0: radians, the shared ranges */
     double beta_m_min; /* beta_m at least this on the model's own scale; 0: the shared range */
+    size_t state_size; /* sizeof its state (src/models/<model>/state.h), allocated after the plan's head */
 
     /* Plan creation, after the checks every model shares (src/plan/validate.c). */
     unsigned (*lobes)(const hb_options *o); /* the lobe mask the options ask for (resolving HB_LOBES_DEFAULT) */

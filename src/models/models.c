@@ -1,5 +1,5 @@
-/* The list of models: adding one is a folder src/models/<model>/ and a line here (its hb_model
- * value in include/hairbsdf.h, its constants in models/plan.h). */
+/* The list of models: adding one is a folder src/models/<model>/ and a line here (and its hb_model
+ * value in include/hairbsdf.h). */
 #include "model.h"
 
 extern const hb_model_ops hb_deon_model, hb_marschner_model, hb_huang_model, hb_chiang_model;

@@ -94,16 +94,17 @@ hb_status hb_plan_make(const hb_material *given_material, const hb_options *give
 hb_status hb_plan_build(const hb_material *material, const hb_options *options, hb_isa isa,
                         const hb_selection *selection, hb_plan **out, hb_error *error)
 {
-    hb_plan *plan = calloc(1, sizeof *plan);
+    const hb_model_ops *ops = hb_model_ops_of(options->model);
+    hb_plan *plan = calloc(1, sizeof *plan + ops->state_size);
     if (!plan)
         return hb_plan_fail(error, HB_ERR_NOMEM, "could not allocate a plan");
+    plan->state_size = ops->state_size;
     plan->material = *material;
     plan->options = *options;
     if (selection)
         plan->selection = *selection;
     plan->isa = isa;
     hb_material_absorption(material, plan->sigma_a);
-    const hb_model_ops *ops = hb_model_ops_of(options->model);
     plan->reference = ops->reference;
     hb_status st = ops->derive(plan, error);
     hb_table_view view;

@@ -54,7 +54,7 @@ static double log_i0_series_paper_ref(double x)
     return log(sum);
 }
 
-double hb_ref_deon_longitudinal(double v, double theta_i, double theta_o, hb_i0 i0)
+double hb_ref_longitudinal(double v, double theta_i, double theta_o, hb_i0 i0)
 {
     /* eq. 7 with csch(1/v)/(2v) = e^(-1/v) / (v (1 - e^(-2/v))) and
      * -(1 + sin_i sin_o)/v = -(1 - cos(theta_i + theta_o))/v - x. */

@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "chiang.h"
+#include "state.h"
 
 static unsigned lobes(const hb_options *o) { return o->lobes == HB_LOBES_DEFAULT ? 7u | 1u << HB_LOBE_RESIDUAL : o->lobes; }
 
@@ -11,12 +12,12 @@ static const hb_chiang_kernels *kernels_of(const hb_plan *plan, size_t n) { retu
 
 static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    kernels_of(plan, n)->angles(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan, n)->angles(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
 }
 
 static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    kernels_of(plan, n)->vectors(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan, n)->vectors(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
 }
 
 /* The far-field sampler reads one number more than the near field's: h. */
@@ -28,37 +29,37 @@ static int sample_dimensions(const hb_plan *plan)
 
 static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    kernels_of(plan, n)->sample(&plan->chiang, n, b, invalid);
+    kernels_of(plan, n)->sample(&hb_chiang_of(plan)->kernel, n, b, invalid);
 }
 
 static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
-    kernels_of(plan, n)->f_pdf(&plan->chiang, n, in, NULL, out, invalid);
+    kernels_of(plan, n)->f_pdf(&hb_chiang_of(plan)->kernel, n, in, NULL, out, invalid);
 }
 
 static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_rgb_soa out, float *pdf,
                      size_t *invalid)
 {
-    kernels_of(plan, n)->f_pdf(&plan->chiang, n, in, &out, pdf, invalid);
+    kernels_of(plan, n)->f_pdf(&hb_chiang_of(plan)->kernel, n, in, &out, pdf, invalid);
 }
 
 static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
 {
     const hb_chiang_kernels *wide = plan->kernels;
-    if (n <= (size_t)wide->near_few_max && plan->chiang.longitudinal[0].single)
-        wide->near_few(&plan->chiang, n, in, out, invalid);
+    if (n <= (size_t)wide->near_few_max && hb_chiang_of(plan)->kernel.longitudinal[0].single)
+        wide->near_few(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
     else
-        kernels_of(plan, n)->near(&plan->chiang, n, in, out, invalid);
+        kernels_of(plan, n)->near(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
 }
 
 static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)
 {
-    kernels_of(plan, n)->sample_near(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan, n)->sample_near(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
 }
 
 static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, size_t *invalid)
 {
-    kernels_of(plan, n)->pdf_near(&plan->chiang, n, in, out, invalid);
+    kernels_of(plan, n)->pdf_near(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
 }
 
 static hb_status table(const hb_plan *plan, hb_table_view *view, int *channels)
@@ -69,16 +70,16 @@ static hb_status table(const hb_plan *plan, hb_table_view *view, int *channels)
 
 static void describe(hb_text *t, const hb_plan *plan)
 {
-    const hb_chiang *c = &plan->chiang;
+    const hb_chiang *c = &hb_chiang_of(plan)->kernel;
     hb_say(t, "model: Chiang et al. 2016 (CBTB16, pbrt-v4's HairBxDF), f = sum_p M_p A_p N_p near-field at h, RGB; "
               "lobes: ");
     hb_say_lobes(t, c->lobes);
     hb_say(t, "\nM_p (dFH11 eq. 7, %s): v_R %.4g, v_TT %.4g, v_TRT and residual %.4g; N_p: trimmed logistic, "
               "s %.4g\nfar field (hb_eval_angles): order-%d Gauss-Legendre rule in asin(h), %d nodes per sample "
               "(h >= 0, paired with -h), quality %s\n",
-           c->longitudinal[0].single ? "float" : "double where it matters", plan->chiang_v[0], plan->chiang_v[1],
-           plan->chiang_v[2], plan->chiang_s, 2 * c->nodes, c->nodes, hb_quality_name(plan->options.quality));
-    if (plan->chiang_far_capped)
+           c->longitudinal[0].single ? "float" : "double where it matters", hb_chiang_of(plan)->v[0], hb_chiang_of(plan)->v[1],
+           hb_chiang_of(plan)->v[2], hb_chiang_of(plan)->s, 2 * c->nodes, c->nodes, hb_quality_name(plan->options.quality));
+    if (hb_chiang_of(plan)->far_capped)
         hb_say(t, "far field: the quality's rule asks for more nodes than %d (s below 0.012): its error is above "
                   "the quality's target\n", HB_CHIANG_MAX_NODES);
 }
@@ -89,9 +90,9 @@ static void furnace_rule(const hb_plan *plan, double *beta_m, int *azimuths, int
 {
     *beta_m = HUGE_VAL;
     for (int p = 0; p < HB_CHIANG_TERMS; p++)
-        if (hb_chiang_term_on(&plan->chiang, p))
-            *beta_m = fmin(*beta_m, sqrt(plan->chiang_v[p]));
-    *azimuths = (int)ceil(4.0 * M_PI / plan->chiang_s) + 8;
+        if (hb_chiang_term_on(&hb_chiang_of(plan)->kernel, p))
+            *beta_m = fmin(*beta_m, sqrt(hb_chiang_of(plan)->v[p]));
+    *azimuths = (int)ceil(4.0 * M_PI / hb_chiang_of(plan)->s) + 8;
     *passes = 1;
 }
 
@@ -113,12 +114,13 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
     return p->quality == o->quality && o->quadrature_order == 0;
 }
 
-/* its double-precision procedures (src/ref/chiang_ref*.c) */
+/* its double-precision procedures (reference.h; the fast path includes none of it) */
 extern const struct hb_reference_ops hb_ref_chiang_ops;
 
 const hb_model_ops hb_chiang_model = {
     .name = "chiang",
     .reference = &hb_ref_chiang_ops,
+    .state_size = sizeof(hb_chiang_state),
     .beta_max = 1.0, /* pbrt-v4's [0, 1] scale (docs/chiang.md) */
     .beta_m_min = HB_CHIANG_BETA_M_MIN,
     .table_version = 1,

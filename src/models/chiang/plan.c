@@ -6,6 +6,7 @@
 #include "kernel/isas.h"
 #include "math/quadrature.h"
 #include "models/derive.h"
+#include "state.h"
 
 /* v_R = (0.726 beta_m + 0.812 beta_m^2 + 3.7 beta_m^20)^2 (CBTB16's fit). */
 double hb_chiang_variance_r(double beta_m)
@@ -81,12 +82,12 @@ static void derive_constants(hb_plan *plan)
 {
     const hb_material *m = &plan->material;
     const hb_options *o = &plan->options;
-    hb_chiang *c = &plan->chiang;
+    hb_chiang *c = &hb_chiang_mut(plan)->kernel;
     c->lobes = o->lobes == HB_LOBES_DEFAULT ? 7u | 1u << HB_LOBE_RESIDUAL : o->lobes;
     c->ior = hb_dielectric_of(m->eta);
     for (int ch = 0; ch < 3; ch++)
         c->sigma_a_log2e[ch] = hb_absorption_float(plan->sigma_a[ch] * M_LOG2E);
-    double s = plan->chiang_s = hb_chiang_logistic_scale(m->beta_n);
+    double s = hb_chiang_mut(plan)->s = hb_chiang_logistic_scale(m->beta_n);
     c->s = (float)s;
     c->inv_s_log2e = (float)(M_LOG2E / s);
     c->tanh_half_pi_over_s = (float)tanh(M_PI / (2.0 * s));
@@ -97,10 +98,10 @@ static void derive_constants(hb_plan *plan)
     static const double v_ratio[HB_CHIANG_TERMS] = { 1.0, 0.25, 4.0, 4.0 };
     static const double shift_ratio[HB_CHIANG_TERMS] = { 2.0, -1.0, -4.0, 0.0 };
     for (int p = 0; p < HB_CHIANG_TERMS; p++) {
-        plan->chiang_v[p] = v_ratio[p] * v_r;
-        hb_longitudinal_derive(&c->longitudinal[p], plan->chiang_v[p], shift_ratio[p] * m->alpha, o->quality);
-        c->v[p] = (float)plan->chiang_v[p];
-        c->exp_minus_two_inv_v[p] = (float)exp(-2.0 / plan->chiang_v[p]);
+        hb_chiang_mut(plan)->v[p] = v_ratio[p] * v_r;
+        hb_longitudinal_derive(&c->longitudinal[p], hb_chiang_of(plan)->v[p], shift_ratio[p] * m->alpha, o->quality);
+        c->v[p] = (float)hb_chiang_of(plan)->v[p];
+        c->exp_minus_two_inv_v[p] = (float)exp(-2.0 / hb_chiang_of(plan)->v[p]);
     }
     for (int k = 0; k < HB_LANE_ARRAY; k++)
         hb_lobe_lane_set(&c->lobe_lanes, k, &c->longitudinal[k < HB_CHIANG_TERMS ? k : 0], 0.0f, 0.0f);
@@ -108,7 +109,7 @@ static void derive_constants(hb_plan *plan)
     if (s >= 0.4)
         rule = fmax(rule, far_rules[o->quality].kink_nodes);
     int nodes = rule > HB_CHIANG_MAX_NODES ? HB_CHIANG_MAX_NODES : (int)ceil(rule - 1e-9);
-    plan->chiang_far_capped = rule > HB_CHIANG_MAX_NODES;
+    hb_chiang_mut(plan)->far_capped = rule > HB_CHIANG_MAX_NODES;
     far_nodes(c, o->quadrature_order > 0 ? o->quadrature_order : 2 * nodes);
 }
 

@@ -12,6 +12,7 @@
 #include "models/derive.h"
 #include "models/table_file.h"
 #include "table.h"
+#include "state.h"
 
 #define MAX_X 257
 
@@ -40,7 +41,7 @@ typedef struct colour_grid {
 static void build_colour_row(void *grid, int j)
 {
     const colour_grid *g = grid;
-    hb_deon d = g->plan->deon; /* three absorptions at a time, as its channels */
+    hb_deon d = hb_deon_of(g->plan)->kernel; /* three absorptions at a time, as its channels */
     d.channels = 3;
     const int slots = d.groups;
     float *row = g->scratch + (size_t)(j % g->part) * (size_t)g->n_phi * (size_t)slots * 3;
@@ -60,7 +61,7 @@ static void build_colour_row(void *grid, int j)
 
 static void layout(const hb_plan *plan, int n_cd, int n_phi, int n_x, hb_table_view *v)
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     *v = (hb_table_view){ .model = HB_MODEL_DEON, .axes = 3, .size = { n_cd, n_phi, n_x },
                           .lo = { 0.0, 0.0, 0.0 }, .hi = { 1.0, M_PI, 1.0 },
                           .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]",
@@ -72,13 +73,13 @@ static void layout(const hb_plan *plan, int n_cd, int n_phi, int n_x, hb_table_v
 
 static void install(hb_plan *plan, float *values, int n_cd, int n_phi, int n_x, double error)
 {
-    hb_deon *d = &plan->deon;
-    plan->deon_table = values;
+    hb_deon *d = &hb_deon_mut(plan)->kernel;
+    hb_deon_mut(plan)->table = values;
     d->np_table = values;
     d->table_cd = n_cd, d->table_phi = n_phi, d->table_absorption = n_x;
     d->table_sigma_scale = (float)(M_LN2 / SIGMA_KNEE);
     d->table_w_scale = (float)((n_x - 1) / axis_length());
-    plan->table_error = error;
+    hb_deon_mut(plan)->table_error = error;
 }
 
 static hb_status load_colour_table(hb_plan *plan, double tol, hb_error *error)
@@ -147,7 +148,7 @@ static hb_status build_grid(const hb_plan *plan, attempt *a, const double *cd, i
 
 hb_status hb_deon_build_colour_table(hb_plan *plan, hb_error *error)
 {
-    hb_deon *d = &plan->deon;
+    hb_deon *d = &hb_deon_mut(plan)->kernel;
     double tol = hb_deon_table_tolerance(plan);
     if (plan->options.table_file)
         return load_colour_table(plan, tol, error);
@@ -228,10 +229,10 @@ hb_status hb_deon_build_colour_table(hb_plan *plan, hb_error *error)
 
 hb_status hb_deon_colour_table_view(const hb_plan *plan, hb_table_view *v, int *channels)
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     *channels = 1;
     layout(plan, d->table_cd, d->table_phi, d->table_absorption, v);
-    v->values = plan->deon_table;
-    v->error = plan->table_error;
+    v->values = hb_deon_of(plan)->table;
+    v->error = hb_deon_of(plan)->table_error;
     return HB_OK;
 }

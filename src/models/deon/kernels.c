@@ -101,108 +101,13 @@ HB_INLINE void deon_near_one_sample(const hb_deon *d, const vf a[5], hb_i0 i0, v
     deon_near_lanes(d, &g, &in, a[4], i0, f);
 }
 
-/* One specialised kernel per I0 variant: the variant is a constant inside each. */
-#define HB_DEON_KERNELS(suffix, i0)                                                                       \
-    /* a call of a few samples, each alone: f, and the pdf where pdf is not NULL */                     \
-    static void deon_angles_few_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out, \
-                                         float *pdf, size_t *invalid)                                    \
-    {                                                                                                     \
-        vf f[3], p;                                                                                       \
-        HB_ONE_BY_ONE(load_angles_one, 4, in, n, invalid,                                                 \
-                      (deon_one_angles(deon, a, i0, f, pdf ? &p : NULL),                                  \
-                       pdf ? store_one(pdf, k, valid, p) : (void)0, store_rgb_one(out, k, valid, f)));    \
-    }                                                                                                     \
-    static void deon_near_few_##suffix(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out,     \
-                                       size_t *invalid)                                                  \
-    {                                                                                                     \
-        vf f[3];                                                                                          \
-        HB_ONE_BY_ONE(load_near_one, 5, in, n, invalid,                                                   \
-                      (deon_near_one_sample(deon, a, i0, f), store_rgb_one(out, k, valid, f)));           \
-    }                                                                                                     \
-    static void longitudinal_angles_##suffix(const hb_longitudinal *lobe, size_t n, hb_angles_soa in,     \
-                                             float *out, size_t *invalid)                                \
-    {                                                                                                     \
-        HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
-                 store_block(out, i, lanes,                                                               \
-                             vf_keep(valid, longitudinal_deon_angles(lobe, a[0], a[2], i0))));             \
-    }                                                                                                     \
-    static void longitudinal_vectors_##suffix(const hb_longitudinal *lobe, size_t n, hb_vectors_soa in,   \
-                                              float *out, size_t *invalid)                               \
-    {                                                                                                     \
-        HB_BATCH(load_vectors, 6, in, n, invalid,                                                         \
-                 store_block(out, i, lanes,                                                               \
-                             vf_keep(valid, longitudinal_deon_vectors(lobe, a, a + 3, i0))));              \
-    }                                                                                                     \
-    static void deon_angles_##suffix(const hb_deon *deon, size_t n, hb_angles_soa in, hb_rgb_soa out,     \
-                                     size_t *invalid)                                                    \
-    {                                                                                                     \
-        vf f[3];                                                                                          \
-        HB_BATCH(load_angles, 4, in, n, invalid,                                                          \
-                 (deon_angles(deon, a[0], a[1], a[2], a[3], i0, f), store_rgb(out, i, lanes, valid, f))); \
-    }                                                                                                     \
-    static void deon_sample_##suffix(const hb_deon *deon, size_t n, const hb_sample_batch *b,              \
-                                     size_t *invalid)                                                    \
-    {                                                                                                     \
-        vf theta_i, phi_i, pdf, weight[3];                                                                \
-        HB_BATCH(load_deon_sample, 2 + HB_DEON_SAMPLE_DIMENSIONS, b, n, invalid,                          \
-                 (deon_sample(deon, a[0], a[1], a + 2, i0, &theta_i, &phi_i, &pdf, weight),                \
-                  store_sampled(b, i, lanes, valid, theta_i, phi_i, pdf, weight)));                       \
-    }                                                                                                     \
-    static void deon_pdf_##suffix(const hb_deon *deon, size_t n, const hb_pair_batch *in, float *pdf,     \
-                                  size_t *invalid)                                                       \
-    {                                                                                                     \
-        HB_BATCH(load_pairs, 4, in, n, invalid,                                                           \
-                 store_block(pdf, i, lanes,                                                               \
-                             vf_keep(valid, deon_pdf_angles(deon, a[0], a[1], a[2], a[3], i0))));          \
-    }                                                                                                     \
-    static void deon_f_pdf_##suffix(const hb_deon *deon, size_t n, const hb_pair_batch *in, hb_rgb_soa out, \
-                                    float *pdf, size_t *invalid)                                         \
-    {                                                                                                     \
-        vf f[3];                                                                                          \
-        HB_BATCH(load_pairs, 4, in, n, invalid,                                                           \
-                 (store_block(pdf, i, lanes, vf_keep(valid, deon_f_pdf_angles(deon, a, i0, f))),          \
-                  store_rgb(out, i, lanes, valid, f)));                                                   \
-    }                                                                                                     \
-    static void deon_absorbing_##suffix(const hb_deon *deon, size_t n, const hb_absorbing_batch *in,      \
-                                        hb_rgb_soa out, size_t *invalid)                                 \
-    {                                                                                                     \
-        vf f[3];                                                                                          \
-        HB_BATCH(load_absorbing, 7, in, n, invalid,                                                       \
-                 (deon_absorbing_angles(deon, a, i0, f), store_rgb(out, i, lanes, valid, f)));            \
-    }                                                                                                     \
-    static void deon_near_##suffix(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out,         \
-                                   size_t *invalid)                                                      \
-    {                                                                                                     \
-        vf f[3];                                                                                          \
-        HB_BATCH(load_near, 5, in, n, invalid,                                                            \
-                 (deon_near_angles(deon, a, i0, f, NULL), store_rgb(out, i, lanes, valid, f)));           \
-    }                                                                                                     \
-    static void deon_pdf_near_##suffix(const hb_deon *deon, size_t n, hb_near_soa in, float *pdf,         \
-                                       size_t *invalid)                                                  \
-    {                                                                                                     \
-        vf f[3], p;                                                                                       \
-        HB_BATCH(load_near, 5, in, n, invalid,                                                            \
-                 (deon_near_angles(deon, a, i0, f, &p), store_block(pdf, i, lanes, vf_keep(valid, p))));  \
-    }                                                                                                     \
-    static void deon_sample_near_##suffix(const hb_deon *deon, size_t n, hb_sample_near_in in,            \
-                                          hb_sample_out out, size_t *invalid)                            \
-    {                                                                                                     \
-        vf theta_i, phi_i, pdf, weight[3];                                                                \
-        HB_BATCH(load_deon_sample_near, 3 + HB_DEON_NEAR_DIMENSIONS, in, n, invalid,                      \
-                 (deon_sample_near(deon, a[0], a[1], a[2 + HB_DEON_NEAR_DIMENSIONS], a + 2, i0, &theta_i,  \
-                                   &phi_i, &pdf, weight),                                                 \
-                  store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));                      \
-    }                                                                                                     \
-    static void deon_vectors_##suffix(const hb_deon *deon, size_t n, hb_vectors_soa in, hb_rgb_soa out,   \
-                                      size_t *invalid)                                                   \
-    {                                                                                                     \
-        vf f[3];                                                                                          \
-        HB_BATCH(load_vectors, 6, in, n, invalid,                                                         \
-                 (deon_vectors(deon, a, a + 3, i0, f), store_rgb(out, i, lanes, valid, f)));              \
-    }
-HB_DEON_KERNELS(abramowitz, HB_I0_ABRAMOWITZ)
-HB_DEON_KERNELS(paper, HB_I0_PAPER)
-#undef HB_DEON_KERNELS
+/* One specialised set of entry kernels per I0 variant (kernels_variant.h). */
+#define HB_DEON_SUFFIX abramowitz
+#define HB_DEON_I0 HB_I0_ABRAMOWITZ
+#include "kernels_variant.h"
+#define HB_DEON_SUFFIX paper
+#define HB_DEON_I0 HB_I0_PAPER
+#include "kernels_variant.h"
 
 static void np_row(const hb_deon *deon, float cos_theta_d, size_t n, const float *phi, float *out)
 {

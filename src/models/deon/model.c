@@ -3,13 +3,14 @@
 #include <math.h>
 
 #include "deon.h"
+#include "state.h"
 
 /* Whether the plan's kernels take a call of n samples one sample at a time, the lanes carrying the
  * far field's quadrature nodes or the near field's lobes instead of samples (kernels.c): standard
  * quadrature plans of the full model, up to the count measured for the ISA. */
 static int few(const hb_plan *plan, size_t n, int most)
 {
-    return n <= (size_t)most && plan->deon.standard && !plan->deon.np_table && plan->options.term == HB_TERM_FULL;
+    return n <= (size_t)most && hb_deon_of(plan)->kernel.standard && !hb_deon_of(plan)->kernel.np_table && plan->options.term == HB_TERM_FULL;
 }
 
 /* How many samples at the end of a batch of n the few-sample kernels take: the partial last block
@@ -36,7 +37,7 @@ static void few_from(const hb_plan *plan, size_t first, size_t n, hb_angles_soa 
     const hb_deon_kernels *wide = plan->kernels;
     size_t bad = 0;
     if (n)
-        wide->angles_few[plan->options.i0](&plan->deon, n, angles_from(in, first), rgb_from(out, first),
+        wide->angles_few[plan->options.i0](&hb_deon_of(plan)->kernel, n, angles_from(in, first), rgb_from(out, first),
                                             pdf ? pdf + first : NULL, &bad);
     *invalid += bad;
 }
@@ -53,16 +54,16 @@ static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_
 {
     const hb_deon_kernels *wide = plan->kernels;
     if (few(plan, n, wide->few_max)) {
-        wide->angles_few[plan->options.i0](&plan->deon, n, in, out, NULL, invalid);
+        wide->angles_few[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, NULL, invalid);
         return;
     }
     const hb_deon_kernels *k = deon_kernels_for(plan, n);
     if (plan->options.term == HB_TERM_LONGITUDINAL) {
-        k->longitudinal_angles[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, invalid);
+        k->longitudinal_angles[plan->options.i0](&hb_deon_of(plan)->kernel.longitudinal[HB_LOBE_R], n, in, out.r, invalid);
         hb_spread_channels(n, out);
     } else {
         size_t tail = few_tail(plan, n, wide->few_max);
-        k->angles[plan->options.i0](&plan->deon, n - tail, in, out, invalid);
+        k->angles[plan->options.i0](&hb_deon_of(plan)->kernel, n - tail, in, out, invalid);
         few_from(plan, n - tail, tail, in, out, NULL, invalid);
     }
 }
@@ -71,10 +72,10 @@ static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rg
 {
     const hb_deon_kernels *k = deon_kernels_for(plan, n);
     if (plan->options.term == HB_TERM_LONGITUDINAL) {
-        k->longitudinal_vectors[plan->options.i0](&plan->deon.longitudinal[HB_LOBE_R], n, in, out.r, invalid);
+        k->longitudinal_vectors[plan->options.i0](&hb_deon_of(plan)->kernel.longitudinal[HB_LOBE_R], n, in, out.r, invalid);
         hb_spread_channels(n, out);
     } else {
-        k->vectors[plan->options.i0](&plan->deon, n, in, out, invalid);
+        k->vectors[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
     }
 }
 
@@ -87,12 +88,12 @@ static int sample_dimensions(const hb_plan *plan)
 
 static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    deon_kernels_for(plan, n)->sample[plan->options.i0](&plan->deon, n, b, invalid);
+    deon_kernels_for(plan, n)->sample[plan->options.i0](&hb_deon_of(plan)->kernel, n, b, invalid);
 }
 
 static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
-    deon_kernels_for(plan, n)->pdf[plan->options.i0](&plan->deon, n, in, out, invalid);
+    deon_kernels_for(plan, n)->pdf[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
 }
 
 /* The quadrature forms f and the pdf's terms together (sample.h, deon_f_pdf); a table plan's f
@@ -101,13 +102,13 @@ static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_
                      size_t *invalid)
 {
     const hb_deon_kernels *wide = plan->kernels;
-    if (plan->deon.np_table)
+    if (hb_deon_of(plan)->kernel.np_table)
         hb_eval_then_pdf(plan, n, in, out, pdf, invalid);
     else if (!in->vectors.wi_x && few(plan, n, wide->few_max))
-        wide->angles_few[plan->options.i0](&plan->deon, n, in->angles, out, pdf, invalid);
+        wide->angles_few[plan->options.i0](&hb_deon_of(plan)->kernel, n, in->angles, out, pdf, invalid);
     else {
         size_t tail = in->vectors.wi_x ? 0 : few_tail(plan, n, wide->few_max);
-        deon_kernels_for(plan, n)->f_pdf[plan->options.i0](&plan->deon, n - tail, in, out, pdf, invalid);
+        deon_kernels_for(plan, n)->f_pdf[plan->options.i0](&hb_deon_of(plan)->kernel, n - tail, in, out, pdf, invalid);
         few_from(plan, n - tail, tail, in->angles, out, pdf, invalid);
     }
 }
@@ -117,9 +118,9 @@ static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_
 static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
                                  size_t *invalid)
 {
-    if ((plan->deon.np_table && !plan->deon.table_absorption) || plan->options.term != HB_TERM_FULL)
+    if ((hb_deon_of(plan)->kernel.np_table && !hb_deon_of(plan)->kernel.table_absorption) || plan->options.term != HB_TERM_FULL)
         return HB_ERR_UNSUPPORTED;
-    deon_kernels_for(plan, n)->absorbing[plan->options.i0](&plan->deon, n, in, out, invalid);
+    deon_kernels_for(plan, n)->absorbing[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
     return HB_OK;
 }
 
@@ -128,25 +129,25 @@ static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbi
 static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
 {
     const hb_deon_kernels *wide = plan->kernels;
-    if (few(plan, n, wide->near_few_max) && plan->deon.longitudinal[HB_LOBE_R].single) /* the float M_p lanes */
-        wide->near_few[plan->options.i0](&plan->deon, n, in, out, invalid);
+    if (few(plan, n, wide->near_few_max) && hb_deon_of(plan)->kernel.longitudinal[HB_LOBE_R].single) /* the float M_p lanes */
+        wide->near_few[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
     else
-        deon_kernels_for(plan, n)->near[plan->options.i0](&plan->deon, n, in, out, invalid);
+        deon_kernels_for(plan, n)->near[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
 }
 
 static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)
 {
-    deon_kernels_for(plan, n)->sample_near[plan->options.i0](&plan->deon, n, in, out, invalid);
+    deon_kernels_for(plan, n)->sample_near[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
 }
 
 static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, size_t *invalid)
 {
-    deon_kernels_for(plan, n)->pdf_near[plan->options.i0](&plan->deon, n, in, out, invalid);
+    deon_kernels_for(plan, n)->pdf_near[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
 }
 
 static void describe(hb_text *t, const hb_plan *plan)
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     hb_say(t, "model: d'Eon 2011 (dFH11), f = sum_p M_p N_p, %s; lobes: ",
         d->channels == 1 ? "grey (one channel computed, copied to RGB)" : "RGB");
     hb_say_lobes(t, d->lobes);
@@ -158,12 +159,12 @@ static void describe(hb_text *t, const hb_plan *plan)
         hb_say(t, "N_p (eq. 10): per channel, trilinear from one colour table, %d x %d x %d per M_p group over "
                "sqrt(cos theta_d) x |phi| x log(1 + sigma_a / 0.001) for every absorption up to %g (midpoint error "
                "%.2g of each group's peak), built with the order-%d Gauss-Legendre rule%s\n", d->table_cd,
-               d->table_phi, d->table_absorption, HB_COLOUR_TABLE_SIGMA_MAX, plan->table_error, d->order,
+               d->table_phi, d->table_absorption, HB_COLOUR_TABLE_SIGMA_MAX, hb_deon_of(plan)->table_error, d->order,
                d->mapped ? " (mapped)" : "");
     else if (d->np_table)
         hb_say(t, "N_p (eq. 10): bilinear from a %d x %d table per M_p group over sqrt(cos theta_d) x |phi| "
                "(midpoint error %.2g of each group's peak), built with the order-%d Gauss-Legendre rule%s\n",
-            d->table_cd, d->table_phi, plan->table_error, d->order, d->mapped ? " (mapped)" : "");
+            d->table_cd, d->table_phi, hb_deon_of(plan)->table_error, d->order, d->mapped ? " (mapped)" : "");
     else
         hb_say(t, "N_p (eq. 10): order-%d Gauss-Legendre rule %s across the fibre, %d nodes per sample "
                "(gamma_i >= 0, detected at +-phi), quality %s\n", d->order,
@@ -173,7 +174,7 @@ static void describe(hb_text *t, const hb_plan *plan)
         if (d->lobes >> p & 1u)
             hb_say(t, d->detector[p].fourier ? "  detector %s (eq. 11, beta_n %.3g): Fourier series, %d terms\n"
                                           : "  detector %s (eq. 11, beta_n %.3g): Gaussians at phi - 2 pi k, |k| <= %d\n",
-                hb_lobe_name(p), plan->beta_n[p],
+                hb_lobe_name(p), hb_deon_of(plan)->beta_n[p],
                 d->detector[p].terms);
 }
 
@@ -187,10 +188,10 @@ static void furnace_rule(const hb_plan *plan, double *beta_m, int *azimuths, int
     double beta_n = HUGE_VAL;
     *beta_m = HUGE_VAL;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        if (plan->deon.lobes >> p & 1u || (longitudinal && p == HB_LOBE_R)) {
-            *beta_m = fmin(*beta_m, sqrt(plan->v[p]));
+        if (hb_deon_of(plan)->kernel.lobes >> p & 1u || (longitudinal && p == HB_LOBE_R)) {
+            *beta_m = fmin(*beta_m, sqrt(hb_deon_of(plan)->v[p]));
             if (p < HB_MAX_LOBES)
-                beta_n = fmin(beta_n, plan->beta_n[p]);
+                beta_n = fmin(beta_n, hb_deon_of(plan)->beta_n[p]);
         }
     *azimuths = longitudinal ? 1 : (int)ceil(3.0 * M_PI / fmin(beta_n, 1.0)) + 8;
     *passes = 1;
@@ -220,12 +221,13 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
     return p->quality == o->quality && p->quadrature_order == o->quadrature_order && p->azimuthal == o->azimuthal;
 }
 
-/* its double-precision procedures (src/ref/deon_ref*.c) */
+/* its double-precision procedures (reference.h; the fast path includes none of it) */
 extern const struct hb_reference_ops hb_ref_deon_ops;
 
 const hb_model_ops hb_deon_model = {
     .name = "deon",
     .reference = &hb_ref_deon_ops,
+    .state_size = sizeof(hb_deon_state),
     .table_version = 1,
     .lobes = lobes,
     .validate = hb_deon_validate,

@@ -8,6 +8,7 @@
 #include "kernel/isas.h"
 #include "math/quadrature.h"
 #include "models/derive.h"
+#include "state.h"
 
 /* Each quality level is an error target for f (docs/conventions.md): 1e-2, 1e-3, 1e-4. The quality
  * rules integrate N_p by Gauss-Legendre in a mapped variable (deon_nodes), whose node count the
@@ -117,18 +118,18 @@ static void derive_constants(hb_plan *plan)
 {
     const hb_material *m = &plan->material;
     const hb_options *o = &plan->options;
-    hb_deon *d = &plan->deon;
+    hb_deon *d = &hb_deon_mut(plan)->kernel;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         /* the residual lobe takes the roughness of the highest explicit order, and no shift */
         int q = p == HB_LOBE_RESIDUAL ? o->pmax : p;
         double beta = m->lobe_beta_m[q] > 0.0 ? m->lobe_beta_m[q] : m->beta_m;
-        plan->v[p] = beta * beta;
-        hb_longitudinal_derive(&d->longitudinal[p], plan->v[p], p == HB_LOBE_RESIDUAL ? 0.0 : lobe_shift(m, p), o->quality);
+        hb_deon_mut(plan)->v[p] = beta * beta;
+        hb_longitudinal_derive(&d->longitudinal[p], hb_deon_of(plan)->v[p], p == HB_LOBE_RESIDUAL ? 0.0 : lobe_shift(m, p), o->quality);
     }
     double tol = o->detector_tolerance > 0.0 ? o->detector_tolerance : quality_levels[o->quality].detector_tolerance;
     for (int p = 0; p < HB_MAX_LOBES; p++) {
-        plan->beta_n[p] = m->lobe_beta_n[p] > 0.0 ? m->lobe_beta_n[p] : m->beta_n;
-        derive_detector(&d->detector[p], plan->beta_n[p], tol);
+        hb_deon_mut(plan)->beta_n[p] = m->lobe_beta_n[p] > 0.0 ? m->lobe_beta_n[p] : m->beta_n;
+        derive_detector(&d->detector[p], hb_deon_of(plan)->beta_n[p], tol);
     }
     unsigned all = ((2u << o->pmax) - 1u) | 1u << HB_LOBE_RESIDUAL;
     d->lobes = o->lobes == HB_LOBES_DEFAULT ? all : o->lobes;
@@ -163,7 +164,7 @@ static void derive_constants(hb_plan *plan)
     d->channels = d->sigma_a_log2e[0] == d->sigma_a_log2e[1] && d->sigma_a_log2e[1] == d->sigma_a_log2e[2] ? 1 : 3;
     double beta_min = HUGE_VAL;
     for (int p = 0; p <= o->pmax; p++)
-        beta_min = fmin(beta_min, plan->beta_n[p]);
+        beta_min = fmin(beta_min, hb_deon_of(plan)->beta_n[p]);
     double rule = quality_levels[o->quality].c / beta_min + quality_levels[o->quality].d;
     int nodes = rule > HB_MAX_NODES ? HB_MAX_NODES : (int)ceil(rule - 1e-9); /* 1e-9: c / beta is exact only in reals */
     nodes = nodes < quality_levels[o->quality].min_nodes ? quality_levels[o->quality].min_nodes : nodes;
@@ -173,7 +174,7 @@ static void derive_constants(hb_plan *plan)
         deon_nodes(d, 2 * nodes, 1);
     for (int p = 0; p <= HB_STANDARD_PMAX && p <= o->pmax; p++) {
         hb_scaled_detector *s = &d->scaled[p];
-        double sigma = sqrt(M_LOG2E / (2.0 * plan->beta_n[p] * plan->beta_n[p])), period = 2.0 * M_PI * sigma;
+        double sigma = sqrt(M_LOG2E / (2.0 * hb_deon_of(plan)->beta_n[p] * hb_deon_of(plan)->beta_n[p])), period = 2.0 * M_PI * sigma;
         s->scale = (float)sigma;
         s->slope = (float)(2.0 * p * sigma);
         s->period_hi = (float)period;
@@ -214,4 +215,4 @@ hb_status hb_deon_derive(hb_plan *plan, hb_error *error)
     return plan->options.azimuthal == HB_AZIMUTHAL_TABLE ? hb_deon_build_table(plan, error) : HB_OK;
 }
 
-void hb_deon_release(hb_plan *plan) { free(plan->deon_table); }
+void hb_deon_release(hb_plan *plan) { free(hb_deon_of(plan)->table); }

@@ -2,6 +2,7 @@
 #include <math.h>
 
 #include "deon.h"
+#include "state.h"
 
 /* Fresnel reflectance of an unpolarised beam entering at cos_i (dFH11 eq. 14's F). */
 static double fresnel(double eta, double cos_i)
@@ -18,7 +19,7 @@ static double fresnel(double eta, double cos_i)
  * every order above pmax, summed in closed form), with sin^2(theta_d) = sin2_theta_d. */
 static void node_attenuation(const hb_plan *plan, double sin2_theta_d, double gamma_i, double A[HB_MAX_LOBES + 1])
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     double eta = plan->material.eta, cos_theta_d = sqrt(1.0 - sin2_theta_d);
     double inv_eta_prime = cos_theta_d / sqrt(eta * eta - sin2_theta_d); /* 1 / eta' (sec. 5) */
     double cos_theta_t = sqrt(1.0 - sin2_theta_d / (eta * eta));
@@ -71,7 +72,7 @@ static void deon_lobe_choice(const hb_plan *plan, hb_deon *d)
 
 void hb_deon_derive_sampling(hb_plan *plan)
 {
-    hb_deon *d = &plan->deon;
+    hb_deon *d = &hb_deon_mut(plan)->kernel;
     double total = 0.0, cumulative = 0.0;
     for (int j = 0; j < d->nodes; j++)
         total += d->weight[j];
@@ -81,8 +82,8 @@ void hb_deon_derive_sampling(hb_plan *plan)
         d->node_half_probability[j] = (float)(0.5 * d->weight[j] / total);
     }
     for (int p = 0; p < HB_MAX_LOBES; p++)
-        d->beta_n[p] = (float)plan->beta_n[p];
+        d->beta_n[p] = (float)hb_deon_of(plan)->beta_n[p];
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        d->exp_minus_two_inv_v[p] = (float)exp(-2.0 / plan->v[p]);
+        d->exp_minus_two_inv_v[p] = (float)exp(-2.0 / hb_deon_of(plan)->v[p]);
     deon_lobe_choice(plan, d);
 }

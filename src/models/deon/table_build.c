@@ -8,6 +8,7 @@
 #include "models/build_tasks.h"
 #include "models/table_file.h"
 #include "table.h"
+#include "state.h"
 
 #define MAX_PHI HB_DEON_TABLE_MAX_PHI
 #define MAX_CD HB_DEON_TABLE_MAX_CD
@@ -38,8 +39,8 @@ typedef struct row_grid {
 static void build_row(void *grid, int j)
 {
     const row_grid *g = grid;
-    size_t row = (size_t)g->n_phi * (size_t)g->plan->deon.groups * 3;
-    ((const hb_deon_kernels *)g->plan->kernels)->np_row(&g->plan->deon, (float)g->cd[j], (size_t)g->n_phi, g->phi,
+    size_t row = (size_t)g->n_phi * (size_t)hb_deon_of(g->plan)->kernel.groups * 3;
+    ((const hb_deon_kernels *)g->plan->kernels)->np_row(&hb_deon_of(g->plan)->kernel, (float)g->cd[j], (size_t)g->n_phi, g->phi,
                                                         g->out + (size_t)j * row);
 }
 
@@ -76,7 +77,7 @@ double hb_deon_midpoint_error(const float *values, const float *mid, int lines, 
 /* The table's layout for a resolution (the view without values and error). */
 static void layout(const hb_plan *plan, int n_cd, int n_phi, hb_table_view *v)
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     *v = (hb_table_view){ .model = HB_MODEL_DEON, .axes = 2, .size = { n_cd, n_phi },
                           .lo = { 0.0, 0.0 }, .hi = { 1.0, M_PI },
                           .axis = { "sqrt(cos(theta_d)), theta_d = (theta_o - theta_i) / 2", "|phi_o - phi_i| wrapped to [0, pi]" },
@@ -87,10 +88,10 @@ static void layout(const hb_plan *plan, int n_cd, int n_phi, hb_table_view *v)
 
 static void install(hb_plan *plan, float *values, int n_cd, int n_phi, double error)
 {
-    plan->deon_table = values;
-    plan->deon.np_table = values;
-    plan->deon.table_cd = n_cd, plan->deon.table_phi = n_phi;
-    plan->table_error = error;
+    hb_deon_mut(plan)->table = values;
+    hb_deon_mut(plan)->kernel.np_table = values;
+    hb_deon_mut(plan)->kernel.table_cd = n_cd, hb_deon_mut(plan)->kernel.table_phi = n_phi;
+    hb_deon_mut(plan)->table_error = error;
 }
 
 /* The table of options.table_file, whose resolution it gives and whose measured error must meet tol. */
@@ -121,7 +122,7 @@ static hb_status load_table(hb_plan *plan, double tol, hb_error *error)
 
 hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
 {
-    hb_deon *d = &plan->deon;
+    hb_deon *d = &hb_deon_mut(plan)->kernel;
     double tol = hb_deon_table_tolerance(plan);
     if (plan->options.table_file)
         return load_table(plan, tol, error);
@@ -199,22 +200,22 @@ hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
 
 hb_status hb_deon_table_view(const hb_plan *plan, hb_table_view *v, int *channels)
 {
-    if (!plan->deon_table)
+    if (!hb_deon_of(plan)->table)
         return HB_ERR_UNSUPPORTED;
-    if (plan->deon.table_absorption)
+    if (hb_deon_of(plan)->kernel.table_absorption)
         return hb_deon_colour_table_view(plan, v, channels);
     *channels = 3;
-    layout(plan, plan->deon.table_cd, plan->deon.table_phi, v);
-    v->values = plan->deon_table;
-    v->error = plan->table_error;
+    layout(plan, hb_deon_of(plan)->kernel.table_cd, hb_deon_of(plan)->kernel.table_phi, v);
+    v->values = hb_deon_of(plan)->table;
+    v->error = hb_deon_of(plan)->table_error;
     return HB_OK;
 }
 
 /* shaders/hairbsdf_deon_body.inc reads the table's grid and each slot's M_p constants (eq. 7). */
 hb_status hb_deon_shader_constants(const hb_plan *plan, float *k)
 {
-    const hb_deon *d = &plan->deon;
-    if (!plan->deon_table)
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
+    if (!hb_deon_of(plan)->table)
         return HB_ERR_UNSUPPORTED;
     k[0] = (float)d->table_cd, k[1] = (float)d->table_phi, k[2] = (float)d->groups;
     if (d->table_absorption) { /* the colour table's axis, for sigma_a itself (the plan keeps sigma_a log2(e)) */

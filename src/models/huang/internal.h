@@ -4,7 +4,7 @@
  * normals (Heitz and d'Eon 2014) from the counter-based generator, connected to w_o through the
  * exit microfacet's generalised half vector. Worked in the fibre frame (absolute azimuths), the
  * chords of the cross-section x = sin g, z = b cos g (b = 1: a circle) traced exactly. docs/huang.md
- * "Huang 2022 TT and TRT" has the derivation; src/ref/huang_internal_ref.c is the same path in double. */
+ * "Huang 2022 TT and TRT" has the derivation; reference_internal.c is the same path in double. */
 #ifndef HB_HUANG_INTERNAL_H
 #define HB_HUANG_INTERNAL_H
 

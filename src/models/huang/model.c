@@ -5,23 +5,24 @@
 
 #include "huang.h"
 #include "math/hash.h"
+#include "state.h"
 
 static unsigned lobes(const hb_options *o) { return o->lobes == HB_LOBES_DEFAULT ? 7u : o->lobes; }
 
 static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->angles(&plan->huang, n, in, out, invalid);
+    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->angles(&hb_huang_of(plan)->kernel, n, in, out, invalid);
 }
 
 static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->vectors(&plan->huang, n, in, out, invalid);
+    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->vectors(&hb_huang_of(plan)->kernel, n, in, out, invalid);
 }
 
 /* R alone is sampled exactly, with TT and TRT by traced paths; the double path has no TT/TRT sampler. */
 static int sample_dimensions(const hb_plan *plan)
 {
-    if (plan->huang.lobes == 1u << HB_LOBE_R)
+    if (hb_huang_of(plan)->kernel.lobes == 1u << HB_LOBE_R)
         return HB_HUANG_SAMPLE_DIMENSIONS;
     return plan->kernels ? HB_HUANG_PATH_DIMENSIONS : 0;
 }
@@ -34,12 +35,12 @@ static int pdf_is_estimate(const hb_plan *plan)
 
 static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->sample(&plan->huang, n, b, invalid);
+    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->sample(&hb_huang_of(plan)->kernel, n, b, invalid);
 }
 
 static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
-    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->pdf(&plan->huang, n, in, out, invalid);
+    ((const hb_huang_kernels *)hb_kernels_for(plan, n))->pdf(&hb_huang_of(plan)->kernel, n, in, out, invalid);
 }
 
 /* f and its pdf share no stage (the pdf is eq. 33's, f eqs. 12, 23 and 24): two passes. */
@@ -51,7 +52,7 @@ static void eval_pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, hb_
 
 static void describe(hb_text *t, const hb_plan *plan)
 {
-    const hb_huang *h = &plan->huang;
+    const hb_huang *h = &hb_huang_of(plan)->kernel;
     hb_say(t, "model: Huang 2022 (HHH22), microfacet %s roughness %.3g, %s, %s fibre%s; lobes: ",
         h->beckmann ? "Beckmann" : "GGX", plan->material.roughness, h->shadowing ? "Smith G" : "no shadowing (G = 1)",
         h->elliptical ? "elliptical" : "circular", h->tilted ? ", tilted scales" : "");
@@ -94,8 +95,8 @@ static void furnace_rule(const hb_plan *plan, double *beta_m, int *azimuths, int
 {
     *beta_m = plan->material.roughness;
     *azimuths = (int)ceil(3.0 * M_PI / fmin(plan->material.roughness, 1.0)) + 8;
-    int monte_carlo = plan->kernels && !plan->huang.table.values &&
-                      (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT));
+    int monte_carlo = plan->kernels && !hb_huang_of(plan)->kernel.table.values &&
+                      (hb_huang_of(plan)->kernel.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT));
     *passes = monte_carlo ? 16 : 1;
 }
 
@@ -103,7 +104,7 @@ static void furnace_rule(const hb_plan *plan, double *beta_m, int *azimuths, int
  * key per chunk keeps the chunks' numbers independent. */
 static void rekey(hb_plan *copy, const hb_plan *plan, unsigned long long chunk)
 {
-    copy->huang.rng_key = plan->huang.rng_key ^ (uint32_t)hb_mix64(chunk);
+    hb_huang_mut(copy)->kernel.rng_key = hb_huang_of(plan)->kernel.rng_key ^ (uint32_t)hb_mix64(chunk);
 }
 
 static const hb_preset presets[] = {
@@ -143,12 +144,13 @@ static int preset_is(const hb_preset *p, const hb_material *m, const hb_options 
            (lobe_mask == 1u || table_if_auto(p->tt_trt) == table_if_auto(o->tt_trt));
 }
 
-/* its double-precision procedures (src/ref/huang_ref*.c) */
+/* its double-precision procedures (reference.h; the fast path includes none of it) */
 extern const struct hb_reference_ops hb_ref_huang_ops;
 
 const hb_model_ops hb_huang_model = {
     .name = "huang",
     .reference = &hb_ref_huang_ops,
+    .state_size = sizeof(hb_huang_state),
     .table_version = 1,
     .lobes = lobes,
     .validate = hb_huang_validate,

@@ -7,6 +7,7 @@
 #include "kernel/isas.h"
 #include "math/hash.h"
 #include "models/derive.h"
+#include "state.h"
 
 /* HHH22: R, TT and TRT; the R lobe's closed form (App. A) covers GGX without G on circular fibres. */
 hb_status hb_huang_validate(const hb_material *m, const hb_options *o, hb_error *error)
@@ -85,9 +86,9 @@ static void derive_constants(hb_plan *plan)
 {
     const hb_material *m = &plan->material;
     const hb_options *o = &plan->options;
-    hb_huang *h = &plan->huang;
+    hb_huang *h = &hb_huang_mut(plan)->kernel;
     double r = m->roughness, c = sqrt(1.0 - r * r);
-    plan->huang_tilt = (m->lobe_alpha_override & 1u) ? m->lobe_alpha[HB_LOBE_R] : -m->alpha;
+    hb_huang_mut(plan)->tilt = (m->lobe_alpha_override & 1u) ? m->lobe_alpha[HB_LOBE_R] : -m->alpha;
     h->lobes = o->lobes == HB_LOBES_DEFAULT ? 7u : o->lobes;
     h->tt_panels = hb_huang_tt_panels(o, o->quality, r);
     unsigned long long key = hb_mix64(o->seed + 0x9e3779b97f4a7c15ull);
@@ -105,14 +106,14 @@ static void derive_constants(hb_plan *plan)
     h->panels = h->step_rule ? 2 * (int)ceil(M_PI / (2.0 * o->r_step * r))
                 : o->r_panels > 0 ? o->r_panels : huang_r_panels[o->quality];
     h->pdf_panels = huang_r_panels[o->quality];
-    h->tilted = plan->huang_tilt != 0.0;
+    h->tilted = hb_huang_of(plan)->tilt != 0.0;
     h->roughness = (float)r;
     h->roughness2 = (float)(r * r);
     h->c_rough = (float)c;
     h->one_minus_c = (float)(r * r / (1.0 + c));
-    h->cos_tilt = (float)cos(plan->huang_tilt);
-    h->sin_tilt = (float)sin(plan->huang_tilt);
-    double cos_floor = huang_cos_floor(o, plan->huang_tilt, r, h->beckmann, h->shadowing);
+    h->cos_tilt = (float)cos(hb_huang_of(plan)->tilt);
+    h->sin_tilt = (float)sin(hb_huang_of(plan)->tilt);
+    double cos_floor = huang_cos_floor(o, hb_huang_of(plan)->tilt, r, h->beckmann, h->shadowing);
     h->cos_floor = (float)cos_floor;
     h->inv_cos_floor = (float)(1.0 / cos_floor);
     h->ior = hb_dielectric_of(m->eta);
@@ -133,17 +134,17 @@ hb_status hb_huang_derive(hb_plan *plan, hb_error *error)
     int reference = o->quality == HB_QUALITY_REFERENCE || o->tt_trt == HB_TT_TRT_REFERENCE;
     HB_PLAN_SET_KERNELS(plan, kernels_by_isa, reference);
     derive_constants(plan);
-    plan->huang.table_grid = hb_huang_table_grid_of(o->quality);
+    hb_huang_mut(plan)->kernel.table_grid = hb_huang_table_grid_of(o->quality);
     if (o->tt_trt == HB_TT_TRT_AUTO) { /* the finest grid up to the plan's quality's that builds in about a
                                           second (a table file's too: it was saved by a plan of this rule) */
-        while (!hb_huang_table_fits(plan) && plan->huang.table_grid > 0)
-            plan->huang.table_grid--;
-        plan->huang.table_too_costly = !o->table_file && !hb_huang_table_fits(plan);
-        o->tt_trt = plan->huang.table_too_costly ? HB_TT_TRT_MC : HB_TT_TRT_TABLE;
+        while (!hb_huang_table_fits(plan) && hb_huang_of(plan)->kernel.table_grid > 0)
+            hb_huang_mut(plan)->kernel.table_grid--;
+        hb_huang_mut(plan)->kernel.table_too_costly = !o->table_file && !hb_huang_table_fits(plan);
+        o->tt_trt = hb_huang_of(plan)->kernel.table_too_costly ? HB_TT_TRT_MC : HB_TT_TRT_TABLE;
     }
-    if (o->tt_trt == HB_TT_TRT_TABLE && (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)))
+    if (o->tt_trt == HB_TT_TRT_TABLE && (hb_huang_of(plan)->kernel.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)))
         return hb_huang_build_table(plan, error);
     return HB_OK;
 }
 
-void hb_huang_release(hb_plan *plan) { free(plan->huang_table); }
+void hb_huang_release(hb_plan *plan) { free(hb_huang_of(plan)->table); }

@@ -1,6 +1,6 @@
 /* Counter-based uniform numbers for the Monte-Carlo parts of the kernels (HHH22 eqs. 31, 32):
  * a pure function of (plan key, sample index, counter), computed with 32-bit integer lanes, so
- * every ISA and the double reference (src/ref/huang_internal_ref.c) draw the same bits. */
+ * every ISA and the double reference (reference_internal.c) draw the same bits. */
 #ifndef HB_HUANG_RNG_H
 #define HB_HUANG_RNG_H
 

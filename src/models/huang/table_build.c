@@ -8,6 +8,7 @@
 #include "huang.h"
 #include "models/build_tasks.h"
 #include "models/table_file.h"
+#include "state.h"
 
 /* Rank-1 lattices of internal paths per Simpson node: N points, N a Fibonacci number, whose first
  * two coordinates (the entry's visible normal, all TT needs) are the Fibonacci lattice and whose
@@ -75,10 +76,10 @@ static double connections_with(const hb_huang_table *t, int paths)
     return rows * 2.0 * paths * (t->panels + 1) * nodes;
 }
 
-/* The grid of plan->huang.table, from its grid's row and the roughness. */
+/* The grid of hb_huang_of(plan)->kernel.table, from its grid's row and the roughness. */
 static void choose_grid(hb_plan *plan)
 {
-    hb_huang *h = &plan->huang;
+    hb_huang *h = &hb_huang_mut(plan)->kernel;
     hb_huang_table *t = &h->table;
     const table_grid *g = &grids[h->table_grid];
     double r = plan->material.roughness;
@@ -102,7 +103,7 @@ static void choose_grid(hb_plan *plan)
 static void layout(const hb_plan *plan, hb_table_view *v)
 {
     *v = (hb_table_view){ .model = HB_MODEL_HUANG };
-    const hb_huang_table *t = &plan->huang.table;
+    const hb_huang_table *t = &hb_huang_of(plan)->kernel.table;
     int k = 0;
     v->size[k] = t->n_theta_i, v->lo[k] = -M_PI_2, v->hi[k] = M_PI_2, v->axis[k++] = "theta_i";
     if (t->n_phi_i > 1)
@@ -114,7 +115,7 @@ static void layout(const hb_plan *plan, hb_table_view *v)
     v->axis[k++] = t->n_phi_i > 1 ? "phi_o - phi_i in [-pi, pi]" : "|phi_o - phi_i| in [0, pi]";
     v->axes = k;
     v->slots = 1;
-    v->slot_lobes[0] = plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT);
+    v->slot_lobes[0] = hb_huang_of(plan)->kernel.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT);
     v->error = NAN;
     v->count = hb_table_count(v, 3);
 }
@@ -136,8 +137,8 @@ static hb_status load_table(hb_plan *plan, hb_error *error)
         free(values);
         return st;
     }
-    plan->huang_table = values;
-    plan->huang.table.values = values;
+    hb_huang_mut(plan)->table = values;
+    hb_huang_mut(plan)->kernel.table.values = values;
     return HB_OK;
 }
 
@@ -156,14 +157,14 @@ typedef struct table_rows {
 static void build_row(void *rows, int k)
 {
     const table_rows *r = rows;
-    const hb_huang_table *t = &r->plan->huang.table;
+    const hb_huang_table *t = &hb_huang_of(r->plan)->kernel.table;
     int i = k / t->n_phi_i, m = k % t->n_phi_i;
     double theta_i = -M_PI_2 + M_PI * i / (t->n_theta_i - 1);
     double phi_i = t->n_phi_i > 1 ? M_PI_2 * m / (t->n_phi_i - 1) : 0.0;
     hb_huang_table_build build = r->build;
     build.scratch = r->scratch + (size_t)(k % r->part) * r->scratch_floats;
     build.row = k;
-    ((const hb_huang_kernels *)r->plan->kernels)->table_row(&r->plan->huang, (float)theta_i, (float)phi_i, &build,
+    ((const hb_huang_kernels *)r->plan->kernels)->table_row(&hb_huang_of(r->plan)->kernel, (float)theta_i, (float)phi_i, &build,
                                                              r->values + (size_t)k * r->row);
 }
 
@@ -171,7 +172,7 @@ static void build_row(void *rows, int k)
 static double table_connections(hb_plan *plan)
 {
     choose_grid(plan);
-    return connections_with(&plan->huang.table, plan->huang.table.paths);
+    return connections_with(&hb_huang_of(plan)->kernel.table, hb_huang_of(plan)->kernel.table.paths);
 }
 
 /* HB_TT_TRT_AUTO builds the table where it takes about a second on one core at most (on the second
@@ -185,7 +186,7 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
     double connections = table_connections(plan);
     if (plan->options.table_file)
         return load_table(plan, error);
-    hb_huang *h = &plan->huang;
+    hb_huang *h = &hb_huang_mut(plan)->kernel;
     hb_huang_table *t = &h->table;
     const path_lattice *lattice = &grids[h->table_grid].lattice;
     double r = plan->material.roughness;
@@ -225,18 +226,18 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
         free(values);
         return st;
     }
-    plan->huang_table = values;
+    hb_huang_mut(plan)->table = values;
     t->values = values;
     return HB_OK;
 }
 
 hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *v, int *channels)
 {
-    if (!plan->huang_table)
+    if (!hb_huang_of(plan)->table)
         return HB_ERR_UNSUPPORTED;
     *channels = 3;
     layout(plan, v);
-    v->values = plan->huang_table;
+    v->values = hb_huang_of(plan)->table;
     return HB_OK;
 }
 
@@ -245,7 +246,7 @@ hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *v, int *channe
  * the table (or are absent). */
 hb_status hb_huang_shader_constants(const hb_plan *plan, float *k)
 {
-    const hb_huang *h = &plan->huang;
+    const hb_huang *h = &hb_huang_of(plan)->kernel;
     int r = h->lobes >> HB_LOBE_R & 1u, internal = (h->lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT)) != 0;
     if (h->elliptical || (r && !h->analytic) || (internal && !h->table.values) || !plan->kernels)
         return HB_ERR_UNSUPPORTED;

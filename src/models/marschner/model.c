@@ -3,6 +3,7 @@
 #include <math.h>
 
 #include "marschner.h"
+#include "state.h"
 
 static unsigned lobes(const hb_options *o) { return o->lobes == HB_LOBES_DEFAULT ? 7u : o->lobes; }
 
@@ -10,10 +11,10 @@ static void eval_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_
 {
     const hb_marschner_kernels *k = hb_kernels_for(plan, n);
     if (plan->options.term == HB_TERM_LONGITUDINAL) {
-        k->longitudinal_angles(&plan->marschner.lobe[HB_LOBE_R], n, in, out.r, invalid);
+        k->longitudinal_angles(&hb_marschner_of(plan)->kernel.lobe[HB_LOBE_R], n, in, out.r, invalid);
         hb_spread_channels(n, out);
     } else {
-        k->angles(&plan->marschner, n, in, out, invalid);
+        k->angles(&hb_marschner_of(plan)->kernel, n, in, out, invalid);
     }
 }
 
@@ -21,10 +22,10 @@ static void eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rg
 {
     const hb_marschner_kernels *k = hb_kernels_for(plan, n);
     if (plan->options.term == HB_TERM_LONGITUDINAL) {
-        k->longitudinal_vectors(&plan->marschner.lobe[HB_LOBE_R], n, in, out.r, invalid);
+        k->longitudinal_vectors(&hb_marschner_of(plan)->kernel.lobe[HB_LOBE_R], n, in, out.r, invalid);
         hb_spread_channels(n, out);
     } else {
-        k->vectors(&plan->marschner, n, in, out, invalid);
+        k->vectors(&hb_marschner_of(plan)->kernel, n, in, out, invalid);
     }
 }
 
@@ -36,12 +37,12 @@ static int sample_dimensions(const hb_plan *plan)
 
 static void sample(const hb_plan *plan, size_t n, const hb_sample_batch *b, size_t *invalid)
 {
-    ((const hb_marschner_kernels *)hb_kernels_for(plan, n))->sample(&plan->marschner, n, b, invalid);
+    ((const hb_marschner_kernels *)hb_kernels_for(plan, n))->sample(&hb_marschner_of(plan)->kernel, n, b, invalid);
 }
 
 static void pdf(const hb_plan *plan, size_t n, const hb_pair_batch *in, float *out, size_t *invalid)
 {
-    ((const hb_marschner_kernels *)hb_kernels_for(plan, n))->pdf(&plan->marschner, n, in, out, invalid);
+    ((const hb_marschner_kernels *)hb_kernels_for(plan, n))->pdf(&hb_marschner_of(plan)->kernel, n, in, out, invalid);
 }
 
 /* f (the caustics' fade and glint, the attenuation) and the pdf share only the geometry: two passes. */
@@ -56,7 +57,7 @@ static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbi
 {
     if (plan->options.term != HB_TERM_FULL)
         return HB_ERR_UNSUPPORTED;
-    ((const hb_marschner_kernels *)hb_kernels_for(plan, n))->absorbing(&plan->marschner, n, in, out, invalid);
+    ((const hb_marschner_kernels *)hb_kernels_for(plan, n))->absorbing(&hb_marschner_of(plan)->kernel, n, in, out, invalid);
     return HB_OK;
 }
 
@@ -69,7 +70,7 @@ static hb_status table(const hb_plan *plan, hb_table_view *view, int *channels)
 static void describe(hb_text *t, const hb_plan *plan)
 {
     hb_say(t, "model: Marschner 2003 (MJC03), R + TT + TRT in closed form (the cubic solved per sample), RGB; lobes: ");
-    hb_say_lobes(t, plan->marschner.lobes);
+    hb_say_lobes(t, hb_marschner_of(plan)->kernel.lobes);
     hb_say(t, "\nfibre: %s; TRT caustics: glint %.3g, width %.3g rad\n",
         plan->material.eccentricity > 0.0 ? "elliptical" : "circular", plan->material.glint_scale,
         plan->material.caustic_width);
@@ -82,8 +83,8 @@ static void furnace_rule(const hb_plan *plan, double *beta_m, int *azimuths, int
     int longitudinal = plan->options.term == HB_TERM_LONGITUDINAL;
     *beta_m = HUGE_VAL;
     for (int p = 0; p < 3; p++)
-        if (plan->marschner.lobes >> p & 1u || (longitudinal && p == HB_LOBE_R))
-            *beta_m = fmin(*beta_m, plan->marschner_beta[p]);
+        if (hb_marschner_of(plan)->kernel.lobes >> p & 1u || (longitudinal && p == HB_LOBE_R))
+            *beta_m = fmin(*beta_m, hb_marschner_of(plan)->beta[p]);
     *azimuths = longitudinal ? 1 : 1440;
     *passes = 1;
 }
@@ -99,12 +100,13 @@ static int any_preset(const hb_preset *p, const hb_material *m, const hb_options
     return 1;
 }
 
-/* its double-precision procedures (src/ref/marschner_ref*.c) */
+/* its double-precision procedures (reference.h; the fast path includes none of it) */
 extern const struct hb_reference_ops hb_ref_marschner_ops;
 
 const hb_model_ops hb_marschner_model = {
     .name = "marschner",
     .reference = &hb_ref_marschner_ops,
+    .state_size = sizeof(hb_marschner_state),
     .table_version = 1,
     .lobes = lobes,
     .validate = hb_marschner_validate,

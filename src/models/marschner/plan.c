@@ -5,6 +5,7 @@
 #include "kernel/isas.h"
 #include "marschner.h"
 #include "models/derive.h"
+#include "state.h"
 
 hb_status hb_marschner_validate(const hb_material *m, const hb_options *o, hb_error *error)
 {
@@ -36,7 +37,7 @@ static double marschner_cubic_span(int p, double eta_prime)
  * the absorption leaves every lobe 0). */
 static void lobe_probabilities(hb_plan *plan)
 {
-    hb_marschner *k = &plan->marschner;
+    hb_marschner *k = &hb_marschner_mut(plan)->kernel;
     double eta = plan->material.eta, r = (eta - 1.0) / (eta + 1.0), F = r * r, weight[3] = { 0.0, 0.0, 0.0 };
     for (int c = 0; c < 3; c++) {
         double T = exp(-2.0 * plan->sigma_a[c]);
@@ -61,13 +62,13 @@ static void lobe_probabilities(hb_plan *plan)
 static void derive_constants(hb_plan *plan)
 {
     const hb_material *m = &plan->material;
-    hb_marschner *k = &plan->marschner;
+    hb_marschner *k = &hb_marschner_mut(plan)->kernel;
     static const double beta_ratio[3] = { 1.0, 0.5, 2.0 }, mean_ratio[3] = { -1.0, 0.5, 1.5 };
     for (int p = 0; p < 3; p++) {
         double beta = m->lobe_beta_m[p] > 0.0 ? m->lobe_beta_m[p] : beta_ratio[p] * m->beta_m;
         double mean = (m->lobe_alpha_override >> p & 1u) ? m->lobe_alpha[p] : mean_ratio[p] * m->alpha;
-        plan->marschner_beta[p] = beta;
-        plan->marschner_mean[p] = mean;
+        hb_marschner_mut(plan)->beta[p] = beta;
+        hb_marschner_mut(plan)->mean[p] = mean;
         k->lobe[p].mean = (float)mean;
         k->lobe[p].log2e_over_two_beta2 = (float)(M_LOG2E / (2.0 * beta * beta));
         k->lobe[p].norm = (float)(1.0 / (beta * sqrt(2.0 * M_PI)));
@@ -85,20 +86,20 @@ static void derive_constants(hb_plan *plan)
     double a2 = 1.0 - m->eccentricity * m->eccentricity;
     double eta1 = 2.0 * (m->eta - 1.0) * a2 - m->eta + 2.0, eta2 = 2.0 * (m->eta - 1.0) / a2 - m->eta + 2.0;
     k->eccentric = m->eccentricity > 0.0;
-    plan->eta_star_mean = 0.5 * (eta1 + eta2);
-    plan->eta_star_swing = 0.5 * (eta1 - eta2);
-    k->eta_star_excess = (float)(plan->eta_star_mean - 1.0); /* its digits near eta = 1 */
-    k->eta_star_swing = (float)plan->eta_star_swing;
-    plan->eta_star_min = k->eccentric ? fmax(1.0001, fmin(eta1, eta2)) : m->eta;
+    hb_marschner_mut(plan)->eta_star_mean = 0.5 * (eta1 + eta2);
+    hb_marschner_mut(plan)->eta_star_swing = 0.5 * (eta1 - eta2);
+    k->eta_star_excess = (float)(hb_marschner_of(plan)->eta_star_mean - 1.0); /* its digits near eta = 1 */
+    k->eta_star_swing = (float)hb_marschner_of(plan)->eta_star_swing;
+    hb_marschner_mut(plan)->eta_star_min = k->eccentric ? fmax(1.0001, fmin(eta1, eta2)) : m->eta;
     /* eta' >= eta, so the smallest index a lobe sees decides which roots and caustics can exist */
     for (int p = 1; p < 3; p++) {
-        double smallest = p == 2 ? plan->eta_star_min : m->eta;
+        double smallest = p == 2 ? hb_marschner_of(plan)->eta_star_min : m->eta;
         double fold = 1.0 / sin(M_PI / (3.0 * p));
         k->fold_index[p] = (float)fold;
         k->folds[p] = smallest < fold;
         k->caustic[p] = smallest < fold + m->caustic_fade;
     }
-    k->trt_branches = marschner_cubic_span(2, plan->eta_star_min) > M_PI - 1e-6 ? 3 : 1;
+    k->trt_branches = marschner_cubic_span(2, hb_marschner_of(plan)->eta_star_min) > M_PI - 1e-6 ? 3 : 1;
     k->caustic_width = (float)m->caustic_width;
     k->caustic_log2e_over_two_w2 = (float)(M_LOG2E / (2.0 * m->caustic_width * m->caustic_width));
     k->caustic_norm = (float)(1.0 / (m->caustic_width * sqrt(2.0 * M_PI)));

@@ -5,6 +5,7 @@
 
 #include "reference.h"
 #include "models/plan.h"
+#include "state.h"
 
 double hb_ref_marschner_longitudinal(double beta, double mean, double theta_i, double theta_o)
 {
@@ -143,8 +144,8 @@ void hb_ref_marschner_azimuthal(const hb_plan *plan, int p, double theta_d, doub
                                 double N[3])
 {
     double eta = plan->material.eta;
-    if (p == 2 && plan->marschner.eccentric) {
-        eta = fmax(plan->eta_star_mean + plan->eta_star_swing * cos_phi_sum, 1.0001);
+    if (p == 2 && hb_marschner_of(plan)->kernel.eccentric) {
+        eta = fmax(hb_marschner_of(plan)->eta_star_mean + hb_marschner_of(plan)->eta_star_swing * cos_phi_sum, 1.0001);
     }
     ref_index ix = index_of(eta, theta_d, p);
     double cos_theta_t = sqrt(1.0 - sin(theta_d) * sin(theta_d) / (plan->material.eta * plan->material.eta));
@@ -172,14 +173,14 @@ void hb_ref_marschner_azimuthal(const hb_plan *plan, int p, double theta_d, doub
 
 void hb_ref_marschner(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
 {
-    unsigned lobes = plan->marschner.lobes;
+    unsigned lobes = hb_marschner_of(plan)->kernel.lobes;
     double theta_d = 0.5 * (theta_o - theta_i), theta_h = 0.5 * (theta_i + theta_o);
     double phi = remainder(phi_o - phi_i, 2.0 * M_PI), cos_phi_sum = cos(phi_i + phi_o);
     f[0] = f[1] = f[2] = 0.0;
     for (int p = 0; p < 3; p++) {
         if (!(lobes >> p & 1u))
             continue;
-        double N[3], beta = plan->marschner_beta[p], x = theta_h - plan->marschner_mean[p];
+        double N[3], beta = hb_marschner_of(plan)->beta[p], x = theta_h - hb_marschner_of(plan)->mean[p];
         double M = exp(-x * x / (2.0 * beta * beta)) / (beta * sqrt(2.0 * M_PI)); /* M_p = g(alpha_p, beta_p; theta_h) */
         hb_ref_marschner_azimuthal(plan, p, theta_d, phi, cos_phi_sum, N);
         for (int c = 0; c < 3; c++)
@@ -196,8 +197,8 @@ static void marschner_eval(const hb_plan *plan, double theta_i, double phi_i, do
                            double f[3])
 {
     if (plan->options.term == HB_TERM_LONGITUDINAL)
-        f[0] = f[1] = f[2] = hb_ref_marschner_longitudinal(plan->marschner_beta[HB_LOBE_R],
-                                                           plan->marschner_mean[HB_LOBE_R], theta_i, theta_o);
+        f[0] = f[1] = f[2] = hb_ref_marschner_longitudinal(hb_marschner_of(plan)->beta[HB_LOBE_R],
+                                                           hb_marschner_of(plan)->mean[HB_LOBE_R], theta_i, theta_o);
     else
         hb_ref_marschner(plan, theta_i, phi_i, theta_o, phi_o, f);
 }

@@ -5,6 +5,7 @@
 #include "reference.h"
 #include "models/plan.h"
 #include "math/quadrature.h"
+#include "state.h"
 
 double hb_ref_detector_direct(double beta, double x, int terms)
 {
@@ -42,7 +43,7 @@ typedef struct deon_geometry {
 void hb_ref_deon_node(const hb_plan *plan, double sin2_theta_d, double gamma_i, double A[HB_MAX_LOBES + 1][3],
                       double Phi[HB_MAX_LOBES])
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     double eta = plan->material.eta, cos_theta_d = sqrt(1.0 - sin2_theta_d);
     double cos_theta_t = sqrt(1.0 - sin2_theta_d / (eta * eta));
     double sin_gamma_t, cos_gamma_t; /* sin gamma_t = h / eta' (sec. 5) */
@@ -73,7 +74,7 @@ static void azimuthal_ref(const hb_plan *plan, const deon_geometry *g, int n_pan
 {
     enum { RULE = 16 };
     double x[RULE], w[RULE];
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     double fresnel_r = d->r_fresnel_offset ? 1.0 : hb_ref_fresnel(plan->material.eta, g->cos_half_io); /* eq. 12 */
     memset(N, 0, sizeof(double) * (HB_MAX_LOBES + 1) * 3);
     for (int panel = 0; panel < n_panels; panel++) {
@@ -82,7 +83,7 @@ static void azimuthal_ref(const hb_plan *plan, const deon_geometry *g, int n_pan
             double weight = 0.5 * w[j] * cos(x[j]), A[HB_MAX_LOBES + 1][3], Phi[HB_MAX_LOBES];
             hb_ref_deon_node(plan, g->sin2_theta_d, x[j], A, Phi);
             for (int p = 0; p <= d->pmax; p++) {
-                double beta = plan->beta_n[p];
+                double beta = hb_deon_of(plan)->beta_n[p];
                 double detect = hb_ref_detector(beta, g->phi - Phi[p]) + hb_ref_detector(beta, -g->phi - Phi[p]);
                 for (int c = 0; c < 3; c++)
                     N[p][c] += weight * A[p][c] * detect * (p == 0 ? fresnel_r : 1.0);
@@ -100,9 +101,9 @@ void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta
     double dot = cos(theta_i) * cos(theta_o) * cos(phi) + sin(theta_i) * sin(theta_o);
     deon_geometry g = { phi, sin(theta_d) * sin(theta_d), sqrt(fmax(0.0, 0.5 * (1.0 + dot))) };
     /* panels: start where a panel is narrower than the narrowest detector, double until converged */
-    double beta_min = plan->beta_n[0];
-    for (int p = 1; p <= plan->deon.pmax; p++)
-        beta_min = fmin(beta_min, plan->beta_n[p]);
+    double beta_min = hb_deon_of(plan)->beta_n[0];
+    for (int p = 1; p <= hb_deon_of(plan)->kernel.pmax; p++)
+        beta_min = fmin(beta_min, hb_deon_of(plan)->beta_n[p]);
     int panels = (int)fmax(4.0, ceil(M_PI_2 / beta_min));
     double N[HB_MAX_LOBES + 1][3], previous[HB_MAX_LOBES + 1][3];
     azimuthal_ref(plan, &g, panels, previous);
@@ -119,9 +120,9 @@ void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta
     }
     f[0] = f[1] = f[2] = 0.0;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        if (!hb_deon_lobe_on(&plan->deon, p))
+        if (!hb_deon_lobe_on(&hb_deon_of(plan)->kernel, p))
             continue;
-        double M = hb_ref_deon_longitudinal(plan->v[p], theta_i, theta_o - plan->deon.longitudinal[p].shift,
+        double M = hb_ref_longitudinal(hb_deon_of(plan)->v[p], theta_i, theta_o - hb_deon_of(plan)->kernel.longitudinal[p].shift,
                                             plan->options.i0);
         for (int c = 0; c < 3; c++)
             f[c] += M * N[p][c];
@@ -134,7 +135,7 @@ void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta
 void hb_ref_deon_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
                       double f[3])
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     double phi = remainder(phi_o - phi_i, 2.0 * M_PI), theta_d = 0.5 * (theta_o - theta_i);
     double dot = cos(theta_i) * cos(theta_o) * cos(phi) + sin(theta_i) * sin(theta_o);
     double fresnel_r = d->r_fresnel_offset ? 1.0 : hb_ref_fresnel(plan->material.eta, sqrt(fmax(0.0, 0.5 * (1.0 + dot))));
@@ -144,8 +145,8 @@ void hb_ref_deon_near(const hb_plan *plan, double theta_i, double phi_i, double 
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         if (!hb_deon_lobe_on(d, p))
             continue;
-        double M = hb_ref_deon_longitudinal(plan->v[p], theta_i, theta_o - d->longitudinal[p].shift, plan->options.i0);
-        double D = p == HB_LOBE_RESIDUAL ? 0.5 / M_PI : hb_ref_detector(plan->beta_n[p], side - Phi[p]);
+        double M = hb_ref_longitudinal(hb_deon_of(plan)->v[p], theta_i, theta_o - d->longitudinal[p].shift, plan->options.i0);
+        double D = p == HB_LOBE_RESIDUAL ? 0.5 / M_PI : hb_ref_detector(hb_deon_of(plan)->beta_n[p], side - Phi[p]);
         for (int c = 0; c < 3; c++)
             f[c] += M * A[p][c] * D * (p == 0 ? fresnel_r : 1.0);
     }

@@ -8,6 +8,7 @@
 #include "reference.h"
 #include "models/plan.h"
 #include "math/quadrature.h"
+#include "state.h"
 
 enum { RULE = 15, MAX_PIECES = 1000 };
 
@@ -67,7 +68,7 @@ double hb_ref_huang_width(const hb_plan *plan, double theta_i, double theta_o)
     if (plan->options.pole_floor != HB_POLE_FLOOR_BOUNDED &&
         (plan->options.pole_floor == HB_POLE_FLOOR_PAPER || plan->options.quality == HB_QUALITY_REFERENCE))
         return fmin(1.0, fmax(cos(theta_i), 0.0) / 1e-8) / fmax(cos(theta_o), 1e-8);
-    double scales = M_PI * fabs(sin(plan->huang_tilt)) / 2.0;
+    double scales = M_PI * fabs(sin(hb_huang_of(plan)->tilt)) / 2.0;
     double grazing_width = m->ndf == HB_NDF_BECKMANN ? m->roughness / (2.0 * sqrt(M_PI)) : m->roughness / 2.0;
     double rough = plan->options.shadowing == HB_SHADOWING_SMITH ? 0.0 : M_PI * grazing_width / 2.0;
     double floor = fmax(1e-8, fmax(scales, rough));
@@ -179,7 +180,7 @@ static int setup(ref_r_setup *s, const hb_plan *plan, double theta_i, double phi
                  int shadowing)
 {
     s->plan = plan;
-    s->tilt = plan->huang_tilt;
+    s->tilt = hb_huang_of(plan)->tilt;
     s->b = sqrt(1.0 - plan->material.eccentricity * plan->material.eccentricity);
     s->shadowing = shadowing;
     s->pdf = 0;
@@ -263,7 +264,7 @@ double hb_ref_huang_r_integral_analytic(const hb_plan *plan, double theta_i, dou
 int hb_ref_huang_o_window(const hb_plan *plan, double theta_o, double phi_o, double *half, double *lo, double *hi)
 {
     double b = sqrt(1.0 - plan->material.eccentricity * plan->material.eccentricity);
-    *half = hb_ref_huang_half_width(theta_o, plan->huang_tilt);
+    *half = hb_ref_huang_half_width(theta_o, hb_huang_of(plan)->tilt);
     if (*half < 0.0)
         return 0;
     double ends[2];
@@ -312,12 +313,12 @@ void hb_ref_huang(const hb_plan *plan, double theta_i, double phi_i, double thet
 {
     const hb_material *m = &plan->material;
     double tt[3] = { 0.0, 0.0, 0.0 }, trt[3] = { 0.0, 0.0, 0.0 };
-    if (plan->huang.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT))
+    if (hb_huang_of(plan)->kernel.lobes & (1u << HB_LOBE_TT | 1u << HB_LOBE_TRT))
         hb_ref_huang_internal(plan, theta_i, phi_i, theta_o, phi_o, 0, HB_REF_HUANG_PHI_POINTS, HB_REF_HUANG_TT_POINTS,
                               HB_REF_HUANG_TRT_POINTS, tt, trt);
     for (int c = 0; c < 3; c++)
         f[c] = tt[c] + trt[c];
-    if (!(plan->huang.lobes >> HB_LOBE_R & 1u))
+    if (!(hb_huang_of(plan)->kernel.lobes >> HB_LOBE_R & 1u))
         return;
     double integral = hb_ref_huang_r_integral(plan, theta_i, phi_i, theta_o, phi_o,
                                               plan->options.shadowing == HB_SHADOWING_SMITH);

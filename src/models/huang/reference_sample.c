@@ -5,6 +5,7 @@
 
 #include "reference.h"
 #include "models/plan.h"
+#include "state.h"
 
 /* x with (1 + erf(x)) / 2 = u, by bisection. */
 static double normal_half_quantile(double u)
@@ -62,7 +63,7 @@ void hb_ref_huang_visible_normal(const hb_plan *plan, const double o[3], double 
 void hb_ref_huang_sample(const hb_plan *plan, double theta_o, double phi_o, const double u[3], double *theta_i,
                          double *phi_i)
 {
-    double half, lo, hi, e = plan->material.eccentricity, b = sqrt(1.0 - e * e), tau = plan->huang_tilt;
+    double half, lo, hi, e = plan->material.eccentricity, b = sqrt(1.0 - e * e), tau = hb_huang_of(plan)->tilt;
     if (!hb_ref_huang_o_window(plan, theta_o, phi_o, &half, &lo, &hi))
         half = lo = hi = 0.0;
     /* the point at projected offset lo + u0 (hi - lo) across the view: (sin g, b cos g) . (cos phi_o,

@@ -9,6 +9,7 @@
 #include "models/plan.h"
 #include "math/hash.h"
 #include "math/quadrature.h"
+#include "state.h"
 
 enum { U_RULE = 4, PHI_RULE = 4, MAX_POINTS = 1024 };
 
@@ -21,7 +22,7 @@ static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + 
 
 static void point_of_normal(const hb_plan *plan, double phi_m, double x, double z, point *q)
 {
-    double tau = plan->huang_tilt, s = sin(phi_m), c = cos(phi_m);
+    double tau = hb_huang_of(plan)->tilt, s = sin(phi_m), c = cos(phi_m);
     q->p[0] = x;
     q->p[1] = z;
     double macro[3] = { s, 0.0, c }, meso[3] = { cos(tau) * s, sin(tau), cos(tau) * c }; /* eq. 39 */
@@ -166,7 +167,7 @@ static int setup_of(const hb_plan *plan, double theta_i, double phi_i, double th
         s->wi[k] = wi[k];
         s->wo[k] = wo[k];
     }
-    s->half = hb_ref_huang_half_width(theta_i, plan->huang_tilt);
+    s->half = hb_ref_huang_half_width(theta_i, hb_huang_of(plan)->tilt);
     s->scale = hb_ref_huang_width(plan, theta_i, theta_o) / (2.0 * sqrt(1.0 - e * e * sin(phi_o) * sin(phi_o)));
     return s->half > 0.0;
 }
@@ -183,8 +184,8 @@ static uint32_t mix32(uint32_t x)
 
 float hb_ref_huang_uniform(const hb_plan *plan, unsigned index, unsigned counter)
 {
-    uint32_t stream = mix32((uint32_t)index ^ plan->huang.rng_key);
-    return (float)(mix32((stream ^ plan->huang.rng_key2) + (uint32_t)counter * 0x9e3779b9u) >> 8) * 0x1p-24f;
+    uint32_t stream = mix32((uint32_t)index ^ hb_huang_of(plan)->kernel.rng_key);
+    return (float)(mix32((stream ^ hb_huang_of(plan)->kernel.rng_key2) + (uint32_t)counter * 0x9e3779b9u) >> 8) * 0x1p-24f;
 }
 
 static double simpson_weight(int j, int panels) { return (j == 0 || j == panels) ? 1.0 : (j & 1) ? 4.0 : 2.0; }
@@ -197,13 +198,13 @@ void hb_ref_huang_internal_mc(const hb_plan *plan, double theta_i, double phi_i,
         tt[c] = trt[c] = 0.0;
     if (!setup_of(plan, theta_i, phi_i, theta_o, phi_o, &s))
         return;
-    int panels = plan->huang.tt_panels;
+    int panels = hb_huang_of(plan)->kernel.tt_panels;
     double step = 2.0 * s.half / panels;
     for (int j = 0; j <= panels; j++) {
         double phi_m = phi_i - s.half + j * step, u[4], path_tt[3], path_trt[3];
         for (int k = 0; k < 4; k++)
             u[k] = hb_ref_huang_uniform(plan, index, (unsigned)(4 * j + k));
-        internal_path(plan, plan->huang.lobes, phi_m, s.wi, s.wo, u, path_tt, path_trt);
+        internal_path(plan, hb_huang_of(plan)->kernel.lobes, phi_m, s.wi, s.wo, u, path_tt, path_trt);
         double w = simpson_weight(j, panels) * arc_length(plan, phi_m) * step / 3.0 * s.scale;
         for (int c = 0; c < 3; c++) {
             tt[c] += w * path_tt[c];
@@ -279,7 +280,7 @@ void hb_ref_huang_internal(const hb_plan *plan, double theta_i, double phi_i, do
     double phi_x[MAX_POINTS + 1], phi_w[MAX_POINTS + 1];
     int n_phi;
     if (simpson) {
-        int panels = plan->huang.tt_panels;
+        int panels = hb_huang_of(plan)->kernel.tt_panels;
         double step = 2.0 * s.half / panels;
         n_phi = panels + 1;
         for (int j = 0; j <= panels; j++) {
@@ -289,9 +290,9 @@ void hb_ref_huang_internal(const hb_plan *plan, double theta_i, double phi_i, do
     } else {
         n_phi = composite_rule(phi_points, PHI_RULE, phi_i - s.half, phi_i + s.half, phi_x, phi_w);
     }
-    if (plan->huang.lobes >> HB_LOBE_TT & 1u)
+    if (hb_huang_of(plan)->kernel.lobes >> HB_LOBE_TT & 1u)
         nested(plan, HB_LOBE_TT, &s, n_phi, phi_x, phi_w, tt_points, tt);
-    if (plan->huang.lobes >> HB_LOBE_TRT & 1u)
+    if (hb_huang_of(plan)->kernel.lobes >> HB_LOBE_TRT & 1u)
         nested(plan, HB_LOBE_TRT, &s, n_phi, phi_x, phi_w, trt_points, trt);
 }
 

@@ -5,6 +5,7 @@
 
 #include "models/plan.h"
 #include "reference.h"
+#include "state.h"
 
 /* c_g(theta_o) from the plan's table, as the kernels interpolate it; returns their sum. */
 static double lobe_choice(const hb_deon *d, double theta_o, double c[HB_MAX_LOBES + 1])
@@ -21,9 +22,9 @@ static double lobe_choice(const hb_deon *d, double theta_o, double c[HB_MAX_LOBE
 
 static void longitudinal_groups(const hb_plan *plan, double theta_i, double theta_o, double M[HB_MAX_LOBES + 1])
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        M[p] = hb_deon_group_leader(d, p) ? hb_ref_deon_longitudinal(plan->v[p], theta_i, theta_o - d->longitudinal[p].shift,
+        M[p] = hb_deon_group_leader(d, p) ? hb_ref_longitudinal(hb_deon_of(plan)->v[p], theta_i, theta_o - d->longitudinal[p].shift,
                                                              plan->options.i0)
                                   : 0.0;
 }
@@ -32,7 +33,7 @@ static void longitudinal_groups(const hb_plan *plan, double theta_i, double thet
 static double lobe_masses(const hb_plan *plan, const double M[HB_MAX_LOBES + 1], double sin2_theta_d, double gamma_i,
                           double mass[HB_MAX_LOBES + 1], double Phi[HB_MAX_LOBES])
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     double A[HB_MAX_LOBES + 1][3], total = 0.0;
     hb_ref_deon_node(plan, sin2_theta_d, gamma_i, A, Phi);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
@@ -44,7 +45,7 @@ static double lobe_masses(const hb_plan *plan, const double M[HB_MAX_LOBES + 1],
 
 double hb_ref_deon_pdf(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o)
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     double phi = remainder(phi_o - phi_i, 2.0 * M_PI), sin_td = sin(0.5 * (theta_o - theta_i));
     double M[HB_MAX_LOBES + 1], c[HB_MAX_LOBES + 1];
     longitudinal_groups(plan, theta_i, theta_o, M);
@@ -61,8 +62,8 @@ double hb_ref_deon_pdf(const hb_plan *plan, double theta_i, double phi_i, double
             continue;
         for (int p = 0; p <= d->pmax; p++)
             if (mass[p] > 0.0)
-                detected += mass[p] * (hb_ref_detector(plan->beta_n[p], phi - Phi[p]) +
-                                       hb_ref_detector(plan->beta_n[p], -phi - Phi[p]));
+                detected += mass[p] * (hb_ref_detector(hb_deon_of(plan)->beta_n[p], phi - Phi[p]) +
+                                       hb_ref_detector(hb_deon_of(plan)->beta_n[p], -phi - Phi[p]));
         detected += mass[HB_LOBE_RESIDUAL] / M_PI;
         sum += 0.5 * d->weight[j] / weight_total * detected / total;
     }
@@ -91,7 +92,7 @@ static double normal_quantile(double u)
  * within the chosen group's share. */
 static double sample_theta(const hb_plan *plan, double theta_o, const double *u, double *rest)
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     double c[HB_MAX_LOBES + 1];
     double target = u[0] * lobe_choice(d, theta_o, c), cumulative = 0.0, below = 0.0;
     int g = -1;
@@ -105,14 +106,14 @@ static double sample_theta(const hb_plan *plan, double theta_o, const double *u,
         }
     if (rest)
         *rest = fmin(fmax((target - below) / fmax(c[g], 1e-300), 0.0), 1.0 - 0x1p-24);
-    double v = plan->v[g], shift = d->longitudinal[g].shift;
+    double v = hb_deon_of(plan)->v[g], shift = d->longitudinal[g].shift;
     return hb_ref_longitudinal_sample(v, theta_o - shift, u[1], u[2]);
 }
 
 void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const double u[5], double *theta_i,
                         double *phi_i)
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     *theta_i = sample_theta(plan, theta_o, u, NULL);
     /* 2. the node, then the lobe in proportion to M_p A(p, h), then the side */
     int j = 0;
@@ -138,7 +139,7 @@ void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const
     int negative_side = (target - below) / fmax(mass[lobe], 1e-300) < 0.5;
     /* 3. phi about the exit azimuth */
     double spread = lobe == HB_LOBE_RESIDUAL ? M_PI * (2.0 * u[4] - 1.0)
-                                             : Phi[lobe] + plan->beta_n[lobe] * normal_quantile(u[4]);
+                                             : Phi[lobe] + hb_deon_of(plan)->beta_n[lobe] * normal_quantile(u[4]);
     double phi = remainder(negative_side ? -spread : spread, 2.0 * M_PI);
     *phi_i = remainder(phi_o - phi, 2.0 * M_PI);
 }
@@ -156,19 +157,19 @@ void hb_ref_deon_sample_near(const hb_plan *plan, double theta_o, double phi_o, 
     double cumulative = 0.0;
     int lobe = -1;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
-        if (hb_deon_lobe_on(&plan->deon, p)) {
+        if (hb_deon_lobe_on(&hb_deon_of(plan)->kernel, p)) {
             if (lobe < 0 || target >= cumulative)
                 lobe = p;
             cumulative += mass[p];
         }
     double spread = lobe == HB_LOBE_RESIDUAL ? M_PI * (2.0 * u[3] - 1.0)
-                                             : Phi[lobe] + plan->beta_n[lobe] * normal_quantile(u[3]);
+                                             : Phi[lobe] + hb_deon_of(plan)->beta_n[lobe] * normal_quantile(u[3]);
     *phi_i = remainder(phi_o - remainder(h < 0.0 ? -spread : spread, 2.0 * M_PI), 2.0 * M_PI);
 }
 
 double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h)
 {
-    const hb_deon *d = &plan->deon;
+    const hb_deon *d = &hb_deon_of(plan)->kernel;
     double phi = remainder(phi_o - phi_i, 2.0 * M_PI), sin_td = sin(0.5 * (theta_o - theta_i));
     double M[HB_MAX_LOBES + 1], c[HB_MAX_LOBES + 1], mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES];
     longitudinal_groups(plan, theta_i, theta_o, M);
@@ -181,7 +182,7 @@ double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, d
     double side = h < 0.0 ? -phi : phi;
     for (int p = 0; p <= d->pmax; p++)
         if (mass[p] > 0.0)
-            detected += mass[p] * hb_ref_detector(plan->beta_n[p], side - Phi[p]);
+            detected += mass[p] * hb_ref_detector(hb_deon_of(plan)->beta_n[p], side - Phi[p]);
     detected += mass[HB_LOBE_RESIDUAL] * 0.5 / M_PI;
     return mixture / c_total * detected / total;
 }
@@ -190,8 +191,8 @@ double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, d
 static void deon_eval(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
 {
     if (plan->options.term == HB_TERM_LONGITUDINAL)
-        f[0] = f[1] = f[2] = hb_ref_deon_longitudinal(plan->v[HB_LOBE_R], theta_i,
-                                                      theta_o - plan->deon.longitudinal[HB_LOBE_R].shift,
+        f[0] = f[1] = f[2] = hb_ref_longitudinal(hb_deon_of(plan)->v[HB_LOBE_R], theta_i,
+                                                      theta_o - hb_deon_of(plan)->kernel.longitudinal[HB_LOBE_R].shift,
                                                       plan->options.i0);
     else
         hb_ref_deon(plan, theta_i, phi_i, theta_o, phi_o, f);

@@ -1,12 +1,13 @@
 /* CBTB16 in double precision (docs/chiang.md): near-field f at h, its sampler and pdf, and the
  * far field as an adaptive integral over h. M_p is dFH11 eq. 7 with this reference's own Bessel
- * function (deon_ref.c), exact to double precision at every argument (no switch between forms
+ * function (src/ref/longitudinal_ref.c), exact to double precision at every argument (no switch between forms
  * with different errors). */
 #include <math.h>
 
 #include "math/quadrature.h"
 #include "models/plan.h"
 #include "reference.h"
+#include "state.h"
 
 /* theta_o - shift reflected across a pole into [-pi/2, pi/2] (eq. 7 is unchanged by theta -> pi - theta). */
 static double shifted(double theta_o, double shift)
@@ -35,7 +36,7 @@ static void offset_terms(const hb_plan *plan, double theta_o, double h, double A
         A[2][c] = A[1][c] * T * F;
         A[3][c] = one_minus_TF > 0.0 ? A[2][c] * T * F / one_minus_TF : 0.0;
         for (int p = 0; p < HB_CHIANG_TERMS; p++) {
-            if (!hb_chiang_term_on(&plan->chiang, p))
+            if (!hb_chiang_term_on(&hb_chiang_of(plan)->kernel, p))
                 A[p][c] = 0.0;
             mean[p] += A[p][c];
         }
@@ -59,7 +60,7 @@ static double logistic(double s, double x)
 static void longitudinal(const hb_plan *plan, double theta_i, double theta_o, double M[HB_CHIANG_TERMS])
 {
     for (int p = 0; p < HB_CHIANG_TERMS; p++)
-        M[p] = hb_ref_deon_longitudinal(plan->chiang_v[p], theta_i,
+        M[p] = hb_ref_longitudinal(hb_chiang_of(plan)->v[p], theta_i,
                                         shifted(theta_o, shift_ratio[p] * plan->material.alpha), HB_I0_ABRAMOWITZ);
 }
 
@@ -70,7 +71,7 @@ static void near_terms(const hb_plan *plan, const double M[HB_CHIANG_TERMS], dou
     double A[HB_CHIANG_TERMS][3], P[HB_CHIANG_TERMS], Phi[HB_CHIANG_ORDERS], MN[HB_CHIANG_TERMS];
     offset_terms(plan, theta_o, h, A, P, Phi);
     for (int p = 0; p < HB_CHIANG_ORDERS; p++)
-        MN[p] = M[p] * logistic(plan->chiang_s, phi - Phi[p]);
+        MN[p] = M[p] * logistic(hb_chiang_of(plan)->s, phi - Phi[p]);
     MN[3] = M[3] / (2.0 * M_PI);
     f[0] = f[1] = f[2] = *pdf = 0.0;
     for (int p = 0; p < HB_CHIANG_TERMS; p++) {
@@ -97,7 +98,7 @@ void hb_ref_chiang_far(const hb_plan *plan, double theta_i, double phi_i, double
     double M[HB_CHIANG_TERMS], x[8], w[8], sum_pdf = 0.0;
     longitudinal(plan, theta_i, theta_o, M);
     hb_gauss_legendre(8, 0.0, 1.0, x, w);
-    int panels = (int)ceil(M_PI / (0.25 * plan->chiang_s));
+    int panels = (int)ceil(M_PI / (0.25 * hb_chiang_of(plan)->s));
     double width = M_PI / panels;
     f[0] = f[1] = f[2] = 0.0;
     for (int k = 0; k < panels; k++)
@@ -125,9 +126,9 @@ void hb_ref_chiang_sample_near(const hb_plan *plan, double theta_o, double phi_o
             chosen = p;
         cumulative += P[p];
     }
-    double v = plan->chiang_v[chosen], t = shifted(theta_o, shift_ratio[chosen] * plan->material.alpha);
+    double v = hb_chiang_of(plan)->v[chosen], t = shifted(theta_o, shift_ratio[chosen] * plan->material.alpha);
     *theta_i = hb_ref_longitudinal_sample(v, t, u[1], u[2]);
-    double s = plan->chiang_s, phi;
+    double s = hb_chiang_of(plan)->s, phi;
     if (chosen == HB_CHIANG_ORDERS) {
         phi = (2.0 * u[3] - 1.0) * M_PI;
     } else {
