@@ -117,13 +117,17 @@ SHARED_LINK := $(B)/libhairbsdf.so
 TOOL := $(B)/hairbsdf$(EXE)
 EXAMPLE := $(B)/example_minimal$(EXE)
 ENGINE_EXAMPLE := $(B)/example_engine$(EXE)
+PATH_TRACER_EXAMPLE := $(B)/example_path_tracer$(EXE)
 TEST_BIN := $(B)/hairbsdf_tests$(EXE)
 BENCH_BIN := $(B)/hairbsdf_bench$(EXE)
 REPLAYS := $(FUZZ_TARGETS:fuzz_%=$(B)/replay_fuzz_%$(EXE))
+# The README's quick starts, compiled from its text and run by make test.
+README_STARTS := $(B)/readme_engine$(EXE) $(B)/readme_path_tracer$(EXE)
+.SECONDARY: $(B)/readme_engine.c $(B)/readme_path_tracer.c
 FUZZ_TOOL_OBJS := $(B)/tools/csv.o $(B)/tools/cli_options.o $(B)/tools/cli_threads.o
 
 .PHONY: all test check figures layers tsan bench bench-instr bench-instr-check calibration demo images fuzz fuzz-run install abi clean
-all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LINK)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE)
+all: $(STATIC_LIB) $(if $(LDSTATIC),,$(SHARED_LINK)) $(TOOL) $(EXAMPLE) $(ENGINE_EXAMPLE) $(PATH_TRACER_EXAMPLE)
 
 $(B)/%.o: %.c
 	@mkdir -p $(dir $@)
@@ -164,6 +168,19 @@ $(TOOL): $(TOOL_SRCS:%.c=$(B)/%.o) $(STATIC_LIB)
 $(EXAMPLE): $(B)/examples/minimal.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
 
+# A quick start of README.md: the fenced block that opens with "/* README quick start: NAME */"
+# (underscores in the file's name are spaces in NAME).
+$(B)/readme_%.c: README.md
+	@mkdir -p $(dir $@)
+	awk -v name="$(subst _, ,$*)" '$$0 == "/* README quick start: " name " */" { on = 1 } on && /^```/ { exit } on' README.md > $@
+	@test -s $@ || { echo "README.md has no quick start '$(subst _, ,$*)'"; rm -f $@; exit 1; }
+
+$(B)/readme_%$(EXE): $(B)/readme_%.c $(STATIC_LIB)
+	$(CC) $(ALL_CFLAGS) $(LDFLAGS) $(LDSTATIC) -o $@ $< $(STATIC_LIB) $(LDLIBS)
+
+$(PATH_TRACER_EXAMPLE): $(B)/examples/path_tracer.o $(STATIC_LIB)
+	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
+
 $(ENGINE_EXAMPLE): $(B)/examples/engine.o $(STATIC_LIB)
 	$(CC) $(LDFLAGS) $(LDSTATIC) -o $@ $^ $(LDLIBS)
 
@@ -184,8 +201,9 @@ TEST_FLAGS ?=
 TEST_TOOL := $(if $(filter mingw,$(CROSS)),$(TOOL),$(strip $(RUN) $(TOOL)))
 RUN_TESTS = HB_TOOL="$(TEST_TOOL)" HB_TEST_EMULATED=$(if $(filter aarch64,$(CROSS)),1,0) $(RUN) $(TEST_BIN) $(TEST_FLAGS)
 REPLAY_CORPUS = for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t$(EXE) tests/fuzz/corpus/$$t || exit 1; done
-test: $(TEST_BIN) $(TOOL) $(REPLAYS)
+test: $(TEST_BIN) $(TOOL) $(REPLAYS) $(README_STARTS) $(PATH_TRACER_EXAMPLE)
 	@$(REPLAY_CORPUS)
+	@for x in $(README_STARTS) $(PATH_TRACER_EXAMPLE); do printf '%s: ' "$$(basename $$x)"; $(RUN) $$x || exit 1; done
 	@$(RUN_TESTS)
 
 # The include rules of docs/architecture.md: layer order, no model reading another, references

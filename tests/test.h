@@ -132,5 +132,6 @@ extern const hb_test hb_tests_colour[];
 extern const hb_test hb_tests_deon_near[];
 extern const hb_test hb_tests_marschner_sample[];
 extern const hb_test hb_tests_docs[];
+extern const hb_test hb_tests_api_matrix[];
 
 #endif
