@@ -560,6 +560,30 @@ HB_API hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3
 HB_API hb_status hb_furnace_orders(const hb_plan *plan, double theta, long paths, unsigned long long seed,
                             double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS]);
 
+/* Dual scattering (Zinke, Yuksel, Weber and Keyser 2008, "Dual Scattering Approximation for Fast
+ * Multiple Scattering in Hair"; docs/multiple-scattering.md): what one fibre of the plan does to
+ * light arriving at inclination theta, per channel, split into the hemisphere the light goes on
+ * into (forward, |phi_o - phi_i| > pi/2) and the one it returns to (backward). Energies are the
+ * integrals of f(w_i, w_o) = S cos(theta_i) over the hemisphere of w_o, w_i at theta: for a
+ * reciprocal model a_f + a_b is the white furnace, 1 for a lossless fibre; the shifts and variances are the first and second central moments of
+ * theta_h = (theta_i + theta_o) / 2 over that energy (the variable of the paper's Gaussian lobes,
+ * for which they are its eqs. 12 and 13; for the lobes of the other models they include the spread
+ * of the lobes' means). */
+typedef struct hb_dual_terms {
+    double a_f[3], a_b[3];                  /* eq. 6: the forward and backward energy */
+    double alpha_f[3], beta_f2[3];          /* the forward energy's mean theta_h and its variance */
+    double alpha_b[3], beta_b2[3];          /* the backward energy's */
+    double A_b[3], delta_b[3], sigma_b2[3]; /* eqs. 14-17: multiple back-scattering's energy, shift and variance */
+} hb_dual_terms;
+#define HB_DUAL_DENSITY 0.7 /* the paper's density factors d_f and d_b */
+
+/* The terms at theta in (-pi/2, pi/2), by deterministic quadrature over w_o fine enough for the
+ * plan's roughness (the furnace's rule, Gauss-Legendre on each quarter of the azimuths), with the
+ * plan's own evaluation (its kernels, or its double reference for a reference plan); d_b is the
+ * backward density factor of eq. 17 (HB_DUAL_DENSITY). The far field of a near-field model.
+ * HB_ERR_PARAM for theta outside (-pi/2, pi/2) or d_b outside [0, 1]. */
+HB_API hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms);
+
 /* Instruction sets: names as used by --isa and the HB_ISA environment variable
  * ("scalar", "sse4.1", "avx2", "avx512", "neon"). */
 HB_API const char *hb_isa_name(hb_isa isa);

@@ -169,6 +169,12 @@ static hb_status call_orders(const hb_plan *p)
     return hb_furnace_orders(p, 0.3, 16, 1, e, NULL);
 }
 
+static hb_status call_dual(const hb_plan *p)
+{
+    hb_dual_terms d;
+    return hb_dual_terms_at(p, 0.3, HB_DUAL_DENSITY, &d);
+}
+
 static hb_status call_none(const hb_plan *p)
 {
     (void)p;
@@ -189,6 +195,7 @@ static const struct row {
     { "`hb_plan_shader_constants`", shader_plan, call_shader },
     { "`hb_furnace`", NULL, call_furnace },
     { "`hb_furnace_orders`", NULL, call_orders },
+    { "`hb_dual_terms_at`", NULL, call_dual },
     { "`options.tolerance", tolerance_plan, call_none },
     { "`options.budget_ns", budget_plan, call_none },
     { "`HB_TERM_LONGITUDINAL`", longitudinal_plan, call_none },

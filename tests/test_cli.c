@@ -663,7 +663,7 @@ static void test_model_by_command(hb_test_ctx *t)
         const char *model = models[m];
         static const char *const commands[] = {
             "eval", "pdf", "sample --theta-o 0.5 --count 4", "plan", "furnace --theta-o -1,0.5",
-            "furnace --by-lobe --theta-o -1,0.5",
+            "furnace --by-lobe --theta-o -1,0.5", "dual --thetas 2",
         };
         for (size_t c = 0; c < sizeof commands / sizeof commands[0]; c++) {
             snprintf(args, sizeof args, "%s --model %s --quality fast", commands[c], model);

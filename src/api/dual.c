@@ -1,0 +1,95 @@
+/* hb_dual_terms_at: a fibre's forward and backward scattering at one inclination of the light
+ * (Zinke et al. 2008, eqs. 6 and 12-17; docs/multiple-scattering.md). The hemisphere integrals of
+ * f over w_o are Gauss-Legendre panels in theta_o two longitudinal widths wide (the
+ * furnace's rule) times Gauss-Legendre panels on each quarter of the azimuths, so that the
+ * hemispheres' edge at |phi| = pi/2 is an edge of the rule. With w_i at phi_i = 0, every model's
+ * mirror symmetry, f(phi_o) = f(-phi_o), halves the azimuths: phi_o in [0, pi], counted twice.
+ * Evaluated in stack chunks by the plan's own batch call. No allocation. */
+#include <math.h>
+
+#include "math/dual_scattering.h"
+#include "math/quadrature.h"
+#include "models/model.h"
+
+enum { CHUNK = 512, RULE = 8, QUARTERS = 4, HALF = 2 /* quarters of the azimuths in [0, pi] */ };
+
+/* Per channel and hemisphere (0 forward, 1 backward): the energy and its first two moments in theta_h. */
+typedef struct hemisphere_sums {
+    double energy[2][3], first[2][3], second[2][3];
+} hemisphere_sums;
+
+typedef struct pending {
+    float ti[CHUNK], pi[CHUNK], to[CHUNK], po[CHUNK];
+    double weight[CHUNK], theta_h[CHUNK];
+    int backward[CHUNK];
+    int count;
+} pending;
+
+/* Evaluates the pending directions and adds them to the sums. */
+static void flush(const hb_plan *plan, pending *q, hemisphere_sums *s)
+{
+    float f[3][CHUNK];
+    hb_eval_angles(plan, (size_t)q->count, (hb_angles_soa){ q->ti, q->pi, q->to, q->po }, (hb_rgb_soa){ f[0], f[1], f[2] },
+                   NULL);
+    for (int k = 0; k < q->count; k++)
+        for (int c = 0; c < 3; c++) {
+            double e = q->weight[k] * f[c][k];
+            s->energy[q->backward[k]][c] += e;
+            s->first[q->backward[k]][c] += e * q->theta_h[k];
+            s->second[q->backward[k]][c] += e * q->theta_h[k] * q->theta_h[k];
+        }
+    q->count = 0;
+}
+
+hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms)
+{
+    if (!plan || !terms)
+        return HB_ERR_NULL;
+    if (!(fabs(theta) < M_PI_2) || !(d_b >= 0.0 && d_b <= 1.0))
+        return HB_ERR_PARAM;
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    double beta_m;
+    int azimuths, passes;
+    ops->furnace_rule(plan, &beta_m, &azimuths, &passes);
+    int theta_panels = (int)ceil(M_PI / (2.0 * fmin(beta_m, 0.5)));
+    int phi_panels = (azimuths + QUARTERS * RULE - 1) / (QUARTERS * RULE); /* per quarter */
+    double xt[RULE], wt[RULE], xp[RULE], wp[RULE];
+    hemisphere_sums sums = { { { 0 } }, { { 0 } }, { { 0 } } };
+    pending q;
+    q.count = 0;
+    for (int a = 0; a < theta_panels; a++) {
+        hb_gauss_legendre(RULE, -M_PI_2 + M_PI * a / theta_panels, -M_PI_2 + M_PI * (a + 1) / theta_panels, xt, wt);
+        for (int j = 0; j < RULE; j++) {
+            double cos_o = cos(xt[j]);
+            for (int b = 0; b < HALF * phi_panels; b++) {
+                hb_gauss_legendre(RULE, M_PI_2 * b / phi_panels, M_PI_2 * (b + 1) / phi_panels, xp, wp);
+                for (int l = 0; l < RULE; l++) {
+                    q.ti[q.count] = (float)theta, q.pi[q.count] = 0.0f;
+                    q.to[q.count] = (float)xt[j], q.po[q.count] = (float)xp[l];
+                    /* eq. 6: f dw_o (f = S cos(theta_i)), dw_o = cos(theta_o) dtheta_o dphi_o */
+                    q.weight[q.count] = 2.0 * wt[j] * wp[l] * cos_o;
+                    q.theta_h[q.count] = 0.5 * (theta + xt[j]);
+                    q.backward[q.count] = xp[l] < M_PI_2;
+                    if (++q.count == CHUNK)
+                        flush(plan, &q, &sums);
+                }
+            }
+        }
+    }
+    if (q.count)
+        flush(plan, &q, &sums);
+    for (int c = 0; c < 3; c++) {
+        double *energy[2] = { &terms->a_f[c], &terms->a_b[c] }, *mean[2] = { &terms->alpha_f[c], &terms->alpha_b[c] },
+               *variance[2] = { &terms->beta_f2[c], &terms->beta_b2[c] };
+        for (int h = 0; h < 2; h++) {
+            double e = sums.energy[h][c], m = e > 0.0 ? sums.first[h][c] / e : 0.0;
+            *energy[h] = e;
+            *mean[h] = m;
+            *variance[h] = e > 0.0 ? fmax(0.0, sums.second[h][c] / e - m * m) : 0.0;
+        }
+        terms->A_b[c] = hb_dual_back_energy(terms->a_f[c], terms->a_b[c]);
+        terms->delta_b[c] = hb_dual_back_shift(terms->a_f[c], terms->a_b[c], terms->alpha_f[c], terms->alpha_b[c]);
+        terms->sigma_b2[c] = hb_dual_back_variance(terms->a_f[c], terms->a_b[c], terms->beta_f2[c], terms->beta_b2[c], d_b);
+    }
+    return HB_OK;
+}

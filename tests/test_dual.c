@@ -1,0 +1,175 @@
+/* hb_dual_terms_at (Zinke et al. 2008; docs/multiple-scattering.md): a lossless, untilted dFH11
+ * fibre with every order sends all the light somewhere (a_f + a_b = 1); the energies and moments
+ * equal those of an independent rule (the midpoint rule over the whole sphere of w_o, 1024 x 1024,
+ * no symmetry used) for dFH11 and CBTB16 fibres from lossless to black and red, one MJC03 and one
+ * HHH22 fibre (1e-4 in the energies; HHH22's f, whose TT and TRT are a multilinear table with
+ * kinks at every cell and whose R lobe has the visibility window's edges, is integrated by the
+ * Gauss-Legendre panels to 1e-3 only, a panel's error where a kink falls inside it); A_b, Delta_b and sigma_b^2 follow eqs. 14-17 as printed; invalid arguments are
+ * refused. */
+#include <string.h>
+
+#include "test.h"
+
+typedef struct dual_case {
+    const char *name;
+    hb_model model;
+    double eumelanin, pheomelanin, alpha;
+    double bound; /* the energies' against the midpoint rule; 10 times it for the moments */
+} dual_case;
+
+static const dual_case cases[] = {
+    { "dFH11 lossless", HB_MODEL_DEON, 0.0, 0.0, 0.035, 1e-4 },   { "dFH11 blond", HB_MODEL_DEON, 0.3, 0.0, 0.035, 1e-4 },
+    { "dFH11 brown", HB_MODEL_DEON, 1.3, 0.0, 0.035, 1e-4 },      { "dFH11 black", HB_MODEL_DEON, 8.0, 0.0, 0.035, 1e-4 },
+    { "dFH11 red", HB_MODEL_DEON, 0.0, 2.0, 0.035, 1e-4 },        { "CBTB16 lossless", HB_MODEL_CHIANG, 0.0, 0.0, 0.035, 1e-4 },
+    { "CBTB16 blond", HB_MODEL_CHIANG, 0.3, 0.0, 0.035, 1e-4 },   { "CBTB16 brown", HB_MODEL_CHIANG, 1.3, 0.0, 0.035, 1e-4 },
+    { "CBTB16 black", HB_MODEL_CHIANG, 8.0, 0.0, 0.035, 1e-4 },   { "CBTB16 red", HB_MODEL_CHIANG, 0.0, 2.0, 0.035, 1e-4 },
+    { "MJC03 blond", HB_MODEL_MARSCHNER, 0.3, 0.0, 0.035, 1e-4 }, { "HHH22 blond", HB_MODEL_HUANG, 0.3, 0.0, 0.035, 1e-3 },
+};
+
+static hb_plan *dual_plan(hb_test_ctx *t, const dual_case *c)
+{
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.eumelanin = c->eumelanin, m.pheomelanin = c->pheomelanin, m.alpha = c->alpha;
+    o.model = c->model;
+    if (c->model == HB_MODEL_HUANG)
+        m.roughness = 0.3, o.quality = HB_QUALITY_FAST; /* TT and TRT from the fast table: deterministic */
+    hb_plan *plan = NULL;
+    hb_error e;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_OK, "%s: %s", c->name, e.message);
+    return plan;
+}
+
+/* theta of node k of n, the midpoints of n equal parts of (-pi/2, pi/2). */
+static double theta_node(int k, int n) { return -M_PI_2 + M_PI * (k + 0.5) / n; }
+
+static void test_lossless_sum(hb_test_ctx *t)
+{
+    const dual_case lossless = { "dFH11 lossless, untilted", HB_MODEL_DEON, 0.0, 0.0, 0.0, 1e-4 };
+    hb_plan *plan = dual_plan(t, &lossless);
+    if (!plan)
+        return;
+    int n = t->quick ? 16 : 64;
+    double worst = 0.0;
+    for (int k = 0; k < n; k++) {
+        hb_dual_terms d;
+        CHECK(t, hb_dual_terms_at(plan, theta_node(k, n), HB_DUAL_DENSITY, &d) == HB_OK, "theta %g", theta_node(k, n));
+        for (int c = 0; c < 3; c++)
+            worst = fmax(worst, fabs(d.a_f[c] + d.a_b[c] - 1.0));
+    }
+    hb_test_note(t, "lossless untilted dFH11: |a_f + a_b - 1| <= %.1e over %d thetas", worst, n);
+    CHECK(t, worst <= 1e-4, "a_f + a_b is %.3g off 1", worst);
+    hb_plan_destroy(plan);
+}
+
+/* The independent rule: the midpoint rule in theta_o and in phi_o over [-pi, pi], N x N nodes. */
+enum { N = 1024 };
+
+static void midpoint_terms(const hb_plan *plan, double theta, double energy[2][3], double mean[2][3], double variance[2][3])
+{
+    static float ti[N], pi[N], to[N], po[N], f[3][N];
+    double sum[2][3][3] = { { { 0 } } };
+    for (int j = 0; j < N; j++) {
+        double theta_o = theta_node(j, N), dw = M_PI / N * (2.0 * M_PI / N) * cos(theta_o), theta_h = 0.5 * (theta + theta_o);
+        for (int l = 0; l < N; l++) {
+            ti[l] = (float)theta, pi[l] = 0.0f, to[l] = (float)theta_o;
+            po[l] = (float)(-M_PI + 2.0 * M_PI * (l + 0.5) / N);
+        }
+        hb_eval_angles(plan, N, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+        for (int l = 0; l < N; l++) {
+            int back = fabsf(po[l]) < (float)M_PI_2;
+            for (int c = 0; c < 3; c++) {
+                double e = dw * f[c][l];
+                sum[back][c][0] += e, sum[back][c][1] += e * theta_h, sum[back][c][2] += e * theta_h * theta_h;
+            }
+        }
+    }
+    for (int h = 0; h < 2; h++)
+        for (int c = 0; c < 3; c++) {
+            energy[h][c] = sum[h][c][0];
+            mean[h][c] = sum[h][c][0] > 0.0 ? sum[h][c][1] / sum[h][c][0] : 0.0;
+            variance[h][c] = sum[h][c][0] > 0.0 ? sum[h][c][2] / sum[h][c][0] - mean[h][c] * mean[h][c] : 0.0;
+        }
+}
+
+static void test_independent_rule(hb_test_ctx *t)
+{
+    size_t count = t->quick ? 3 : sizeof cases / sizeof cases[0];
+    int n = t->quick ? 2 : 8;
+    for (size_t k = 0; k < count; k++) {
+        const dual_case *c = &cases[t->quick ? k * 5 : k]; /* quick: dFH11 and CBTB16 lossless, MJC03 blond */
+        hb_plan *plan = dual_plan(t, c);
+        if (!plan)
+            continue;
+        double worst_energy = 0.0, worst_mean = 0.0, worst_variance = 0.0;
+        for (int j = 0; j < n; j++) {
+            double theta = theta_node(j, n) * 0.97, energy[2][3], mean[2][3], variance[2][3];
+            hb_dual_terms d;
+            hb_dual_terms_at(plan, theta, HB_DUAL_DENSITY, &d);
+            midpoint_terms(plan, theta, energy, mean, variance);
+            const double *got_energy[2] = { d.a_f, d.a_b }, *got_mean[2] = { d.alpha_f, d.alpha_b },
+                         *got_variance[2] = { d.beta_f2, d.beta_b2 };
+            for (int h = 0; h < 2; h++)
+                for (int ch = 0; ch < 3; ch++) {
+                    worst_energy = fmax(worst_energy, fabs(got_energy[h][ch] - energy[h][ch]));
+                    if (energy[h][ch] > 1e-3) { /* moments where there is energy to weigh them */
+                        worst_mean = fmax(worst_mean, fabs(got_mean[h][ch] - mean[h][ch]));
+                        worst_variance = fmax(worst_variance, fabs(got_variance[h][ch] / variance[h][ch] - 1.0));
+                    }
+                }
+        }
+        hb_test_note(t, "%-16s: energies within %.1e, shifts %.1e rad, variances %.1e relative of the midpoint rule", c->name,
+                     worst_energy, worst_mean, worst_variance);
+        CHECK(t, worst_energy <= c->bound, "%s: a_f or a_b %.3g off the midpoint rule", c->name, worst_energy);
+        CHECK(t, worst_mean <= 10.0 * c->bound, "%s: a shift %.3g rad off", c->name, worst_mean);
+        CHECK(t, worst_variance <= 10.0 * c->bound, "%s: a variance %.3g off (relative)", c->name, worst_variance);
+        hb_plan_destroy(plan);
+    }
+}
+
+/* Eqs. 14-17 as printed, from the terms' own a_f, a_b and moments; finite and non-negative where
+ * the fibre absorbs. */
+static void test_back_scattering(hb_test_ctx *t)
+{
+    const dual_case *c = &cases[1];
+    hb_plan *plan = dual_plan(t, c);
+    if (!plan)
+        return;
+    double worst = 0.0;
+    for (int k = 0; k < 8; k++) {
+        hb_dual_terms d;
+        hb_dual_terms_at(plan, theta_node(k, 8), 0.5, &d);
+        for (int ch = 0; ch < 3; ch++) {
+            double af = d.a_f[ch], ab = d.a_b[ch], af2 = af * af, ab2 = ab * ab, one = 1.0 - af2;
+            double A1 = ab * af2 / one, A3 = ab * ab2 * af2 / (one * one);
+            double delta = d.alpha_b[ch] * (1.0 - 2.0 * ab2 / (one * one)) +
+                           d.alpha_f[ch] * (2.0 * one * one + 4.0 * af2 * ab2) / (one * one * one);
+            double bf = sqrt(d.beta_f2[ch]), bb = sqrt(d.beta_b2[ch]);
+            double sigma = (1.0 + 0.5 * af2) * (ab * sqrt(2.0 * bf * bf + bb * bb) + ab * ab2 * sqrt(2.0 * bf * bf + 3.0 * bb * bb)) /
+                           (ab + ab * ab2 * (2.0 * bf + 3.0 * bb));
+            worst = fmax(worst, fabs(d.A_b[ch] - (A1 + A3)) / (A1 + A3));
+            worst = fmax(worst, fabs(d.delta_b[ch] - delta) / fmax(fabs(delta), 1e-3));
+            worst = fmax(worst, fabs(d.sigma_b2[ch] - sigma * sigma) / (sigma * sigma));
+            CHECK(t, isfinite(d.A_b[ch]) && d.A_b[ch] >= 0.0 && isfinite(d.delta_b[ch]) && d.sigma_b2[ch] > 0.0,
+                  "%s theta %g: A_b %g delta_b %g sigma_b^2 %g", c->name, theta_node(k, 8), d.A_b[ch], d.delta_b[ch],
+                  d.sigma_b2[ch]);
+        }
+    }
+    hb_test_note(t, "A_b, Delta_b, sigma_b^2 against eqs. 14-17: within %.1e relative", worst);
+    CHECK(t, worst <= 1e-12, "eqs. 14-17 differ by %.3g", worst);
+    hb_dual_terms d;
+    CHECK(t, hb_dual_terms_at(plan, M_PI_2, 0.7, &d) == HB_ERR_PARAM && hb_dual_terms_at(plan, NAN, 0.7, &d) == HB_ERR_PARAM &&
+                 hb_dual_terms_at(plan, 0.0, 1.5, &d) == HB_ERR_PARAM && hb_dual_terms_at(NULL, 0.0, 0.7, &d) == HB_ERR_NULL &&
+                 hb_dual_terms_at(plan, 0.0, 0.7, NULL) == HB_ERR_NULL,
+          "invalid arguments accepted");
+    hb_plan_destroy(plan);
+}
+
+const hb_test hb_tests_dual[] = {
+    { "dual_lossless_sum", test_lossless_sum, 0 },
+    { "dual_independent_rule", test_independent_rule, 0 },
+    { "dual_back_scattering", test_back_scattering, 0 },
+    { NULL, NULL, 0 },
+};

@@ -1,0 +1,79 @@
+/* hairbsdf dual: a fibre's dual-scattering terms against the light's inclination theta (Zinke et al.
+ * 2008; docs/multiple-scattering.md), as CSV. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+static void dual_usage(FILE *to)
+{
+    fprintf(to, "usage: hairbsdf dual [options] [--thetas N] [--density D]\n"
+                "Prints, per channel at N inclinations theta of the light (the midpoints of N equal parts\n"
+                "of (-pi/2, pi/2), default 64): the forward and backward energies a_f, a_b, their mean\n"
+                "theta_h alpha_f, alpha_b and variances beta_f2, beta_b2, and the multiple back-scattering\n"
+                "A_b, delta_b, sigma_b2 with the density factor D (default 0.7).\n%s",
+            cli_model_options_help);
+}
+
+int cmd_dual(int argc, char **argv)
+{
+    cli_model_args args;
+    cli_model_args_default(&args);
+    int thetas = 64;
+    double density = HB_DUAL_DENSITY;
+    char err[256];
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            dual_usage(stdout);
+            return 0;
+        }
+        char *end;
+        if (strcmp(argv[i], "--thetas") == 0 && i + 1 < argc) {
+            long n = strtol(argv[++i], &end, 10);
+            if (*end || n < 1 || n > 4096) {
+                fprintf(stderr, "hairbsdf dual: --thetas: '%s' is not a count in [1, 4096]\n", argv[i]);
+                return 2;
+            }
+            thetas = (int)n;
+            continue;
+        }
+        if (strcmp(argv[i], "--density") == 0 && i + 1 < argc) {
+            density = strtod(argv[++i], &end);
+            if (*end || !(density >= 0.0 && density <= 1.0)) {
+                fprintf(stderr, "hairbsdf dual: --density: '%s' is not in [0, 1]\n", argv[i]);
+                return 2;
+            }
+            continue;
+        }
+        int r = cli_parse_model_option(argc, argv, &i, &args, err, sizeof err);
+        if (r <= 0) {
+            fprintf(stderr, "hairbsdf dual: %s\n", r < 0 ? err : "unknown option (see hairbsdf dual --help)");
+            return 2;
+        }
+    }
+    hb_plan *plan;
+    hb_error e;
+    if (cli_plan_create(&args, &args.options, &plan, &e) != HB_OK) {
+        fprintf(stderr, "hairbsdf dual: %s\n", e.message);
+        return 2;
+    }
+    static const char *const names[] = { "a_f", "a_b", "alpha_f", "beta_f2", "alpha_b", "beta_b2", "A_b", "delta_b", "sigma_b2" };
+    printf("theta");
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        printf(",%s_r,%s_g,%s_b", names[k], names[k], names[k]);
+    printf("\n");
+    for (int k = 0; k < thetas; k++) {
+        double theta = -M_PI_2 + M_PI * (k + 0.5) / thetas;
+        hb_dual_terms d;
+        hb_dual_terms_at(plan, theta, density, &d);
+        const double *columns[] = { d.a_f, d.a_b, d.alpha_f, d.beta_f2, d.alpha_b, d.beta_b2, d.A_b, d.delta_b, d.sigma_b2 };
+        printf("%.6f", theta);
+        for (size_t c = 0; c < sizeof columns / sizeof columns[0]; c++)
+            printf(",%.6g,%.6g,%.6g", columns[c][0], columns[c][1], columns[c][2]);
+        printf("\n");
+    }
+    hb_plan_destroy(plan);
+    return 0;
+}
