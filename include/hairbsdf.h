@@ -76,6 +76,7 @@ typedef enum hb_model { HB_MODEL_MARSCHNER, HB_MODEL_DEON, HB_MODEL_HUANG, HB_MO
 enum { HB_LOBE_R = 0, HB_LOBE_TT = 1, HB_LOBE_TRT = 2, HB_LOBE_TRRT = 3, HB_MAX_LOBES = 8,
        HB_LOBE_RESIDUAL = HB_MAX_LOBES };
 #define HB_LOBES_DEFAULT 0u /* the model's full set: for dFH11 every order up to pmax plus the residual */
+#define HB_LOBE_BIT(p) (1u << (p)) /* the lobe set of order p: HB_LOBE_BIT(HB_LOBE_R) | HB_LOBE_BIT(HB_LOBE_TT) */
 
 typedef enum hb_ndf { HB_NDF_GGX, HB_NDF_BECKMANN } hb_ndf;
 
@@ -484,6 +485,30 @@ typedef struct hb_sample_near_in {
 HB_API hb_status hb_sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out,
                                 hb_eval_report *report);
 HB_API hb_status hb_pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *pdf, hb_eval_report *report);
+/* f and the pdf at h in one call, for multiple importance sampling (eval_near, then pdf_near). */
+HB_API hb_status hb_eval_pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa f, float *pdf,
+                                  hb_eval_report *report);
+
+/* The near field with fibre-frame unit vectors, as a path tracer has them at a hit: each call turns
+ * the vectors into angles in double (an invalid vector, as for hb_eval_vectors, makes an invalid
+ * sample) and runs the angle call above on them, in chunks on the stack; the sampler returns w_i as
+ * a unit vector, (0, 0, 0) for an invalid sample. The results are the angle calls' on the rounded
+ * angles, bit for bit. */
+typedef struct hb_near_vectors_soa {
+    const float *wi_x, *wi_y, *wi_z, *wo_x, *wo_y, *wo_z, *h;
+} hb_near_vectors_soa;
+typedef struct hb_sample_near_vectors_in {
+    const float *wo_x, *wo_y, *wo_z, *h;
+    const float *u[HB_SAMPLE_DIMENSIONS];
+} hb_sample_near_vectors_in;
+HB_API hb_status hb_eval_near_vectors(const hb_plan *plan, size_t n, hb_near_vectors_soa in, hb_rgb_soa out,
+                                      hb_eval_report *report);
+HB_API hb_status hb_pdf_near_vectors(const hb_plan *plan, size_t n, hb_near_vectors_soa in, float *pdf,
+                                     hb_eval_report *report);
+HB_API hb_status hb_eval_pdf_near_vectors(const hb_plan *plan, size_t n, hb_near_vectors_soa in, hb_rgb_soa f,
+                                          float *pdf, hb_eval_report *report);
+HB_API hb_status hb_sample_near_vectors(const hb_plan *plan, size_t n, hb_sample_near_vectors_in in,
+                                        hb_sample_vectors_out out, hb_eval_report *report);
 
 /* Counter-based uniform numbers in [0, 1) (24 bits): u[d][k] for sample index first + k and
  * dimension d < dimensions, a pure function of (seed, index, d), the same on every machine. */

@@ -122,7 +122,10 @@ static hb_status call_near(const hb_plan *p)
     float ti, pi;
     hb_status d = hb_sample_near(p, 1, sin, (hb_sample_out){ &ti, &pi, &s.pdf, { &s.f[0], &s.f[1], &s.f[2] } }, NULL);
     hb_status q = hb_pdf_near(p, 1, in, &s.pdf, NULL);
-    return e != HB_OK ? e : d != HB_OK ? d : q;
+    float wi[3] = { 0.0f, 1.0f, 0.0f }, wo[3] = { 0.6f, 0.0f, 0.8f };
+    hb_status v = hb_eval_pdf_near_vectors(p, 1, (hb_near_vectors_soa){ &wi[0], &wi[1], &wi[2], &wo[0], &wo[1], &wo[2], &s.h },
+                                           (hb_rgb_soa){ &s.f[0], &s.f[1], &s.f[2] }, &s.pdf, NULL);
+    return e != HB_OK ? e : d != HB_OK ? d : q != HB_OK ? q : v;
 }
 
 static hb_status call_sample(const hb_plan *p)
