@@ -26,14 +26,20 @@ HB_INLINE fresnel_sums fresnel_sums_of(vf cos_i, const hb_dielectric *ior)
     return q;
 }
 
+/* F from its sums: relative-accurate where F is small (eta -> 1, normal incidence). */
+HB_INLINE vf fresnel_of_sums(const fresnel_sums *q, const hb_dielectric *ior)
+{
+    vf rs = vf_div(vf_set1(ior->eta2_minus_1), vf_mul(q->sum_s, q->sum_s));
+    vf brewster = vf_fma(vf_set1(ior->eta2_minus_1 + 2.0f), q->c2, vf_set1(-1.0f)); /* (eta^2 + 1) c^2 - 1 */
+    vf rp = vf_div(vf_mul(vf_set1(ior->eta2_minus_1 * ior->inv_eta2), brewster), vf_mul(q->sum_p, q->sum_p));
+    /* at grazing incidence both ratios are 1 up to rounding: clamped, 1 - F is never negative */
+    return vf_min(vf_mul(vf_set1(0.5f), vf_fma(rs, rs, vf_mul(rp, rp))), vf_set1(1.0f));
+}
+
 HB_INLINE vf fresnel_dielectric(vf cos_i, const hb_dielectric *ior)
 {
     fresnel_sums q = fresnel_sums_of(cos_i, ior);
-    vf rs = vf_div(vf_set1(ior->eta2_minus_1), vf_mul(q.sum_s, q.sum_s));
-    vf brewster = vf_fma(vf_set1(ior->eta2_minus_1 + 2.0f), q.c2, vf_set1(-1.0f)); /* (eta^2 + 1) c^2 - 1 */
-    vf rp = vf_div(vf_mul(vf_set1(ior->eta2_minus_1 * ior->inv_eta2), brewster), vf_mul(q.sum_p, q.sum_p));
-    /* at grazing incidence both ratios are 1 up to rounding: clamped, 1 - F is never negative */
-    return vf_min(vf_mul(vf_set1(0.5f), vf_fma(rs, rs, vf_mul(rp, rp))), vf_set1(1.0f));
+    return fresnel_of_sums(&q, ior);
 }
 
 /* 1 - F without the cancellation of 1 - fresnel_dielectric near grazing incidence (where F -> 1 and
@@ -41,12 +47,26 @@ HB_INLINE vf fresnel_dielectric(vf cos_i, const hb_dielectric *ior)
  * and 1 - r_p^2 = 4 c (eta c_t) / (eta c + c_t)^2, so
  *     1 - F = 2 c (eta c_t) (1 / (c + eta c_t)^2 + 1 / (eta c + c_t)^2),
  * relative-accurate down to c = 0, where it is 0. */
+HB_INLINE vf fresnel_complement_of_sums(const fresnel_sums *q, vf cos_i)
+{
+    vf s2 = vf_mul(q->sum_s, q->sum_s), p2 = vf_mul(q->sum_p, q->sum_p);
+    vf twice_c_eta_cos_t = vf_mul(vf_add(cos_i, cos_i), q->eta_cos_t);
+    return vf_min(vf_div(vf_mul(twice_c_eta_cos_t, vf_add(s2, p2)), vf_mul(s2, p2)), vf_set1(1.0f));
+}
+
 HB_INLINE vf fresnel_dielectric_complement(vf cos_i, const hb_dielectric *ior)
 {
     fresnel_sums q = fresnel_sums_of(cos_i, ior);
-    vf s2 = vf_mul(q.sum_s, q.sum_s), p2 = vf_mul(q.sum_p, q.sum_p);
-    vf twice_c_eta_cos_t = vf_mul(vf_add(cos_i, cos_i), q.eta_cos_t);
-    return vf_min(vf_div(vf_mul(twice_c_eta_cos_t, vf_add(s2, p2)), vf_mul(s2, p2)), vf_set1(1.0f));
+    return fresnel_complement_of_sums(&q, cos_i);
+}
+
+/* F and 1 - F, each relative-accurate: F where it is small, 1 - F as F -> 1 (dFH11's residual near
+ * opposite poles, where the light meets the surface at grazing incidence). */
+HB_INLINE vf fresnel_dielectric_pair(vf cos_i, const hb_dielectric *ior, vf *one_minus_f)
+{
+    fresnel_sums q = fresnel_sums_of(cos_i, ior);
+    *one_minus_f = fresnel_complement_of_sums(&q, cos_i);
+    return fresnel_of_sums(&q, ior);
 }
 
 #endif

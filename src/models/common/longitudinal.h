@@ -15,6 +15,7 @@
 #define HB_COMMON_LONGITUDINAL_H
 
 #include "math/vmath.h"
+#include "inclination.h"
 #include "longitudinal_constants.h"
 
 /* log of dFH11 eq. 15, the 10-term series S(x) = sum_{i<=10} (x^2/4)^i / (i!)^2. For
@@ -91,20 +92,6 @@ HB_INLINE vf longitudinal_deon_single_norm(vf log2_norm, vf cone_bits, vf x, hb_
 HB_INLINE vf longitudinal_deon_single(const hb_longitudinal *lobe, vf cone_bits, vf x, hb_i0 i0)
 {
     return longitudinal_deon_single_norm(vf_set1(lobe->log2_norm_f), cone_bits, x, i0);
-}
-
-/* cos(t) = sin(pi/2 - |t| + low) for |t| up to just beyond pi/2 (the float pi/2 lies beyond it,
- * where the cosine is negative, as eq. 7 has it), relative-accurate near the poles: pi/2 - |t| is
- * exact there (Sterbenz) before low, pi/2's low part and any of t's own, is added. */
-HB_INLINE vf cos_near_pole(vf t, vf low)
-{
-    return vf_sin_halfpi(vf_add(vf_sub(vf_set1(HB_PIO2_F), vf_abs(t)), low));
-}
-
-/* The low part for t = t_hi + t_lo: pi/2's low part less t_lo with t_hi's sign. */
-HB_INLINE vf pole_distance_low(vf t_hi, vf t_lo)
-{
-    return vf_fnma(t_lo, vf_copysign(vf_set1(1.0f), t_hi), vf_set1(HB_PIO2_LO));
 }
 
 /* What the M_p of one sample's groups share: its two inclinations and cos(theta_i), which the

@@ -116,7 +116,7 @@ HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_med
  * channel-free part of A(p, h) (eq. 13): A_f[0] = f, A_f[p] = (1 - f)^2 f^(p-1) up to p = pmax + 1
  * (the residual's first order); A(p, h) = A_f[p] T^p. */
 typedef struct deon_paths {
-    vf f, T[3];
+    vf f, one_minus_f, T[3];
     vf A_f[HB_MAX_LOBES + 1];
     vf Phi[HB_MAX_LOBES];
 } deon_paths;
@@ -132,7 +132,8 @@ HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf 
     vf cos_gamma_t = vf_mul(vf_sqrt(vf_fma(cos_d_cos_gamma_i, cos_d_cos_gamma_i, vf_set1(d->ior.eta2_minus_1))),
                             m->inv_eta_cos_t);
     vf gamma_t = vf_asin_with_cos(sin_gamma_t, cos_gamma_t);
-    vf f = out->f = fresnel_dielectric(cos_d_cos_gamma_i, &d->ior); /* eq. 14 */
+    /* eq. 14, with 1 - f formed on its own: it keeps its digits as f -> 1 at grazing incidence */
+    vf one_minus_f, f = out->f = fresnel_dielectric_pair(cos_d_cos_gamma_i, &d->ior, &one_minus_f);
     /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (docs/conventions.md) */
     vf path = !shape.standard && d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
                                                      : vf_add(cos_gamma_t, cos_gamma_t);
@@ -141,7 +142,8 @@ HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf 
         out->T[c] = vf_exp2_neg(vf_mul(m->mu_log2e[c], path));
     out->Phi[0] = vf_mul(vf_set1(-2.0f), gamma_i); /* eq. 8, p = 0 */
     out->A_f[0] = f;
-    out->A_f[1] = vf_mul(vf_sub(vf_set1(1.0f), f), vf_sub(vf_set1(1.0f), f)); /* (1 - f)^2 f^(p-1), eq. 13 */
+    out->one_minus_f = one_minus_f;
+    out->A_f[1] = vf_mul(one_minus_f, one_minus_f); /* (1 - f)^2 f^(p-1), eq. 13 */
     HB_UNROLL
     for (int p = 1; p <= pmax && p < HB_MAX_LOBES; p++) {
         out->Phi[p] = vf_fma(vf_set1(2.0f * (float)p), gamma_t,
@@ -153,11 +155,12 @@ HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf 
 /* 1 / (1 - f T), the geometric series of the orders above pmax. 1 - f T is formed as
  * (1 - f) + f (1 - T), two non-negative terms (T clamped to 1: 2^-0 rounds an ulp above it), so the
  * residual (1 - f)^2 f^pmax T^(pmax+1) / (1 - f T) stays below 1 - f as f -> 1 at grazing angles; a
- * direct 1 - f T rounds to 0 or below there for a lossless fibre. */
-HB_INLINE vf residual_series(vf f, vf T)
+ * direct 1 - f T rounds to 0 or below there for a lossless fibre. one_minus_f is 1 - f formed on
+ * its own (fresnel_dielectric_complement). */
+HB_INLINE vf residual_series(vf f, vf one_minus_f, vf T)
 {
     vf one = vf_set1(1.0f);
-    vf denominator = vf_fma(f, vf_sub(one, vf_min(T, one)), vf_sub(one, f));
+    vf denominator = vf_fma(f, vf_sub(one, vf_min(T, one)), one_minus_f);
     return vf_div(one, vf_max(denominator, vf_set1(1e-30f)));
 }
 
@@ -197,7 +200,7 @@ HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf 
     if (deon_lobe_on(d, HB_LOBE_RESIDUAL, shape)) /* sum_{p > pmax} A(p, h) = A(pmax+1, h) / (1 - f T) */
         HB_UNROLL
         for (int c = 0; c < channels; c++)
-            node->A[HB_LOBE_RESIDUAL][c] = vf_mul(vf_mul(paths->A_f[pmax + 1], T_power[c]), residual_series(paths->f, paths->T[c]));
+            node->A[HB_LOBE_RESIDUAL][c] = vf_mul(vf_mul(paths->A_f[pmax + 1], T_power[c]), residual_series(paths->f, paths->one_minus_f, paths->T[c]));
     if (channels == 1) /* a grey fibre: the other channels are copies (register moves) */
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
             if (deon_lobe_on(d, p, shape))
@@ -519,8 +522,9 @@ HB_INLINE void deon_fused_node(const hb_deon *d, const deon_fused_sample *s, con
     vf sin_gamma_t = vf_mul(node->h, s->medium.inv_eta_prime);
     vf cos_gamma_t = vf_sqrt(vf_fnma(sin_gamma_t, sin_gamma_t, vf_set1(1.0f)));
     vf gamma_t = d->asin_narrow ? vf_asin_narrow(sin_gamma_t, vf_mul(sin_gamma_t, sin_gamma_t)) : vf_asin(sin_gamma_t);
-    vf f = fresnel_dielectric(vf_mul(s->medium.cos_theta_d, node->cos_gamma_i), &d->ior); /* eq. 14 */
-    vf one_minus_f = vf_sub(vf_set1(1.0f), f), a[HB_STANDARD_PMAX + 2];
+    /* eq. 14, with 1 - f formed on its own: it keeps its digits as f -> 1 at grazing incidence */
+    vf one_minus_f, f = fresnel_dielectric_pair(vf_mul(s->medium.cos_theta_d, node->cos_gamma_i), &d->ior, &one_minus_f);
+    vf a[HB_STANDARD_PMAX + 2];
     a[0] = vf_mul(node->weight, f);
     a[1] = vf_mul(vf_mul(one_minus_f, one_minus_f), node->weight); /* (1 - f)^2 f^(p-1), eq. 13 */
     HB_UNROLL
@@ -542,7 +546,7 @@ HB_INLINE void deon_fused_node(const hb_deon *d, const deon_fused_sample *s, con
     vf series[3];
     HB_UNROLL
     for (int c = 0; c < channels; c++) {
-        series[c] = residual_series(f, T[c]);
+        series[c] = residual_series(f, one_minus_f, T[c]);
         vf inner = vf_fma(T[c], vf_mul(q, series[c]), sp[3]);
         inner = vf_fma(T[c], inner, sp[2]);
         inner = vf_fma(T[c], inner, sp[1]);
@@ -689,8 +693,7 @@ HB_INLINE void deon_geometry_angles(const hb_deon *d, vf theta_i, vf phi_i, vf t
     /* read by Fourier detectors and eq. 12 only (a table reads |phi|, the standard shape sigma |phi|) */
     g->cos_phi = !d->np_table && (d->fourier_terms > 0 || !d->r_fresnel_offset) ? vf_cos(g->phi) : vf_set1(1.0f);
     /* |theta_d| <= pi/2: one sine polynomial, no reduction, relative-accurate near the pole */
-    vf cos_td = cos_near_pole(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), vf_set1(HB_PIO2_LO));
-    g->cos_theta_d = vf_max(cos_td, vf_set1(0.0f));
+    g->cos_theta_d = cos_half_difference(theta_o, theta_i);
     g->cos_half_io = vf_set1(1.0f);
     deon_plan_absorption(d, g);
     if (!d->r_fresnel_offset) { /* two more sine-cosine pairs only for eq. 12 */
@@ -723,8 +726,11 @@ HB_INLINE void deon_vectors(const hb_deon *d, const vf wi[3], const vf wo[3], hb
     vf co = vf_mul(vf_sqrt(vf_fma(wo[0], wo[0], vf_mul(wo[2], wo[2]))), inv_o);
     g.phi = azimuth_difference(wi, wo); /* from the planar components (scale drops out of atan2) */
     g.cos_phi = !d->np_table && d->fourier_terms > 0 ? vf_cos(g.phi) : vf_set1(1.0f); /* Fourier detectors only */
-    vf cos_diff = vf_fma(ci, co, vf_mul(si, so)); /* cos(theta_o - theta_i) = cos(2 theta_d) */
-    g.cos_theta_d = vf_sqrt(vf_max(vf_fma(cos_diff, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
+    /* cos(theta_d) = |(cos theta_i + cos theta_o, sin theta_i + sin theta_o)| / 2: both sums are small
+     * and exact to their operands' rounding near opposite poles, where sqrt((1 + cos(2 theta_d)) / 2)
+     * cancels */
+    vf cs = vf_add(ci, co), ss = vf_add(si, so);
+    g.cos_theta_d = vf_mul(vf_set1(0.5f), vf_sqrt(vf_fma(cs, cs, vf_mul(ss, ss))));
     vf dot = vf_mul(vf_mul(inv_i, inv_o), vf_fma(wi[0], wo[0], vf_fma(wi[1], wo[1], vf_mul(wi[2], wo[2]))));
     g.cos_half_io = vf_sqrt(vf_max(vf_fma(dot, vf_set1(0.5f), vf_set1(0.5f)), vf_set1(0.0f)));
     deon_plan_absorption(d, &g);

@@ -104,7 +104,7 @@ HB_INLINE void deon_near_lanes(const hb_deon *d, const deon_geometry *g, const m
     vf one = vf_set1(1.0f), series[3], sum[3];
     HB_UNROLL
     for (int c = 0; c < 3; c++) {
-        series[c] = residual_series(paths.f, paths.T[c]);
+        series[c] = residual_series(paths.f, paths.one_minus_f, paths.T[c]);
         sum[c] = vf_set1(0.0f);
     }
     for (int first = 0; first < HB_LOBE_LANES; first += HB_W) {

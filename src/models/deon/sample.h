@@ -82,8 +82,7 @@ HB_STAGE vf deon_pick_lobe(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf th
                            vf cos_gamma_i, vf u, vf *Phi, vf *beta, vm *residual)
 {
     deon_geometry g;
-    g.cos_theta_d = vf_max(cos_near_pole(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)), vf_set1(HB_PIO2_LO)),
-                           vf_set1(0.0f));
+    g.cos_theta_d = cos_half_difference(theta_o, theta_i);
     deon_plan_absorption(d, &g);
     deon_medium medium;
     deon_medium_of(d, &g, &medium, 3);

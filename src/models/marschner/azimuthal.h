@@ -248,7 +248,7 @@ HB_INLINE void marschner_geometry_angles(const hb_marschner *m, vf theta_i, vf p
 {
     g->theta_h = vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o));
     g->cos_theta_i = vf_cos(theta_i);
-    g->cos_theta_d = vf_cos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)));
+    g->cos_theta_d = cos_half_difference(theta_o, theta_i);
     g->phi = wrap_angle(vf_sub(phi_o, phi_i));
     g->cos_phi_sum = m->eccentric ? vf_cos(wrap_angle(vf_add(phi_i, phi_o))) : vf_set1(1.0f);
     marschner_plan_absorption(m, g);
@@ -267,7 +267,7 @@ HB_INLINE void marschner_vectors(const hb_marschner *m, const vf wi[3], const vf
     mjc_inclinations n = inclinations_of_vectors(wi, wo);
     g.theta_h = vf_mul(vf_set1(0.5f), vf_add(n.theta_i, n.theta_o));
     g.cos_theta_i = n.cos_theta_i;
-    g.cos_theta_d = vf_cos(vf_mul(vf_set1(0.5f), vf_sub(n.theta_o, n.theta_i)));
+    g.cos_theta_d = cos_half_difference(n.theta_o, n.theta_i);
     /* phi = phi_o - phi_i and cos(phi_i + phi_o) from the planar components */
     g.phi = azimuth_difference(wi, wo);
     /* a direction along the fibre has azimuth 0 (planar_z): its planar part (0, 1), of length 1 */

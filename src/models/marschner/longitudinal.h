@@ -5,6 +5,7 @@
 #define HB_MARSCHNER_LONGITUDINAL_H
 
 #include "math/vmath.h"
+#include "models/common/inclination.h"
 #include "constants.h"
 
 /* 1/cos^2(theta_d) diverges (integrably) where theta_i -> -pi/2 and theta_o -> pi/2 together;
@@ -34,8 +35,8 @@ HB_INLINE vf longitudinal_marschner(const hb_gaussian_lobe *lobe, vf theta_h, vf
 HB_INLINE vf longitudinal_marschner_angles(const hb_gaussian_lobe *lobe, vf theta_i, vf theta_o)
 {
     vf theta_h = vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o));
-    vf theta_d = vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i));
-    return longitudinal_marschner(lobe, theta_h, vf_cos(theta_i), vf_cos(theta_d));
+    return longitudinal_marschner(lobe, theta_h, cos_near_pole(theta_i, vf_set1(HB_PIO2_LO)),
+                                  cos_half_difference(theta_o, theta_i));
 }
 
 /* From unit vectors: the inclinations theta_i, theta_o (atan2 of the tangent component over the
@@ -59,7 +60,7 @@ HB_INLINE vf longitudinal_marschner_vectors(const hb_gaussian_lobe *lobe, const 
 {
     mjc_inclinations n = inclinations_of_vectors(wi, wo);
     return longitudinal_marschner(lobe, vf_mul(vf_set1(0.5f), vf_add(n.theta_i, n.theta_o)), n.cos_theta_i,
-                                  vf_cos(vf_mul(vf_set1(0.5f), vf_sub(n.theta_o, n.theta_i))));
+                                  cos_half_difference(n.theta_o, n.theta_i));
 }
 
 #endif

@@ -56,7 +56,7 @@ HB_INLINE vf root_density(const hb_marschner *m, int p, const mjc_index *ix, vf 
 HB_INLINE vf marschner_pdf_angles(const hb_marschner *m, vf theta_i, vf phi_i, vf theta_o, vf phi_o)
 {
     vf theta_h = vf_mul(vf_set1(0.5f), vf_add(theta_i, theta_o));
-    vf cos_theta_d = vf_cos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, theta_i)));
+    vf cos_theta_d = cos_half_difference(theta_o, theta_i);
     vf phi = wrap_angle(vf_sub(phi_o, phi_i)), sum = vf_set1(0.0f);
     for (int p = 0; p < 3; p++) {
         if (!(m->lobes >> p & 1u))
@@ -93,7 +93,7 @@ HB_INLINE void marschner_sample(const hb_marschner *m, vf theta_o, vf phi_o, con
     vf q = vf_clamp(vf_fma(u[1], Z, below), 0.0f, 1.0f);
     *theta_i = vf_clamp(vf_fma(width, vf_normal_quantile(q), mean), -HB_PIO2_F, HB_PIO2_F);
     /* 3. phi: the cubic at an offset h, or uniform */
-    vf cos_theta_d = vf_cos(vf_mul(vf_set1(0.5f), vf_sub(theta_o, *theta_i)));
+    vf cos_theta_d = cos_half_difference(theta_o, *theta_i);
     vm uniform = vf_lt(u[2], vf_set1(HB_MJC_UNIFORM_SHARE));
     vf rest = vf_div(vf_sub(u[2], vf_set1(HB_MJC_UNIFORM_SHARE)), vf_set1(1.0f - HB_MJC_UNIFORM_SHARE));
     vf gamma = vf_asin(vf_clamp(vf_fma(rest, vf_set1(2.0f), vf_set1(-1.0f)), -1.0f, 1.0f));
