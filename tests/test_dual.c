@@ -4,8 +4,9 @@
  * no symmetry used) for dFH11 and CBTB16 fibres from lossless to black and red, one MJC03 and one
  * HHH22 fibre (1e-4 in the energies; HHH22's f, whose TT and TRT are a multilinear table with
  * kinks at every cell and whose R lobe has the visibility window's edges, is integrated by the
- * Gauss-Legendre panels to 1e-3 only, a panel's error where a kink falls inside it); A_b, Delta_b and sigma_b^2 follow eqs. 14-17 as printed; invalid arguments are
- * refused. */
+ * Gauss-Legendre panels to 1e-3 only, a panel's error where a kink falls inside it); A_b, Delta_b
+ * and sigma_b^2 follow eqs. 14-17 in the form docs/multiple-scattering.md gives; invalid arguments
+ * are refused. */
 #include <string.h>
 
 #include "test.h"
@@ -129,7 +130,7 @@ static void test_independent_rule(hb_test_ctx *t)
     }
 }
 
-/* Eqs. 14-17 as printed, from the terms' own a_f, a_b and moments; finite and non-negative where
+/* Eqs. 14-17 in the form docs/multiple-scattering.md gives, from the terms' own a_f, a_b and moments; finite and non-negative where
  * the fibre absorbs. */
 static void test_back_scattering(hb_test_ctx *t)
 {
