@@ -156,7 +156,7 @@ HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf 
  * (1 - f) + f (1 - T), two non-negative terms (T clamped to 1: 2^-0 rounds an ulp above it), so the
  * residual (1 - f)^2 f^pmax T^(pmax+1) / (1 - f T) stays below 1 - f as f -> 1 at grazing angles; a
  * direct 1 - f T rounds to 0 or below there for a lossless fibre. one_minus_f is 1 - f formed on
- * its own (fresnel_dielectric_complement). */
+ * its own (fresnel_dielectric_pair). */
 HB_INLINE vf residual_series(vf f, vf one_minus_f, vf T)
 {
     vf one = vf_set1(1.0f);
