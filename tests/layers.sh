@@ -2,9 +2,11 @@
 # make layers: the include rules of docs/architecture.md, checked on every file under src/.
 # - A layer includes only its own folder and the layers below it:
 #   simd < math < kernel < models < plan < api, and ref (the reference) below api only.
-# - A model's folder includes no other model's folder (what two models share is in models/common/).
+# - A model's folder includes no other model's folder. The shared folders of models/ (common/:
+#   equations two models use; interface/, build/, file/, text/: the interface and list, builds,
+#   the table-file format, text and refusals) include no model's folder.
 # - The reference includes nothing of the fast path: no simd/, kernel/ or vector math. The shared
-#   reference (src/ref/) reads of models/ only the plan's data (models/plan.h); a model's own
+#   reference (src/ref/) reads of models/ only the plan's data (models/interface/plan.h); a model's own
 #   reference (src/models/<model>/reference*) also its folder's constants.h, state.h and
 #   reference.h, and nothing else of models/; no fast-path file includes a reference.
 # - No file outside src/models/ branches on a model id: the model's operations do.
@@ -17,6 +19,7 @@ rank() {
     esac
 }
 status=0
+shared_folder() { case "$1" in common | interface | build | file | text) return 0 ;; esac; return 1; }
 for file in $(find src -name '*.c' -o -name '*.h' | sort); do
     layer=$(echo "$file" | cut -d/ -f2)
     model=$(echo "$file" | sed -n 's|^src/models/\([^/]*\)/.*|\1|p')
@@ -47,24 +50,27 @@ for file in $(find src -name '*.c' -o -name '*.h' | sort); do
         if [ -n "$oracle" ]; then
             case "$target" in
             simd/* | kernel/* | math/vmath.h) why="the reference includes the fast path's $target" ;;
-            models/plan.h | ref/* | "models/$model/constants.h" | "models/$model/state.h" | "models/$model/reference.h") ;;
+            models/interface/plan.h | ref/* | "models/$model/constants.h" | "models/$model/state.h" | "models/$model/reference.h") ;;
             models/*) why="the reference includes $target, a model's fast path" ;;
             esac
         elif [ "$layer" = ref ]; then
             case "$target" in
             simd/* | kernel/* | math/vmath.h) why="the reference includes the fast path's $target" ;;
-            models/plan.h) ;;
-            models/*) why="the reference includes $target, a model's fast path (only models/plan.h)" ;;
+            models/interface/plan.h) ;;
+            models/*) why="the reference includes $target, a model's fast path (only models/interface/plan.h)" ;;
             esac
         elif [ "$top" = ref ] && [ "$layer" != api ] && [ "$layer" != plan ]; then
             why="$layer includes the reference ($target)"
         elif [ "$(rank "$top")" -gt "$(rank "$layer")" ]; then
             why="$layer includes $target, a layer above it"
         fi
-        if [ -z "$why" ] && [ -n "$model" ] && [ "$model" != common ]; then
-            other=$(echo "$target" | sed -n 's|^models/\([^/]*\)/.*|\1|p')
-            [ -n "$other" ] && [ "$other" != "$model" ] && [ "$other" != common ] &&
+        other=$(echo "$target" | sed -n 's|^models/\([^/]*\)/.*|\1|p')
+        if [ -z "$why" ] && [ -n "$other" ] && ! shared_folder "$other" && [ "$other" != "$model" ]; then
+            if [ -n "$model" ] && ! shared_folder "$model"; then
                 why="model $model includes model $other's $target"
+            elif [ "$layer" = models ]; then
+                why="a shared file of models/ includes model $other's $target"
+            fi
         fi
         if [ -n "$why" ]; then
             echo "$file:$number: $why"

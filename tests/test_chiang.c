@@ -7,7 +7,7 @@
 
 #include "sampling.h"
 #include "models/chiang/chiang.h"
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "ref/reference.h"
 #include "models/chiang/reference.h"
 #include "models/chiang/state.h"

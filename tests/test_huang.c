@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "test.h"
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "ref/reference.h"
 #include "models/huang/reference.h"
 

@@ -9,7 +9,7 @@
 
 #include "math/dual_scattering.h"
 #include "math/quadrature.h"
-#include "models/model.h"
+#include "models/interface/model.h"
 
 enum { CHUNK = 512, RULE = 8, QUARTERS = 4, HALF = 2 /* quarters of the azimuths in [0, pi] */ };
 

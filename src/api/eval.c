@@ -3,7 +3,7 @@
 #include <math.h>
 
 #include "math/valid.h"
-#include "models/model.h"
+#include "models/interface/model.h"
 #include "ref/reference.h"
 
 static hb_status check_out(const hb_plan *plan, size_t n, hb_rgb_soa out)

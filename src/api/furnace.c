@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "math/quadrature.h"
-#include "models/model.h"
+#include "models/interface/model.h"
 #include "ref/reference.h"
 
 enum { CHUNK = 512, RULE = 8 };

@@ -6,7 +6,7 @@
 
 #include "math/hash.h"
 #include "math/valid.h"
-#include "models/model.h"
+#include "models/interface/model.h"
 #include "ref/reference.h"
 
 int hb_plan_sample_dimensions(const hb_plan *plan)

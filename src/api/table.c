@@ -1,8 +1,8 @@
 /* hb_plan_table: the view of a plan's table that engines bake, from its model; hb_table_save: that
- * table as a table file (src/models/table_file.c); hb_plan_shader_constants: what the shaders read
+ * table as a table file (src/models/file/table_file.c); hb_plan_shader_constants: what the shaders read
  * beside it. */
-#include "models/model.h"
-#include "models/table_file.h"
+#include "models/interface/model.h"
+#include "models/file/table_file.h"
 
 hb_status hb_plan_table(const hb_plan *plan, hb_table_view *v)
 {

@@ -185,7 +185,7 @@ HB_INLINE vm load_sample(const hb_sample_batch *b, int dims, size_t i, size_t la
 HB_INLINE vm offset_valid(vf h) { return vf_le(vf_abs(h), vf_set1(1.0f)); }
 
 /* Direction pairs and three absorption streams: a[4..6] = sigma_a log2(e) per channel, each rounded
- * from its product in double and capped at 1e30 as a plan's constant is (src/models/derive.h), so that
+ * from its product in double and capped at 1e30 as a plan's constant is (src/models/build/derive.h), so that
  * a sample's absorption gives what a plan of that material gives. A lane is also invalid when an
  * absorption is NaN, negative or infinite; invalid lanes get zeros. */
 HB_INLINE vm load_absorbing(const hb_absorbing_batch *b, size_t i, size_t lanes, vf a[7])

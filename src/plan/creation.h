@@ -3,7 +3,7 @@
 #ifndef HB_PLAN_CREATION_H
 #define HB_PLAN_CREATION_H
 
-#include "models/model.h"
+#include "models/interface/model.h"
 
 /* A plan for the caller's structs (of this header's or an older one's size): validated, its ISA
  * resolved, its configuration chosen for a tolerance or budget, built (create.c). */

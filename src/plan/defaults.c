@@ -3,8 +3,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "models/plan.h"
-#include "models/text.h"
+#include "models/interface/plan.h"
+#include "models/text/text.h"
 
 void hb_material_default(hb_material *m)
 {

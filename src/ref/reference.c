@@ -3,7 +3,7 @@
 #include <math.h>
 
 #include "math/valid.h"
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "reference.h"
 
 

@@ -3,7 +3,7 @@
 #define HB_CHIANG_CHIANG_H
 
 #include "kernels.h"
-#include "models/model.h"
+#include "models/interface/model.h"
 
 hb_status hb_chiang_validate(const hb_material *m, const hb_options *o, hb_error *error); /* plan.c */
 hb_status hb_chiang_derive(hb_plan *plan, hb_error *error);

@@ -1,4 +1,4 @@
-/* CBTB16 behind the model interface (models/model.h): near-field kernels at each sample's h, the
+/* CBTB16 behind the model interface (models/interface/model.h): near-field kernels at each sample's h, the
  * far field (the mean over h) through the angle and vector entry points, its sampler, description,
  * furnace rule and named configurations. */
 #include <math.h>

@@ -5,7 +5,7 @@
 #include "chiang.h"
 #include "kernel/isas.h"
 #include "math/quadrature.h"
-#include "models/derive.h"
+#include "models/build/derive.h"
 #include "state.h"
 
 /* v_R = (0.726 beta_m + 0.812 beta_m^2 + 3.7 beta_m^20)^2 (CBTB16's fit). */

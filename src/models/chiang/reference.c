@@ -5,7 +5,7 @@
 #include <math.h>
 
 #include "math/quadrature.h"
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "reference.h"
 #include "state.h"
 

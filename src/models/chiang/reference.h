@@ -4,7 +4,7 @@
 #ifndef HB_CHIANG_REFERENCE_H
 #define HB_CHIANG_REFERENCE_H
 
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "ref/reference.h"
 
 extern const hb_reference_ops hb_ref_chiang_ops;

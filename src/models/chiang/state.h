@@ -1,10 +1,10 @@
 /* CBTB16's part of a plan: what its derive (plan.c) computes from the material and
- * options, in the plan's allocation after its head (models/plan.h). Derive writes it through
+ * options, in the plan's allocation after its head (models/interface/plan.h). Derive writes it through
  * hb_chiang_mut; evaluation, the reference and the description read it through hb_chiang_of. Internal. */
 #ifndef HB_CHIANG_STATE_H
 #define HB_CHIANG_STATE_H
 
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "constants.h"
 
 typedef struct hb_chiang_state {

@@ -8,9 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "models/build_tasks.h"
-#include "models/derive.h"
-#include "models/table_file.h"
+#include "models/build/build_tasks.h"
+#include "models/build/derive.h"
+#include "models/file/table_file.h"
 #include "table.h"
 #include "state.h"
 

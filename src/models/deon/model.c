@@ -1,4 +1,4 @@
-/* dFH11 behind the model interface (models/model.h): its kernels through the plan, its
+/* dFH11 behind the model interface (models/interface/model.h): its kernels through the plan, its
  * description, furnace rule and named configurations. */
 #include <math.h>
 

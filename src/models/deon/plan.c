@@ -7,7 +7,7 @@
 #include "deon.h"
 #include "kernel/isas.h"
 #include "math/quadrature.h"
-#include "models/derive.h"
+#include "models/build/derive.h"
 #include "state.h"
 
 /* Each quality level is an error target for f (docs/conventions.md): 1e-2, 1e-3, 1e-4. The quality

@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "reference.h"
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "math/quadrature.h"
 #include "state.h"
 

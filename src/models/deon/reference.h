@@ -4,7 +4,7 @@
 #ifndef HB_DEON_REFERENCE_H
 #define HB_DEON_REFERENCE_H
 
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "ref/reference.h"
 
 extern const hb_reference_ops hb_ref_deon_ops;

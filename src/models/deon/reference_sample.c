@@ -3,7 +3,7 @@
  * (node and lobe-choice weights) define the procedure and are shared. Internal. */
 #include <math.h>
 
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "reference.h"
 #include "state.h"
 

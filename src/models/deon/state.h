@@ -1,10 +1,10 @@
 /* dFH11's part of a plan: what its derive (plan.c, sample_plan.c and the table builds) computes from the material and
- * options, in the plan's allocation after its head (models/plan.h). Derive writes it through
+ * options, in the plan's allocation after its head (models/interface/plan.h). Derive writes it through
  * hb_deon_mut; evaluation, the reference and the description read it through hb_deon_of. Internal. */
 #ifndef HB_DEON_STATE_H
 #define HB_DEON_STATE_H
 
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "constants.h"
 
 typedef struct hb_deon_state {

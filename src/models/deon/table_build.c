@@ -5,8 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "models/build_tasks.h"
-#include "models/table_file.h"
+#include "models/build/build_tasks.h"
+#include "models/file/table_file.h"
 #include "table.h"
 #include "state.h"
 

@@ -1,4 +1,4 @@
-/* HHH22 behind the model interface (models/model.h): its kernels through the plan, its
+/* HHH22 behind the model interface (models/interface/model.h): its kernels through the plan, its
  * description, furnace rule and named configurations. */
 #include <math.h>
 #include <string.h>

@@ -6,7 +6,7 @@
 #include "huang.h"
 #include "kernel/isas.h"
 #include "math/hash.h"
-#include "models/derive.h"
+#include "models/build/derive.h"
 #include "state.h"
 
 /* HHH22: R, TT and TRT; the R lobe's closed form (App. A) covers GGX without G on circular fibres. */

@@ -6,7 +6,7 @@
 #include <math.h>
 
 #include "reference.h"
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "math/quadrature.h"
 #include "state.h"
 

@@ -6,7 +6,7 @@
 #include <stdint.h>
 
 #include "reference.h"
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "math/hash.h"
 #include "math/quadrature.h"
 #include "state.h"

@@ -4,7 +4,7 @@
 #include <math.h>
 
 #include "reference.h"
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "state.h"
 
 /* x with (1 + erf(x)) / 2 = u, by bisection. */

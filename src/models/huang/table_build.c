@@ -6,8 +6,8 @@
 #include <stdlib.h>
 
 #include "huang.h"
-#include "models/build_tasks.h"
-#include "models/table_file.h"
+#include "models/build/build_tasks.h"
+#include "models/file/table_file.h"
 #include "state.h"
 
 /* Rank-1 lattices of internal paths per Simpson node: N points, N a Fibonacci number, whose first

@@ -1,4 +1,4 @@
-/* MJC03 behind the model interface (models/model.h): its kernels through the plan, its
+/* MJC03 behind the model interface (models/interface/model.h): its kernels through the plan, its
  * sampler (sample.h), description, furnace rule and named configuration. It has no table. */
 #include <math.h>
 

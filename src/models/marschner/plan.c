@@ -4,7 +4,7 @@
 
 #include "kernel/isas.h"
 #include "marschner.h"
-#include "models/derive.h"
+#include "models/build/derive.h"
 #include "state.h"
 
 hb_status hb_marschner_validate(const hb_material *m, const hb_options *o, hb_error *error)

@@ -4,7 +4,7 @@
 #include <math.h>
 
 #include "reference.h"
-#include "models/plan.h"
+#include "models/interface/plan.h"
 #include "state.h"
 
 double hb_ref_marschner_longitudinal(double beta, double mean, double theta_i, double theta_o)

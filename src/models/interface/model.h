@@ -10,7 +10,7 @@
 
 #include "kernel/streams.h"
 #include "plan.h"
-#include "text.h"
+#include "models/text/text.h"
 
 /* The error a quality level below reference aims at, relative to the peak f (docs/conventions.md). */
 static inline double hb_quality_target(hb_quality q)

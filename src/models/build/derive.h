@@ -4,7 +4,7 @@
 
 #include <math.h>
 
-#include "common/dielectric.h"
+#include "models/common/dielectric.h"
 
 /* An absorption coefficient as the kernels' float: any finite double is valid, but one above
  * FLT_MAX would become +Inf and Inf * 0 (a zero path length) NaN; past 1e30 per radius every

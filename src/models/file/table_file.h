@@ -4,7 +4,7 @@
 #ifndef HB_MODELS_TABLE_FILE_H
 #define HB_MODELS_TABLE_FILE_H
 
-#include "plan.h"
+#include "models/interface/plan.h"
 
 #define HB_TABLE_FILE_FORMAT 3 /* the digit after "HBTABLE" */
 #define HB_TABLE_FILE_FORMAT_DIGIT "3"

@@ -3,7 +3,7 @@
 #ifndef HB_MODELS_BUILD_TASKS_H
 #define HB_MODELS_BUILD_TASKS_H
 
-#include "plan.h"
+#include "models/interface/plan.h"
 
 #define HB_BUILD_PARTS 8 /* a build reports progress (and may be cancelled) about this often; a part's tasks run in parallel */
 

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "math/hash.h"
-#include "model.h"
+#include "models/interface/model.h"
 #include "table_file.h"
 
 #define NAME_BYTES 24

@@ -2,7 +2,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 
-#include "plan.h"
+#include "models/interface/plan.h"
 
 hb_status hb_plan_fail(hb_error *error, hb_status status, const char *fmt, ...)
 {
