@@ -108,11 +108,14 @@ FUZZ_TARGETS := fuzz_cli fuzz_eval fuzz_table
 BENCH_SRCS := $(wildcard bench/*.c)
 
 STATIC_LIB := $(B)/libhairbsdf.a
-# The version, from the public header: the soname's major and pkg-config's version.
+# The version, from the public header: pkg-config's version and the soname's ABI version, which is
+# major.minor while the major is 0 (a 0.x minor release may change the ABI; the header says so).
 HB_VERSION_FIELD = $(shell sed -n 's/^\#define HB_VERSION_$(1) \([0-9]*\)$$/\1/p' include/hairbsdf.h)
-HB_SO_MAJOR := $(call HB_VERSION_FIELD,MAJOR)
-HB_VERSION := $(HB_SO_MAJOR).$(call HB_VERSION_FIELD,MINOR).$(call HB_VERSION_FIELD,PATCH)
-SHARED_LIB := $(B)/libhairbsdf.so.$(HB_SO_MAJOR)
+HB_VERSION_MAJOR := $(call HB_VERSION_FIELD,MAJOR)
+HB_VERSION_MINOR := $(call HB_VERSION_FIELD,MINOR)
+HB_VERSION := $(HB_VERSION_MAJOR).$(HB_VERSION_MINOR).$(call HB_VERSION_FIELD,PATCH)
+HB_SO_VERSION := $(if $(filter 0,$(HB_VERSION_MAJOR)),0.$(HB_VERSION_MINOR),$(HB_VERSION_MAJOR))
+SHARED_LIB := $(B)/libhairbsdf.so.$(HB_SO_VERSION)
 SHARED_LINK := $(B)/libhairbsdf.so
 TOOL := $(B)/hairbsdf$(EXE)
 EXAMPLE := $(B)/example_minimal$(EXE)
@@ -157,7 +160,7 @@ $(STATIC_LIB): $(LIB_OBJS)
 	$(AR) rcs $@ $^
 
 $(SHARED_LIB): $(LIB_OBJS)
-	$(CC) -shared -Wl,-soname,libhairbsdf.so.$(HB_SO_MAJOR) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+	$(CC) -shared -Wl,-soname,libhairbsdf.so.$(HB_SO_VERSION) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 $(SHARED_LINK): $(SHARED_LIB)
 	ln -sf $(notdir $<) $@
@@ -174,6 +177,16 @@ $(B)/readme_%.c: README.md
 	@mkdir -p $(dir $@)
 	awk -v name="$(subst _, ,$*)" '$$0 == "/* README quick start: " name " */" { on = 1 } on && /^```/ { exit } on' README.md > $@
 	@test -s $@ || { echo "README.md has no quick start '$(subst _, ,$*)'"; rm -f $@; exit 1; }
+
+# Every C block of docs/ compiled against the header, each as a function (tests/docs_blocks.awk).
+DOCS_BLOCKS := $(B)/docs_blocks.o
+$(B)/docs_blocks.c: $(wildcard docs/*.md) tests/docs_blocks.awk
+	@mkdir -p $(dir $@)
+	awk -f tests/docs_blocks.awk $(wildcard docs/*.md) > $@
+
+$(DOCS_BLOCKS): $(B)/docs_blocks.c include/hairbsdf.h
+	$(CC) $(ALL_CFLAGS) -Wno-uninitialized -Wno-maybe-uninitialized -Wno-unused-variable -Wno-unused-but-set-variable \
+	    -Wno-missing-prototypes -c -o $@ $<
 
 $(B)/readme_%$(EXE): $(B)/readme_%.c $(STATIC_LIB)
 	$(CC) $(ALL_CFLAGS) $(LDFLAGS) $(LDSTATIC) -o $@ $< $(STATIC_LIB) $(LDLIBS)
@@ -201,7 +214,7 @@ TEST_FLAGS ?=
 TEST_TOOL := $(if $(filter mingw,$(CROSS)),$(TOOL),$(strip $(RUN) $(TOOL)))
 RUN_TESTS = HB_TOOL="$(TEST_TOOL)" HB_TEST_EMULATED=$(if $(filter aarch64,$(CROSS)),1,0) $(RUN) $(TEST_BIN) $(TEST_FLAGS)
 REPLAY_CORPUS = for t in $(FUZZ_TARGETS); do $(RUN) $(B)/replay_$$t$(EXE) tests/fuzz/corpus/$$t || exit 1; done
-test: $(TEST_BIN) $(TOOL) $(REPLAYS) $(README_STARTS) $(PATH_TRACER_EXAMPLE)
+test: $(TEST_BIN) $(TOOL) $(REPLAYS) $(README_STARTS) $(PATH_TRACER_EXAMPLE) $(DOCS_BLOCKS)
 	@$(REPLAY_CORPUS)
 	@for x in $(README_STARTS) $(PATH_TRACER_EXAMPLE); do printf '%s: ' "$$(basename $$x)"; $(RUN) $$x || exit 1; done
 	@$(RUN_TESTS)
@@ -310,12 +323,12 @@ install: all
 	install -m 644 include/hairbsdf.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 $(STATIC_LIB) $(DESTDIR)$(PREFIX)/lib/
 	install -m 755 $(SHARED_LIB) $(DESTDIR)$(PREFIX)/lib/
-	ln -sf libhairbsdf.so.$(HB_SO_MAJOR) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so
+	ln -sf libhairbsdf.so.$(HB_SO_VERSION) $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(HB_VERSION)|' hairbsdf.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/hairbsdf.pc
 	install -m 755 $(TOOL) $(DESTDIR)$(PREFIX)/bin/
 	install -d $(DESTDIR)$(PREFIX)/share/hairbsdf/shaders
 	install -m 644 shaders/* $(DESTDIR)$(PREFIX)/share/hairbsdf/shaders/
-	$(STRIP) --strip-debug $(DESTDIR)$(PREFIX)/lib/libhairbsdf.a $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so.$(HB_SO_MAJOR) \
+	$(STRIP) --strip-debug $(DESTDIR)$(PREFIX)/lib/libhairbsdf.a $(DESTDIR)$(PREFIX)/lib/libhairbsdf.so.$(HB_SO_VERSION) \
 	  $(DESTDIR)$(PREFIX)/bin/$(notdir $(TOOL))
 
 # The shared library exports exactly the functions the public header declares with HB_API.

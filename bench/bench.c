@@ -36,8 +36,12 @@ enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
 
 /* What a row times: hb_eval_angles, hb_sample_angles or hb_pdf_angles, or their near-field forms
  * (hb_eval_near, hb_sample_near, hb_pdf_near) at each sample's h, or f and the pdf in one call
- * (hb_eval_pdf_angles; its error is f's). */
-typedef enum bench_op { OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR, OP_EVAL_PDF, OP_EVAL_ABSORPTION } bench_op;
+ * (hb_eval_pdf_angles; its error is f's), or a path tracer's step at one hit from vectors
+ * (hb_hit_sample, then hb_hit_eval_pdf of the light's direction; far field, or near at h; its error
+ * is the light direction's f). */
+typedef enum bench_op {
+    OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR, OP_EVAL_PDF, OP_EVAL_ABSORPTION, OP_HIT, OP_HIT_NEAR
+} bench_op;
 
 static int op_is(bench_op op, bench_op far) { return op == far || op == far + OP_EVAL_NEAR; }
 
@@ -59,6 +63,19 @@ static float theta_i[BATCH], phi_i[BATCH], theta_o[BATCH], phi_o[BATCH], offset_
 static float out[3][BATCH], ref[3][BATCH];
 static float absorption[3][BATCH]; /* per sample (OP_EVAL_ABSORPTION): the blond material's sigma_a */
 static float uniforms[HB_SAMPLE_DIMENSIONS][BATCH], sampled_theta[BATCH], sampled_phi[BATCH], sampled_pdf[BATCH];
+static float w_i[BATCH][3], w_o[BATCH][3]; /* the directions as fibre-frame vectors (OP_HIT) */
+
+/* A path tracer's step at hit k: a sample from w_o, then f and the pdf of the light's direction w_i. */
+static void run_hit(const hb_plan *plan, size_t k, const float *h)
+{
+    float u[HB_SAMPLE_DIMENSIONS], wi[3], pdf, weight[3], f[3];
+    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+        u[d] = uniforms[d][k];
+    hb_hit_sample(plan, w_o[k], h, u, wi, &pdf, weight);
+    hb_hit_eval_pdf(plan, w_i[k], w_o[k], h, f, &sampled_pdf[k]);
+    for (int c = 0; c < 3; c++)
+        out[c][k] = f[c];
+}
 
 /* The configuration's operation on samples [first, first + n) of the batch. For sampling, out holds
  * the weights; for the pdf, out[0..2] all hold the pdf. */
@@ -72,7 +89,10 @@ static void run_part(const hb_plan *plan, bench_op op, size_t first, size_t n)
     const float *u[HB_SAMPLE_DIMENSIONS];
     for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
         u[d] = uniforms[d] + k;
-    if (op == OP_EVAL) {
+    if (op == OP_HIT || op == OP_HIT_NEAR) {
+        for (size_t j = k; j < k + n; j++)
+            run_hit(plan, j, op == OP_HIT_NEAR ? &offset_h[j] : NULL);
+    } else if (op == OP_EVAL) {
         hb_eval_angles(plan, n, in, f, NULL);
     } else if (op == OP_EVAL_NEAR) {
         hb_eval_near(plan, n, near, f, NULL);
@@ -82,11 +102,11 @@ static void run_part(const hb_plan *plan, bench_op op, size_t first, size_t n)
         hb_eval_angles_absorption(plan, n, in, (hb_absorption_soa){ absorption[0] + k, absorption[1] + k, absorption[2] + k },
                                   f, NULL);
     } else if (op == OP_SAMPLE) {
-        hb_sample_in sample_in = { theta_o + k, phi_o + k, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
-        hb_sample_angles(plan, n, sample_in, sampled, NULL);
+        hb_sample_in sample_in = { theta_o + k, phi_o + k, u };
+        hb_sample_angles(plan, n, &sample_in, &sampled, NULL);
     } else if (op == OP_SAMPLE_NEAR) {
-        hb_sample_near_in sample_in = { theta_o + k, phi_o + k, offset_h + k, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
-        hb_sample_near(plan, n, sample_in, sampled, NULL);
+        hb_sample_near_in sample_in = { theta_o + k, phi_o + k, offset_h + k, u };
+        hb_sample_near(plan, n, &sample_in, &sampled, NULL);
     } else {
         if (op == OP_PDF_NEAR)
             hb_pdf_near(plan, n, near, out[0] + k, NULL);
@@ -124,6 +144,14 @@ static void make_inputs(const hb_material *m)
         phi_i[k] = (float)(2 * M_PI * u - M_PI);
         phi_o[k] = (float)(2 * M_PI * w - M_PI);
         offset_h[k] = (float)(2.0 * rand() / RAND_MAX - 1.0);
+        const float *angles[2][2] = { { &theta_i[k], &phi_i[k] }, { &theta_o[k], &phi_o[k] } };
+        float *vector[2] = { w_i[k], w_o[k] };
+        for (int s = 0; s < 2; s++) { /* w(theta, phi) of docs/conventions.md */
+            double t = *angles[s][0], p = *angles[s][1];
+            vector[s][0] = (float)(sin(p) * cos(t));
+            vector[s][1] = (float)sin(t);
+            vector[s][2] = (float)(cos(p) * cos(t));
+        }
     }
 }
 
@@ -384,6 +412,13 @@ static const config configs[] = {
     { "chiang", "per-hit", "near-balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "per hit: CBTB16 near field at h, balanced", 1 },
+    /* a path tracer's step at one hit, from vectors (examples/path_tracer.c): sample, then f and pdf */
+    { "deon", "per-hit", "path-step", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_HIT, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "per hit: a path tracer's step from vectors (hb_hit_sample, hb_hit_eval_pdf), dFH11 balanced", 1 },
+    { "chiang", "per-hit", "path-step-near", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_HIT_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "per hit: a path tracer's step from vectors at h, CBTB16 balanced", 1 },
     /* what each effect costs: the balanced dFH11 row without TRT and above (dark hair), without the tilt,
      * R alone; MJC03 R alone and R + TT; HHH22's R lobe on an elliptical fibre */
     { "deon", "effects", "R+TT", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH,
@@ -512,9 +547,9 @@ static void reference_of(const hb_material *m, const config *c)
             hb_pdf_angles(plan, NREF, in, ref[0], NULL);
         memcpy(ref[1], ref[0], sizeof ref[0]);
         memcpy(ref[2], ref[0], sizeof ref[0]);
-    } else if (c->op == OP_EVAL || c->op == OP_EVAL_PDF || c->op == OP_EVAL_ABSORPTION) {
+    } else if (c->op == OP_EVAL || c->op == OP_EVAL_PDF || c->op == OP_EVAL_ABSORPTION || c->op == OP_HIT) {
         hb_eval_angles(plan, NREF, in, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
-    } else if (c->op == OP_EVAL_NEAR) {
+    } else if (c->op == OP_EVAL_NEAR || c->op == OP_HIT_NEAR) {
         hb_eval_near(plan, NREF, near, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
     }
     hb_plan_destroy(plan);

@@ -21,7 +21,7 @@ void bench_dual(const hb_material *m, FILE *report)
         for (int r = 0; r < RUNS; r++) {
             double t0 = now_ns();
             for (int j = 0; j < THETAS; j++) {
-                hb_dual_terms d;
+                hb_dual_terms d = { .struct_size = sizeof d };
                 hb_dual_terms_at(plan, -1.5707963267948966 + 3.141592653589793 * (j + 0.5) / THETAS, HB_DUAL_DENSITY, &d);
             }
             double ms = (now_ns() - t0) * 1e-6;

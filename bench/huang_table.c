@@ -120,7 +120,7 @@ void bench_huang_table(FILE *report)
         if (plan_of((hb_quality)q, HB_TT_TRT_TABLE, 0, &plan) != HB_OK)
             continue;
         double build_s = (now_ns() - t0) * 1e-9;
-        hb_table_view view;
+        hb_table_view view = { .struct_size = sizeof view };
         hb_plan_table(plan, &view);
         hb_eval_angles(plan, DIRECTIONS, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
         double worst = 0.0, sum2 = 0.0;

@@ -61,7 +61,7 @@ int main(void)
         print_brightest(m ? "blond (N_p table)" : "brown", r, g, b, report.invalid);
     }
     /* GPU path: the blond plan's N_p table, ready to upload as an RGB texture array (one layer per slot). */
-    hb_table_view table;
+    hb_table_view table = { .struct_size = sizeof table };
     if (hb_plan_table(blond, &table) == HB_OK)
         printf("N_p table: %d x %d nodes (%s; %s), %d slots, %zu floats, midpoint error %.2g\n", table.size[0],
                table.size[1], table.axis[0], table.axis[1], table.slots, table.count, table.error);

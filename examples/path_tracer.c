@@ -1,6 +1,7 @@
 /* A path tracer's direct lighting at hair hits, in the style of pbrt-v4's integrator, with vectors
- * only: at each hit the fibre frame from the hair's tangent, then one BSDF sample and one light
- * sample combined by multiple importance sampling (the power heuristic). The light is a white
+ * only: at each hit the fibre frame from the hair's tangent, then one BSDF sample (hb_hit_sample) and
+ * one light sample (f and pdf by hb_hit_eval_pdf) combined by multiple importance sampling (the power
+ * heuristic); make bench times this step per hit (the per-hit path-step rows). The light is a white
  * environment of radiance 1 sampled uniformly over the sphere, so the estimate at a hit is the
  * fibre's white furnace E(w_o) (docs/conventions.md): every hit here sees w_o at the same
  * inclination to its fibre, and the mean over the hits converges to hb_furnace at that
@@ -60,16 +61,13 @@ int main(void)
             us[d] = &u[d];
         hb_uniforms(2, (unsigned long long)hit, 1, dimensions, us);
         float wi[3], pdf, weight[3];
-        hb_sample_vectors(plan, 1, (hb_sample_vectors_in){ &wo[0], &wo[1], &wo[2], { us[0], us[1], us[2], us[3], us[4], us[5], us[6], us[7] } },
-                          (hb_sample_vectors_out){ &wi[0], &wi[1], &wi[2], &pdf, { &weight[0], &weight[1], &weight[2] } },
-                          NULL);
+        hb_hit_sample(plan, wo, NULL, u, wi, &pdf, weight);
         double estimate = pdf > 0.0f ? weight[0] * power_heuristic(pdf, light_pdf) : 0.0;
 
         uniform_sphere(r[3], r[4], around); /* the light sample, and what the BSDF says of it */
         float wl[3], f[3], bsdf_pdf;
         hb_frame_to_local(&frame, around, wl);
-        hb_eval_pdf_vectors(plan, 1, (hb_vectors_soa){ &wl[0], &wl[1], &wl[2], &wo[0], &wo[1], &wo[2] },
-                            (hb_rgb_soa){ &f[0], &f[1], &f[2] }, &bsdf_pdf, NULL);
+        hb_hit_eval_pdf(plan, wl, wo, NULL, f, &bsdf_pdf);
         estimate += f[0] / light_pdf * power_heuristic(light_pdf, bsdf_pdf);
         sum += estimate, sum2 += estimate * estimate;
     }

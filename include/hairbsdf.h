@@ -18,14 +18,16 @@
 extern "C" {
 #endif
 
-/* The version of this header. The shared library's soname is libhairbsdf.so.HB_VERSION_MAJOR and
- * pkg-config's version is HB_VERSION_STRING (the Makefile reads both from here). A minor release only
- * appends fields to hb_material and hb_options: a program built against an older header passes its
- * smaller struct_size and the fields it lacks take their defaults. */
+/* The version of this header (the Makefile and CMake read it from here). The ABI promise (README):
+ * while HB_VERSION_MAJOR is 0, a minor release may change the ABI and the soname names it
+ * (libhairbsdf.so.0.MINOR), so a program never loads a library it was not built for; a patch release
+ * keeps the ABI. Within a release, the structs with a struct_size grow only at their end: a program
+ * built against an older header passes its smaller struct_size, and the library reads (hb_material,
+ * hb_options) or writes (hb_table_view, hb_dual_terms) only that much. */
 #define HB_VERSION_MAJOR 0
-#define HB_VERSION_MINOR 5
+#define HB_VERSION_MINOR 6
 #define HB_VERSION_PATCH 0
-#define HB_VERSION_STRING "0.5.0"
+#define HB_VERSION_STRING "0.6.0"
 
 /* HB_API marks what the library exports; the shared library exports nothing else. Define
  * HB_STATIC when linking the static library on Windows. */
@@ -44,14 +46,17 @@ extern "C" {
 typedef enum hb_status {
     HB_OK = 0,
     HB_ERR_NULL,        /* a required pointer was NULL */
-    HB_ERR_PARAM,       /* a material parameter is out of range (the message names it) */
-    HB_ERR_UNSUPPORTED, /* the model, lobe, term or option combination does not exist (yet) */
+    HB_ERR_PARAM,       /* a parameter or an argument is out of range (the message names it) */
+    HB_ERR_UNSUPPORTED, /* the plan's model, lobes, term or options do not offer this (docs/api.md's matrix) */
     HB_ERR_ISA,         /* the requested instruction set is not available on this CPU */
     HB_ERR_VERSION,     /* a struct_size from a newer header than this library's, or no release's */
     HB_ERR_NOMEM,       /* plan creation could not allocate */
     HB_ERR_FILE,        /* a table file is damaged, of another format or library version, or baked for another
                            material or options (the message names the difference) */
-    HB_ERR_CANCELLED    /* plan creation was cancelled by options.progress */
+    HB_ERR_CANCELLED,   /* plan creation was cancelled by options.progress */
+    HB_ERR_LIMIT,       /* what was asked costs more than its limit: a table's work, a tolerance no configuration
+                           reaches, a budget none fits (the message names the limit and what it would take) */
+    HB_ERR_BUFFER       /* a caller's buffer is smaller than the call's result (the call reports the size) */
 } hb_status;
 
 /* The library's version at run time, "major.minor.patch"; major, minor and patch (each may be NULL)
@@ -61,11 +66,16 @@ HB_API const char *hb_version(int *major, int *minor, int *patch);
 /* A short constant description of a status code. */
 HB_API const char *hb_status_string(hb_status status);
 
-/* Optional detail for a failed call: the message names the offending parameter. */
+/* Detail for a failed call: the message names the call and the offending argument or parameter. */
 typedef struct hb_error {
     hb_status status;
     char message[256];
 } hb_error;
+
+/* The calling thread's last failure: every call that returns a status other than HB_OK records it
+ * here (the calls taking an hb_error also fill theirs), and a call that succeeds leaves it as it
+ * was, so read it right after a failed call. Never NULL; {HB_OK, ""} before any failure. */
+HB_API const hb_error *hb_last_error(void);
 
 /* MJC03, dFH11, HHH22 and CBTB16 (Chiang, Bitterli, Tappan and Burley 2016, as pbrt-v4's HairBxDF;
  * docs/chiang.md). */
@@ -113,6 +123,15 @@ typedef struct hb_material {
 } hb_material;
 
 HB_API void hb_material_default(hb_material *material);
+
+/* The material for model `to` that looks as close as the two models allow to `material` under model
+ * `from` (docs/conventions.md, "One look across models"): the R lobe's longitudinal standard
+ * deviation, the azimuthal spread as a Gaussian's standard deviation and the highlight's shift are
+ * kept; beta_m, beta_n and alpha (HHH22: roughness and alpha) are rewritten in the target's terms,
+ * the rest copied. HB_ERR_PARAM when the look is beyond the target's range (CBTB16's scales end at
+ * 1), HB_ERR_UNSUPPORTED for a material with per-lobe overrides (each model's own terms). */
+HB_API hb_status hb_material_convert(const hb_material *material, hb_model from, hb_model to, hb_material *converted,
+                                     hb_error *error);
 
 /* sigma_a of the material: sigma_a plus the melanin absorption of dFH11 sec. 6.1. */
 HB_API void hb_material_absorption(const hb_material *material, double sigma_a_rgb[3]);
@@ -396,6 +415,11 @@ typedef struct hb_near_soa {
     const float *theta_i, *phi_i, *theta_o, *phi_o, *h;
 } hb_near_soa;
 HB_API hb_status hb_eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, hb_eval_report *report);
+/* The near field at each sample's absorption, as hb_eval_angles_absorption is the far field's: sample k
+ * at h[k] with sigma_a.r[k], .g[k], .b[k] per unit radius (an absorption that is NaN, negative or
+ * infinite makes an invalid sample). The plans of hb_eval_near. */
+HB_API hb_status hb_eval_near_absorption(const hb_plan *plan, size_t n, hb_near_soa in, hb_absorption_soa sigma_a,
+                                         hb_rgb_soa out, hb_eval_report *report);
 
 /* Importance sampling, for path tracers (docs/sampling.md). Given w_o (toward the viewer) and
  * uniform random numbers, hb_sample_angles draws w_i (toward the light) with a density close
@@ -416,11 +440,14 @@ HB_API hb_status hb_eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_
  * w_i, at a sample whose weight is > 0 (7e-3 of samples at fast quality and roughness 0.6, 7e-4 at
  * balanced, 5e-5 at high): hb_plan_pdf_is_estimate says which plans estimate it, and docs/sampling.md
  * how a renderer's multiple importance sampling treats those samples. */
-#define HB_SAMPLE_DIMENSIONS 8 /* the most numbers any sampler reads */
+#define HB_SAMPLE_DIMENSIONS 8 /* the most numbers any sampler of this version reads */
 
+/* The sampling calls take their streams by pointer. u points to the caller's array of
+ * hb_plan_sample_dimensions(plan) planes, u[d][k] uniform in [0, 1) for sample k: a later model
+ * that reads more numbers needs a longer array, not another struct. */
 typedef struct hb_sample_in {
     const float *theta_o, *phi_o;
-    const float *u[HB_SAMPLE_DIMENSIONS]; /* uniform in [0, 1); only the first hb_plan_sample_dimensions are read */
+    const float *const *u;
 } hb_sample_in;
 
 typedef struct hb_sample_out {
@@ -431,8 +458,8 @@ typedef struct hb_sample_out {
 
 HB_API int hb_plan_sample_dimensions(const hb_plan *plan); /* 0 when the plan cannot sample */
 HB_API int hb_plan_pdf_is_estimate(const hb_plan *plan); /* 1: the pdf is a Monte-Carlo estimate (above); 0: exact */
-HB_API hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out,
-                           hb_eval_report *report);
+HB_API hb_status hb_sample_angles(const hb_plan *plan, size_t n, const hb_sample_in *in, const hb_sample_out *out,
+                                  hb_eval_report *report);
 HB_API hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, hb_eval_report *report);
 
 /* The same with fibre-frame unit vectors (as hb_eval_vectors; a vector is valid as there): w_o
@@ -440,7 +467,7 @@ HB_API hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, 
  * same numbers as in hb_sample_angles, so the two give the same samples up to the vectors' rounding. */
 typedef struct hb_sample_vectors_in {
     const float *wo_x, *wo_y, *wo_z;
-    const float *u[HB_SAMPLE_DIMENSIONS];
+    const float *const *u; /* as hb_sample_in's */
 } hb_sample_vectors_in;
 
 typedef struct hb_sample_vectors_out {
@@ -449,8 +476,8 @@ typedef struct hb_sample_vectors_out {
     hb_rgb_soa weight;
 } hb_sample_vectors_out;
 
-HB_API hb_status hb_sample_vectors(const hb_plan *plan, size_t n, hb_sample_vectors_in in, hb_sample_vectors_out out,
-                                   hb_eval_report *report);
+HB_API hb_status hb_sample_vectors(const hb_plan *plan, size_t n, const hb_sample_vectors_in *in,
+                                   const hb_sample_vectors_out *out, hb_eval_report *report);
 HB_API hb_status hb_pdf_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, float *pdf, hb_eval_report *report);
 
 /* f and the pdf of the same directions in one call, for multiple importance sampling: f as
@@ -480,9 +507,9 @@ HB_API void hb_frame_to_world(const hb_frame *frame, const float local[3], float
  * HB_ERR_UNSUPPORTED for plans without a near-field sampler. */
 typedef struct hb_sample_near_in {
     const float *theta_o, *phi_o, *h;
-    const float *u[HB_SAMPLE_DIMENSIONS];
+    const float *const *u; /* as hb_sample_in's */
 } hb_sample_near_in;
-HB_API hb_status hb_sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out,
+HB_API hb_status hb_sample_near(const hb_plan *plan, size_t n, const hb_sample_near_in *in, const hb_sample_out *out,
                                 hb_eval_report *report);
 HB_API hb_status hb_pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *pdf, hb_eval_report *report);
 /* f and the pdf at h in one call, for multiple importance sampling (eval_near, then pdf_near). */
@@ -499,7 +526,7 @@ typedef struct hb_near_vectors_soa {
 } hb_near_vectors_soa;
 typedef struct hb_sample_near_vectors_in {
     const float *wo_x, *wo_y, *wo_z, *h;
-    const float *u[HB_SAMPLE_DIMENSIONS];
+    const float *const *u; /* as hb_sample_in's */
 } hb_sample_near_vectors_in;
 HB_API hb_status hb_eval_near_vectors(const hb_plan *plan, size_t n, hb_near_vectors_soa in, hb_rgb_soa out,
                                       hb_eval_report *report);
@@ -507,8 +534,20 @@ HB_API hb_status hb_pdf_near_vectors(const hb_plan *plan, size_t n, hb_near_vect
                                      hb_eval_report *report);
 HB_API hb_status hb_eval_pdf_near_vectors(const hb_plan *plan, size_t n, hb_near_vectors_soa in, hb_rgb_soa f,
                                           float *pdf, hb_eval_report *report);
-HB_API hb_status hb_sample_near_vectors(const hb_plan *plan, size_t n, hb_sample_near_vectors_in in,
-                                        hb_sample_vectors_out out, hb_eval_report *report);
+HB_API hb_status hb_sample_near_vectors(const hb_plan *plan, size_t n, const hb_sample_near_vectors_in *in,
+                                        const hb_sample_vectors_out *out, hb_eval_report *report);
+
+/* One hit at a time, with plain arrays, for renderers that shade one hit per call: the vector calls
+ * above at n = 1. w_o and w_i are fibre-frame unit vectors (toward the viewer and the light); h
+ * points to the hit's offset for the near field (CBTB16, dFH11), or is NULL for the far field.
+ * hb_hit_sample reads hb_plan_sample_dimensions(plan) numbers from u (uniform in [0, 1)) and writes
+ * the sampled w_i, its pdf and f / pdf; hb_hit_eval_pdf writes f and the pdf with which the sampler
+ * draws w_i, for multiple importance sampling. An invalid hit gets zeros, as in the batch calls,
+ * whose statuses these return. */
+HB_API hb_status hb_hit_sample(const hb_plan *plan, const float wo[3], const float *h, const float *u, float wi[3],
+                               float *pdf, float weight[3]);
+HB_API hb_status hb_hit_eval_pdf(const hb_plan *plan, const float wi[3], const float wo[3], const float *h, float f[3],
+                                 float *pdf);
 
 /* Counter-based uniform numbers in [0, 1) (24 bits): u[d][k] for sample index first + k and
  * dimension d < dimensions, a pure function of (seed, index, d), the same on every machine. */
@@ -525,6 +564,7 @@ HB_API void hb_uniforms(unsigned long long seed, unsigned long long first, size_
  * may refuse a larger file before reading it, and plan creation refuses a larger table_file_size. */
 #define HB_TABLE_FILE_MAX_BYTES ((size_t)1 << 30)
 typedef struct hb_table_view {
+    size_t struct_size; /* the caller sets sizeof(hb_table_view); the library fills that much */
     hb_model model;
     int axes;
     int size[HB_TABLE_MAX_AXES];
@@ -595,6 +635,7 @@ HB_API hb_status hb_furnace_orders(const hb_plan *plan, double theta, long paths
  * for which they are its eqs. 12 and 13; for the lobes of the other models they include the spread
  * of the lobes' means). */
 typedef struct hb_dual_terms {
+    size_t struct_size;                     /* the caller sets sizeof(hb_dual_terms); the library fills that much */
     double a_f[3], a_b[3];                  /* eq. 6: the forward and backward energy */
     double alpha_f[3], beta_f2[3];          /* the forward energy's mean theta_h and its variance */
     double alpha_b[3], beta_b2[3];          /* the backward energy's */

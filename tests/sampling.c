@@ -23,12 +23,12 @@ static void sample_batch(hb_test_ctx *t, const hb_plan *plan, size_t n, double t
     hb_sample_out out = { b->ti, b->pi, b->pdf, { b->w[0], b->w[1], b->w[2] } };
     hb_eval_report report;
     if (isnan(h)) {
-        hb_sample_in in = { b->to, b->po, { b->u[0], b->u[1], b->u[2], b->u[3], b->u[4], b->u[5], b->u[6], b->u[7] } };
-        CHECK(t, hb_sample_angles(plan, n, in, out, &report) == HB_OK, "hb_sample_angles failed");
+        hb_sample_in in = { b->to, b->po, (const float *const[]){ b->u[0], b->u[1], b->u[2], b->u[3], b->u[4], b->u[5], b->u[6], b->u[7] } };
+        CHECK(t, hb_sample_angles(plan, n, &in, &out, &report) == HB_OK, "hb_sample_angles failed");
     } else {
         hb_sample_near_in in = { b->to, b->po, b->h,
-                                 { b->u[0], b->u[1], b->u[2], b->u[3], b->u[4], b->u[5], b->u[6], b->u[7] } };
-        CHECK(t, hb_sample_near(plan, n, in, out, &report) == HB_OK, "hb_sample_near failed");
+                                 (const float *const[]){ b->u[0], b->u[1], b->u[2], b->u[3], b->u[4], b->u[5], b->u[6], b->u[7] } };
+        CHECK(t, hb_sample_near(plan, n, &in, &out, &report) == HB_OK, "hb_sample_near failed");
     }
     CHECK(t, report.invalid == 0, "%zu samples reported invalid", report.invalid);
 }

@@ -1,7 +1,8 @@
-/* Per-sample absorption (hb_eval_angles_absorption, hb_eval_vectors_absorption): a batch whose samples
- * each carry their strand's sigma_a gives, sample for sample, what a plan of that strand's material
- * gives (dFH11 quadrature in its standard and general shapes, MJC03), over eumelanin 0..8 and
- * pheomelanin 0..4; bad absorptions are counted; the plans that cannot take it say so. */
+/* Per-sample absorption (hb_eval_angles_absorption, hb_eval_vectors_absorption, and at h
+ * hb_eval_near_absorption): a batch whose samples each carry their strand's sigma_a gives, sample for
+ * sample, what a plan of that strand's material gives (dFH11 quadrature in its standard and general
+ * shapes, MJC03, CBTB16; the near field of dFH11 and CBTB16), over eumelanin 0..8 and pheomelanin
+ * 0..4; bad absorptions are counted; the plans that cannot take it say so. */
 #include <math.h>
 #include <string.h>
 
@@ -14,6 +15,7 @@ typedef struct absorption_case {
     hb_model model;
     int pmax;     /* dFH11: 3 is the standard shape, 5 the general one */
     double beta_m, beta_n, eta;
+    int near; /* at each sample's h (hb_eval_near_absorption) */
 } absorption_case;
 
 static void case_plan_options(const absorption_case *c, hb_material *m, hb_options *o, hb_isa isa)
@@ -27,12 +29,16 @@ static void case_plan_options(const absorption_case *c, hb_material *m, hb_optio
 static void test_matches_per_material_plans(hb_test_ctx *t)
 {
     static const absorption_case cases[] = {
-        { "deon balanced", HB_MODEL_DEON, 3, 0.1, 0.3, 1.55 },
-        { "deon pmax 5, rough", HB_MODEL_DEON, 5, 0.3, 0.6, 1.3 },
-        { "deon smooth, eta 1.9", HB_MODEL_DEON, 3, 0.05, 0.15, 1.9 },
-        { "marschner", HB_MODEL_MARSCHNER, 3, 0.1, 0.3, 1.55 },
+        { "deon balanced", HB_MODEL_DEON, 3, 0.1, 0.3, 1.55, 0 },
+        { "deon pmax 5, rough", HB_MODEL_DEON, 5, 0.3, 0.6, 1.3, 0 },
+        { "deon smooth, eta 1.9", HB_MODEL_DEON, 3, 0.05, 0.15, 1.9, 0 },
+        { "marschner", HB_MODEL_MARSCHNER, 3, 0.1, 0.3, 1.55, 0 },
+        { "chiang", HB_MODEL_CHIANG, 3, 0.3, 0.3, 1.55, 0 },
+        { "deon near", HB_MODEL_DEON, 3, 0.1, 0.3, 1.55, 1 },
+        { "deon near pmax 5", HB_MODEL_DEON, 5, 0.3, 0.6, 1.3, 1 },
+        { "chiang near", HB_MODEL_CHIANG, 3, 0.3, 0.3, 1.55, 1 },
     };
-    static float ti[N], pi[N], to[N], po[N], sr[N], sg[N], sb[N], f[3][N], ref[3][N];
+    static float ti[N], pi[N], to[N], po[N], h[N], sr[N], sg[N], sb[N], f[3][N], ref[3][N];
     for (size_t ci = 0; ci < sizeof cases / sizeof cases[0]; ci++) {
         const absorption_case *c = &cases[ci];
         hb_material m;
@@ -51,13 +57,16 @@ static void test_matches_per_material_plans(hb_test_ctx *t)
             int s = k % STRANDS;
             ti[k] = (float)hb_test_range(t, -1.5, 1.5), to[k] = (float)hb_test_range(t, -1.5, 1.5);
             pi[k] = (float)hb_test_range(t, -M_PI, M_PI), po[k] = (float)hb_test_range(t, -M_PI, M_PI);
+            h[k] = (float)hb_test_range(t, -1.0, 1.0);
             sr[k] = (float)strand_sigma[s][0], sg[k] = (float)strand_sigma[s][1], sb[k] = (float)strand_sigma[s][2];
         }
         hb_plan *plan;
         CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "%s: plan", c->name);
         hb_eval_report report = { 99 };
-        hb_status st = hb_eval_angles_absorption(plan, N, (hb_angles_soa){ ti, pi, to, po }, (hb_absorption_soa){ sr, sg, sb },
-                                                 (hb_rgb_soa){ f[0], f[1], f[2] }, &report);
+        hb_absorption_soa sigma = { sr, sg, sb };
+        hb_rgb_soa out = { f[0], f[1], f[2] };
+        hb_status st = c->near ? hb_eval_near_absorption(plan, N, (hb_near_soa){ ti, pi, to, po, h }, sigma, out, &report)
+                               : hb_eval_angles_absorption(plan, N, (hb_angles_soa){ ti, pi, to, po }, sigma, out, &report);
         CHECK(t, st == HB_OK && report.invalid == 0, "%s: status %d, %zu invalid", c->name, (int)st, report.invalid);
         hb_plan_destroy(plan);
         double worst = 0.0, peak = 0.0;
@@ -65,7 +74,11 @@ static void test_matches_per_material_plans(hb_test_ctx *t)
             hb_material strand = m;
             memcpy(strand.sigma_a, strand_sigma[s], sizeof strand.sigma_a);
             CHECK(t, hb_plan_create(&strand, &o, &plan, NULL) == HB_OK, "%s: strand plan", c->name);
-            hb_eval_angles(plan, N, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+            hb_rgb_soa strand_f = { ref[0], ref[1], ref[2] };
+            if (c->near)
+                hb_eval_near(plan, N, (hb_near_soa){ ti, pi, to, po, h }, strand_f, NULL);
+            else
+                hb_eval_angles(plan, N, (hb_angles_soa){ ti, pi, to, po }, strand_f, NULL);
             hb_plan_destroy(plan);
             for (int k = s; k < N; k += STRANDS)
                 for (int ch = 0; ch < 3; ch++) {
@@ -142,7 +155,7 @@ static void test_unsupported(hb_test_ctx *t)
         { "deon reference", HB_MODEL_DEON, HB_QUALITY_REFERENCE, HB_AZIMUTHAL_QUADRATURE, HB_TERM_FULL },
         { "deon longitudinal", HB_MODEL_DEON, HB_QUALITY_BALANCED, HB_AZIMUTHAL_QUADRATURE, HB_TERM_LONGITUDINAL },
         { "huang", HB_MODEL_HUANG, HB_QUALITY_FAST, HB_AZIMUTHAL_QUADRATURE, HB_TERM_FULL },
-        { "chiang", HB_MODEL_CHIANG, HB_QUALITY_BALANCED, HB_AZIMUTHAL_QUADRATURE, HB_TERM_FULL },
+        { "chiang reference", HB_MODEL_CHIANG, HB_QUALITY_REFERENCE, HB_AZIMUTHAL_QUADRATURE, HB_TERM_FULL },
     };
     float x[1] = { 0.1f }, f[3][1];
     for (size_t k = 0; k < sizeof plans / sizeof plans[0]; k++) {
@@ -159,6 +172,11 @@ static void test_unsupported(hb_test_ctx *t)
         hb_status st = hb_eval_angles_absorption(plan, 1, (hb_angles_soa){ x, x, x, x }, (hb_absorption_soa){ x, x, x },
                                                  (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
         CHECK(t, st == HB_ERR_UNSUPPORTED, "%s: status %d", plans[k].what, (int)st);
+        st = hb_eval_near_absorption(plan, 1, (hb_near_soa){ x, x, x, x, x }, (hb_absorption_soa){ x, x, x },
+                                     (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+        int near_field = plans[k].model == HB_MODEL_DEON && plans[k].term == HB_TERM_FULL &&
+                         plans[k].quality != HB_QUALITY_REFERENCE;
+        CHECK(t, st == (near_field ? HB_OK : HB_ERR_UNSUPPORTED), "%s: near-field status %d", plans[k].what, (int)st);
         hb_plan_destroy(plan);
     }
 }

@@ -113,27 +113,38 @@ static hb_status call_absorption(const hb_plan *p)
                                      (hb_rgb_soa){ &s.f[0], &s.f[1], &s.f[2] }, NULL);
 }
 
+static hb_status call_near_absorption(const hb_plan *p)
+{
+    one_sample s = sample_of();
+    return hb_eval_near_absorption(p, 1, (hb_near_soa){ &s.ti, &s.pi, &s.to, &s.po, &s.h },
+                                   (hb_absorption_soa){ &s.sigma[0], &s.sigma[1], &s.sigma[2] },
+                                   (hb_rgb_soa){ &s.f[0], &s.f[1], &s.f[2] }, NULL);
+}
+
+/* The near field, sampled and evaluated, and one hit by the per-hit calls at h. */
 static hb_status call_near(const hb_plan *p)
 {
     one_sample s = sample_of();
     hb_near_soa in = { &s.ti, &s.pi, &s.to, &s.po, &s.h };
     hb_status e = hb_eval_near(p, 1, in, (hb_rgb_soa){ &s.f[0], &s.f[1], &s.f[2] }, NULL);
-    hb_sample_near_in sin = { &s.to, &s.po, &s.h, { &s.u[0], &s.u[1], &s.u[2], &s.u[3], &s.u[4], &s.u[5], &s.u[6], &s.u[7] } };
+    hb_sample_near_in sin = { &s.to, &s.po, &s.h, (const float *const[]){ &s.u[0], &s.u[1], &s.u[2], &s.u[3], &s.u[4], &s.u[5], &s.u[6], &s.u[7] } };
     float ti, pi;
-    hb_status d = hb_sample_near(p, 1, sin, (hb_sample_out){ &ti, &pi, &s.pdf, { &s.f[0], &s.f[1], &s.f[2] } }, NULL);
+    hb_status d = hb_sample_near(p, 1, &sin, &(hb_sample_out){ &ti, &pi, &s.pdf, { &s.f[0], &s.f[1], &s.f[2] } }, NULL);
     hb_status q = hb_pdf_near(p, 1, in, &s.pdf, NULL);
     float wi[3] = { 0.0f, 1.0f, 0.0f }, wo[3] = { 0.6f, 0.0f, 0.8f };
     hb_status v = hb_eval_pdf_near_vectors(p, 1, (hb_near_vectors_soa){ &wi[0], &wi[1], &wi[2], &wo[0], &wo[1], &wo[2], &s.h },
                                            (hb_rgb_soa){ &s.f[0], &s.f[1], &s.f[2] }, &s.pdf, NULL);
-    return e != HB_OK ? e : d != HB_OK ? d : q != HB_OK ? q : v;
+    float hwi[3], hpdf, hweight[3];
+    hb_status h = hb_hit_sample(p, wo, &s.h, s.u, hwi, &hpdf, hweight);
+    return e != HB_OK ? e : d != HB_OK ? d : q != HB_OK ? q : v != HB_OK ? v : h;
 }
 
 static hb_status call_sample(const hb_plan *p)
 {
     one_sample s = sample_of();
-    hb_sample_in in = { &s.to, &s.po, { &s.u[0], &s.u[1], &s.u[2], &s.u[3], &s.u[4], &s.u[5], &s.u[6], &s.u[7] } };
+    hb_sample_in in = { &s.to, &s.po, (const float *const[]){ &s.u[0], &s.u[1], &s.u[2], &s.u[3], &s.u[4], &s.u[5], &s.u[6], &s.u[7] } };
     float ti, pi;
-    hb_status d = hb_sample_angles(p, 1, in, (hb_sample_out){ &ti, &pi, &s.pdf, { &s.f[0], &s.f[1], &s.f[2] } }, NULL);
+    hb_status d = hb_sample_angles(p, 1, &in, &(hb_sample_out){ &ti, &pi, &s.pdf, { &s.f[0], &s.f[1], &s.f[2] } }, NULL);
     hb_status q = hb_pdf_angles(p, 1, (hb_angles_soa){ &s.ti, &s.pi, &s.to, &s.po }, &s.pdf, NULL);
     return d != HB_OK ? d : q;
 }
@@ -147,7 +158,7 @@ static hb_status call_eval_pdf(const hb_plan *p)
 
 static hb_status call_table(const hb_plan *p)
 {
-    hb_table_view view;
+    hb_table_view view = { .struct_size = sizeof view };
     size_t size = 0;
     hb_status t = hb_plan_table(p, &view);
     hb_status s = hb_table_save(p, NULL, 0, &size);
@@ -174,7 +185,7 @@ static hb_status call_orders(const hb_plan *p)
 
 static hb_status call_dual(const hb_plan *p)
 {
-    hb_dual_terms d;
+    hb_dual_terms d = { .struct_size = sizeof d };
     return hb_dual_terms_at(p, 0.3, HB_DUAL_DENSITY, &d);
 }
 
@@ -192,6 +203,7 @@ static const struct row {
     { "`hb_eval_angles`", NULL, call_eval },
     { "`hb_eval_angles_absorption`", NULL, call_absorption },
     { "`hb_eval_near`", NULL, call_near },
+    { "`hb_eval_near_absorption`", NULL, call_near_absorption },
     { "`hb_sample_angles`", NULL, call_sample },
     { "`hb_eval_pdf_angles`", NULL, call_eval_pdf },
     { "`hb_plan_table`", table_plan, call_table },
@@ -216,9 +228,11 @@ static int answer(hb_test_ctx *t, const struct row *r, int k)
     if (plan)
         st = r->call(plan);
     hb_plan_destroy(plan);
-    CHECK(t, st == HB_OK || st == HB_ERR_UNSUPPORTED, "%s, %s: status %s", r->key, model_names[k],
-          hb_status_string(st));
-    return st == HB_OK ? 1 : st == HB_ERR_UNSUPPORTED ? 0 : -1;
+    /* HB_ERR_LIMIT: the model has the call but not at the row's setting (a tolerance none of its
+     * configurations reaches), which is "no" for that row */
+    int no = st == HB_ERR_UNSUPPORTED || st == HB_ERR_LIMIT;
+    CHECK(t, st == HB_OK || no, "%s, %s: status %s", r->key, model_names[k], hb_status_string(st));
+    return st == HB_OK ? 1 : no ? 0 : -1;
 }
 
 /* The page's row whose first cell starts with key: its cells after the first, each's first word

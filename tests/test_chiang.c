@@ -377,8 +377,8 @@ static void test_chiang_sample_reference(hb_test_ctx *t)
             po[k] = (float)hb_test_range(t, -M_PI, M_PI);
             h[k] = (float)hb_test_range(t, -1.0, 1.0);
         }
-        hb_sample_near_in in = { to, po, h, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
-        hb_sample_near(plan, S, in, (hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, NULL);
+        hb_sample_near_in in = { to, po, h, (const float *const[]){ u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
+        hb_sample_near(plan, S, &in, &(hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, NULL);
         hb_pdf_near(plan, S, (hb_near_soa){ ti, pi, to, po, h }, pdf2, NULL);
         hb_eval_near(plan, S, (hb_near_soa){ ti, pi, to, po, h }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
         int flips = 0;
@@ -541,8 +541,8 @@ static void test_chiang_hard_cases(hb_test_ctx *t)
         for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
             uu[d] = u[d];
         hb_sample_out so = { st, sp, pdf, { w[0], w[1], w[2] } };
-        hb_sample_near_in in = { to, po, h, { uu[0], uu[1], uu[2], uu[3], uu[4], uu[5], uu[6], uu[7] } };
-        hb_sample_near(plan, H, in, so, &report);
+        hb_sample_near_in in = { to, po, h, (const float *const[]){ uu[0], uu[1], uu[2], uu[3], uu[4], uu[5], uu[6], uu[7] } };
+        hb_sample_near(plan, H, &in, &so, &report);
         CHECK(t, report.invalid == 0, "%s: %zu samples invalid", hard[mc].name, report.invalid);
         for (int i = 0; i < H; i++)
             CHECK(t, isfinite(st[i]) && isfinite(sp[i]) && isfinite(pdf[i]) && pdf[i] >= 0.0f && isfinite(w[0][i]) &&
@@ -615,11 +615,11 @@ static void test_chiang_api(hb_test_ctx *t)
         hb_sample_out out = { ti, pi, pdf, { w[0], w[1], w[2] } };
         hb_near_soa at = { ti, pi, to, po, hh };
         if (near) {
-            CHECK(t, hb_sample_near(reference, R, (hb_sample_near_in){ to, po, hh, { u[0], u[1], u[2], u[3] } }, out, NULL) ==
+            CHECK(t, hb_sample_near(reference, R, &(hb_sample_near_in){ to, po, hh, (const float *const[]){ u[0], u[1], u[2], u[3] } }, &out, NULL) ==
                          HB_OK, "reference hb_sample_near");
             hb_pdf_near(fast, R, at, pdf2, NULL);
         } else {
-            CHECK(t, hb_sample_angles(reference, R, (hb_sample_in){ to, po, { u[0], u[1], u[2], u[3], u[4] } }, out, NULL) ==
+            CHECK(t, hb_sample_angles(reference, R, &(hb_sample_in){ to, po, (const float *const[]){ u[0], u[1], u[2], u[3], u[4] } }, &out, NULL) ==
                          HB_OK, "reference hb_sample_angles");
             hb_pdf_angles(fast, R, (hb_angles_soa){ ti, pi, to, po }, pdf2, NULL);
         }

@@ -322,8 +322,8 @@ static void check_sample_rows(hb_test_ctx *t, const char *args, const hb_materia
     float to[3] = { 0.5f, 0.5f, 0.5f }, po[3] = { 0.2f, 0.2f, 0.2f }, u[5][3], ti[3], pi[3], pdf[3], w[3][3];
     float *streams[5] = { u[0], u[1], u[2], u[3], u[4] };
     hb_uniforms(9, 0, 3, hb_plan_sample_dimensions(plan), streams);
-    hb_sample_angles(plan, 3, (hb_sample_in){ to, po, { u[0], u[1], u[2], u[3], u[4] } },
-                     (hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, NULL);
+    hb_sample_angles(plan, 3, &(hb_sample_in){ to, po, (const float *const[]){ u[0], u[1], u[2], u[3], u[4] } },
+                     &(hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, NULL);
     char want[1024] = "theta_i,phi_i,pdf,w_r,w_g,w_b\n", row[256];
     for (int k = 0; k < 3; k++) {
         snprintf(row, sizeof row, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", ti[k], pi[k], pdf[k], w[0][k], w[1][k], w[2][k]);

@@ -79,7 +79,7 @@ static void test_every_colour(hb_test_ctx *t)
         CHECK(t, hb_plan_create(&m, &o, &colour, &error) == HB_OK, "colour table: %s", error.message);
         if (!colour)
             continue;
-        hb_table_view v;
+        hb_table_view v = { .struct_size = sizeof v };
         CHECK(t, hb_plan_table(colour, &v) == HB_OK && v.axes == 3 && hb_plan_table_channels(colour) == 1 &&
                      v.count == (size_t)v.size[0] * (size_t)v.size[1] * (size_t)v.size[2] * (size_t)v.slots,
               "a 3-axis view of one channel per slot");

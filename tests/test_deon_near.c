@@ -294,9 +294,9 @@ static void test_deon_near_sample_reference(hb_test_ctx *t)
             po[k] = (float)hb_test_range(t, -M_PI, M_PI);
             hh[k] = (float)hb_test_range(t, -1.0, 1.0);
         }
-        hb_sample_near_in in = { to, po, hh, { u[0], u[1], u[2], u[3] } };
-        hb_sample_near(plan, S, in, (hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, NULL);
-        hb_sample_near(reference, S, in, (hb_sample_out){ rti, rpi, rpdf, { w[0], w[1], w[2] } }, NULL);
+        hb_sample_near_in in = { to, po, hh, (const float *const[]){ u[0], u[1], u[2], u[3] } };
+        hb_sample_near(plan, S, &in, &(hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, NULL);
+        hb_sample_near(reference, S, &in, &(hb_sample_out){ rti, rpi, rpdf, { w[0], w[1], w[2] } }, NULL);
         hb_pdf_near(plan, S, (hb_near_soa){ rti, rpi, to, po, hh }, pdf2, NULL);
         int flips = 0;
         double worst_angle = 0.0, worst_pdf = 0.0;

@@ -41,7 +41,7 @@ static void test_table_within_tolerance(hb_test_ctx *t)
         o.azimuthal = HB_AZIMUTHAL_TABLE, o.table_tolerance = c->tolerance;
         hb_error error;
         CHECK(t, hb_plan_create(&m, &o, &table, &error) == HB_OK, "table plan: %s", error.message);
-        hb_table_view v;
+        hb_table_view v = { .struct_size = sizeof v };
         CHECK(t, hb_plan_table(table, &v) == HB_OK && v.slots == 1 && v.slot_lobes[0] == 0x10fu && v.axes == 2,
               "alpha = 0: one slot holding R..TRRT and the residual (%d slots)", v.slots);
         CHECK(t, v.error <= c->tolerance, "measured error %g above the tolerance %g", v.error, c->tolerance);
@@ -77,7 +77,7 @@ static void test_table_refusals(hb_test_ctx *t)
     hb_material_default(&m);
     hb_options_default(&o);
     hb_plan *plan = NULL;
-    hb_table_view v;
+    hb_table_view v = { .struct_size = sizeof v };
     CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK && hb_plan_table(plan, &v) == HB_ERR_UNSUPPORTED,
           "a quadrature plan has no table");
     hb_plan_destroy(plan);
@@ -125,7 +125,7 @@ static void test_bake_files(hb_test_ctx *t)
             o.model = HB_MODEL_HUANG, o.quality = HB_QUALITY_FAST, o.tt_trt = HB_TT_TRT_TABLE, m.roughness = 0.3;
         }
         hb_plan *plan;
-        hb_table_view v;
+        hb_table_view v = { .struct_size = sizeof v };
         CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK && hb_plan_table(plan, &v) == HB_OK, "plan's table");
         FILE *f = fopen(path, "rb");
         static unsigned char data[1 << 22], saved[1 << 22];

@@ -55,7 +55,7 @@ static void test_lossless_sum(hb_test_ctx *t)
     int n = t->quick ? 16 : 64;
     double worst = 0.0;
     for (int k = 0; k < n; k++) {
-        hb_dual_terms d;
+        hb_dual_terms d = { .struct_size = sizeof d };
         CHECK(t, hb_dual_terms_at(plan, theta_node(k, n), HB_DUAL_DENSITY, &d) == HB_OK, "theta %g", theta_node(k, n));
         for (int c = 0; c < 3; c++)
             worst = fmax(worst, fabs(d.a_f[c] + d.a_b[c] - 1.0));
@@ -107,7 +107,7 @@ static void test_independent_rule(hb_test_ctx *t)
         double worst_energy = 0.0, worst_mean = 0.0, worst_variance = 0.0;
         for (int j = 0; j < n; j++) {
             double theta = theta_node(j, n) * 0.97, energy[2][3], mean[2][3], variance[2][3];
-            hb_dual_terms d;
+            hb_dual_terms d = { .struct_size = sizeof d };
             hb_dual_terms_at(plan, theta, HB_DUAL_DENSITY, &d);
             midpoint_terms(plan, theta, energy, mean, variance);
             const double *got_energy[2] = { d.a_f, d.a_b }, *got_mean[2] = { d.alpha_f, d.alpha_b },
@@ -140,7 +140,7 @@ static void test_back_scattering(hb_test_ctx *t)
         return;
     double worst = 0.0;
     for (int k = 0; k < 8; k++) {
-        hb_dual_terms d;
+        hb_dual_terms d = { .struct_size = sizeof d };
         hb_dual_terms_at(plan, theta_node(k, 8), 0.5, &d);
         for (int ch = 0; ch < 3; ch++) {
             double af = d.a_f[ch], ab = d.a_b[ch], af2 = af * af, ab2 = ab * ab, one = 1.0 - af2;
@@ -160,7 +160,7 @@ static void test_back_scattering(hb_test_ctx *t)
     }
     hb_test_note(t, "A_b, Delta_b, sigma_b^2 against eqs. 14-17: within %.1e relative", worst);
     CHECK(t, worst <= 1e-12, "eqs. 14-17 differ by %.3g", worst);
-    hb_dual_terms d;
+    hb_dual_terms d = { .struct_size = sizeof d };
     CHECK(t, hb_dual_terms_at(plan, M_PI_2, 0.7, &d) == HB_ERR_PARAM && hb_dual_terms_at(plan, NAN, 0.7, &d) == HB_ERR_PARAM &&
                  hb_dual_terms_at(plan, 0.0, 1.5, &d) == HB_ERR_PARAM && hb_dual_terms_at(NULL, 0.0, 0.7, &d) == HB_ERR_NULL &&
                  hb_dual_terms_at(plan, 0.0, 0.7, NULL) == HB_ERR_NULL,

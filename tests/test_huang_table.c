@@ -262,7 +262,7 @@ static void test_table_refusals(hb_test_ctx *t)
     m.roughness = 0.01;
     hb_plan *plan = NULL;
     hb_error err;
-    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_UNSUPPORTED && !plan && strstr(err.message, "tt_trt = mc"),
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_ERR_LIMIT && !plan && strstr(err.message, "tt_trt = mc"),
           "roughness 0.01 balanced: %s", err.message);
     m.roughness = 0.3;
     o.quality = HB_QUALITY_REFERENCE;

@@ -3,6 +3,7 @@
  * bit for bit, the angle call on the vectors' angles (in double, rounded to float), for dFH11 and
  * CBTB16 on every ISA and for dFH11's reference; a non-unit vector and |h| > 1 are counted invalid
  * and give zeros, (0, 0, 0) for a sampled w_i; a far-field-only model refuses. */
+#include <math.h>
 #include <string.h>
 
 #include "test.h"
@@ -73,13 +74,12 @@ static void check_plan(hb_test_ctx *t, const hb_plan *plan, const char *name)
     CHECK(t, hb_eval_pdf_near(plan, N, angles, (hb_rgb_soa){ fused[0], fused[1], fused[2] }, fused_pdf, NULL) == HB_OK &&
                  same(fused[1], f[1], N) && same(fused_pdf, pdf, N),
           "%s: fused f and pdf differ", name);
-    hb_sample_near_in sa = { to, po, h, { 0 } };
-    hb_sample_near_vectors_in sv = { w[3], w[4], w[5], h, { 0 } };
-    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
-        sa.u[d] = sv.u[d] = u[d];
-    CHECK(t, hb_sample_near(plan, N, sa, (hb_sample_out){ sti, spi, spdf, { weight[0], weight[1], weight[2] } }, &ra) == HB_OK &&
-                 hb_sample_near_vectors(plan, N, sv,
-                                        (hb_sample_vectors_out){ wi[0], wi[1], wi[2], spdf2, { weight2[0], weight2[1], weight2[2] } },
+    const float *const *planes = (const float *const *)us;
+    hb_sample_near_in sa = { to, po, h, planes };
+    hb_sample_near_vectors_in sv = { w[3], w[4], w[5], h, planes };
+    CHECK(t, hb_sample_near(plan, N, &sa, &(hb_sample_out){ sti, spi, spdf, { weight[0], weight[1], weight[2] } }, &ra) == HB_OK &&
+                 hb_sample_near_vectors(plan, N, &sv,
+                                        &(hb_sample_vectors_out){ wi[0], wi[1], wi[2], spdf2, { weight2[0], weight2[1], weight2[2] } },
                                         &rv) == HB_OK,
           "%s: sample_near", name);
     CHECK(t, same(spdf, spdf2, N) && same(weight[0], weight2[0], N) && ra.invalid == rv.invalid && rv.invalid == 2,
@@ -119,7 +119,62 @@ static void test_near_vectors(hb_test_ctx *t)
     hb_plan_destroy(far);
 }
 
+/* hb_hit_sample and hb_hit_eval_pdf give, bit for bit, the vector calls' one-sample results: far
+ * field for every model, near field at h for dFH11 and CBTB16. */
+static void test_hit_calls(hb_test_ctx *t)
+{
+    static const hb_model models[] = { HB_MODEL_DEON, HB_MODEL_CHIANG, HB_MODEL_MARSCHNER, HB_MODEL_HUANG };
+    for (int k = 0; k < 4; k++) {
+        hb_material m;
+        hb_options o;
+        hb_material_default(&m);
+        hb_options_default(&o);
+        o.model = models[k], o.isa = t->isa;
+        o.lobes = models[k] == HB_MODEL_HUANG ? HB_LOBE_BIT(HB_LOBE_R) : HB_LOBES_DEFAULT; /* no TT/TRT table build */
+        hb_plan *plan = NULL;
+        CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "model %d", (int)models[k]);
+        if (!plan)
+            continue;
+        int near_field = k < 2, wrong = 0;
+        for (int s = 0; s < 64; s++) {
+            float u[HB_SAMPLE_DIMENSIONS], *planes[HB_SAMPLE_DIMENSIONS];
+            for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+                planes[d] = &u[d];
+            hb_uniforms(77, (unsigned long long)s, 1, HB_SAMPLE_DIMENSIONS, planes);
+            double a = 6.283185307179586 * u[0], c = 2.0 * u[1] - 1.0, r = sqrt(1.0 - c * c);
+            float wo[3] = { (float)(r * cos(a)), (float)c, (float)(r * sin(a)) }, wl[3] = { wo[2], wo[0], wo[1] };
+            float h = 2.0f * u[2] - 1.0f;
+            for (int near = 0; near <= near_field; near++) {
+                const float *hp = near ? &h : NULL;
+                float wi[3], pdf, weight[3], bwi[3], bpdf, bweight[3], f[3], fpdf, bf[3], bfpdf;
+                hb_status st = hb_hit_sample(plan, wo, hp, u, wi, &pdf, weight);
+                hb_sample_vectors_out out = { &bwi[0], &bwi[1], &bwi[2], &bpdf, { &bweight[0], &bweight[1], &bweight[2] } };
+                const float *const *up = (const float *const *)planes;
+                hb_status bst = near ? hb_sample_near_vectors(plan, 1,
+                                                              &(hb_sample_near_vectors_in){ &wo[0], &wo[1], &wo[2], &h, up },
+                                                              &out, NULL)
+                                     : hb_sample_vectors(plan, 1, &(hb_sample_vectors_in){ &wo[0], &wo[1], &wo[2], up },
+                                                         &out, NULL);
+                hb_status est = hb_hit_eval_pdf(plan, wl, wo, hp, f, &fpdf);
+                hb_rgb_soa rgb = { &bf[0], &bf[1], &bf[2] };
+                hb_status best = near ? hb_eval_pdf_near_vectors(plan, 1,
+                                                                 (hb_near_vectors_soa){ &wl[0], &wl[1], &wl[2], &wo[0],
+                                                                                        &wo[1], &wo[2], &h },
+                                                                 rgb, &bfpdf, NULL)
+                                      : hb_eval_pdf_vectors(plan, 1,
+                                                            (hb_vectors_soa){ &wl[0], &wl[1], &wl[2], &wo[0], &wo[1], &wo[2] },
+                                                            rgb, &bfpdf, NULL);
+                wrong += st != HB_OK || bst != HB_OK || est != HB_OK || best != HB_OK || !same(wi, bwi, 3) ||
+                         !same(&pdf, &bpdf, 1) || !same(weight, bweight, 3) || !same(f, bf, 3) || !same(&fpdf, &bfpdf, 1);
+            }
+        }
+        CHECK(t, wrong == 0, "model %d: %d hits differ from the vector calls", (int)models[k], wrong);
+        hb_plan_destroy(plan);
+    }
+}
+
 const hb_test hb_tests_near_vectors[] = {
     { "near_vectors", test_near_vectors, 1 },
+    { "hit_calls", test_hit_calls, 1 },
     { NULL, NULL, 0 },
 };

@@ -143,10 +143,10 @@ static void test_select_refusals(hb_test_ctx *t)
     o.budget_ns = 0.0, o.tolerance = 1e-7;
     CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_PARAM, "tolerance below range");
     o.tolerance = 1e-6;
-    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED && strstr(e.message, "below every calibrated"),
+    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_LIMIT && strstr(e.message, "below every calibrated"),
           "tolerance no configuration reaches: %s", e.message);
     o.tolerance = 0.0, o.budget_ns = 1.0;
-    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED && strstr(e.message, "fastest"),
+    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_LIMIT && strstr(e.message, "fastest"),
           "a budget nothing meets names the fastest: %s", e.message);
     o.budget_ns = NAN;
     CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_PARAM, "NaN budget");
@@ -156,7 +156,7 @@ static void test_select_refusals(hb_test_ctx *t)
     CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED && strstr(e.message, "no calibrated"),
           "huang R + TT has no calibrated configuration: %s", e.message);
     o.lobes = 7u, o.budget_ns = 0.0, o.tolerance = 1e-2;
-    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED && strstr(e.message, "below every calibrated"),
+    CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_LIMIT && strstr(e.message, "below every calibrated"),
           "huang R + TT + TRT: the bench's relative error where f is small exceeds any tolerance: %s", e.message);
     /* a calibration file: table-fast made slow, so a 40 ns budget on any ISA picks nothing of it */
     char path[600];
@@ -185,7 +185,7 @@ static void test_select_refusals(hb_test_ctx *t)
             fprintf(f, "deon,full/fast,%s,30,1.2e-03,%.6f\n", isas[k], 2.0 * here);
         fclose(f);
         const char *takes = NULL;
-        CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_UNSUPPORTED && (takes = strstr(e.message, "takes ")) &&
+        CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_ERR_LIMIT && (takes = strstr(e.message, "takes ")) &&
                      fabs(atof(takes + 6) / 60.0 - 1.0) < 0.1, "cycles at twice the clock: %s", e.message);
         o.budget_ns = 70.0;
         CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_OK, "a 70 ns budget fits about 60: %s", e.message);

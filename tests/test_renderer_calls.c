@@ -100,15 +100,13 @@ static void sample_vectors_case(hb_test_ctx *t, const plan_case *c)
     for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
         u[d] = buf.u[d];
     hb_uniforms(hb_test_uniform(t) * 1e9, 0, N, dims, u);
-    hb_sample_in in = { buf.angles[2], buf.angles[3], { 0 } };
-    hb_sample_vectors_in vin = { buf.w[3], buf.w[4], buf.w[5], { 0 } };
-    for (int d = 0; d < dims; d++)
-        in.u[d] = vin.u[d] = u[d];
+    hb_sample_in in = { buf.angles[2], buf.angles[3], (const float *const *)u };
+    hb_sample_vectors_in vin = { buf.w[3], buf.w[4], buf.w[5], (const float *const *)u };
     hb_sample_out out = { buf.ti, buf.pi, buf.pdf, { buf.weight[0], buf.weight[1], buf.weight[2] } };
     hb_sample_vectors_out vout = { buf.wi[0], buf.wi[1], buf.wi[2], buf.pdf_v, { buf.weight_v[0], buf.weight_v[1], buf.weight_v[2] } };
     hb_eval_report ra = { 99 }, rv = { 99 };
-    CHECK(t, hb_sample_angles(plan, N, in, out, &ra) == HB_OK, "%s: sample angles", c->label);
-    CHECK(t, hb_sample_vectors(plan, N, vin, vout, &rv) == HB_OK, "%s: sample vectors", c->label);
+    CHECK(t, hb_sample_angles(plan, N, &in, &out, &ra) == HB_OK, "%s: sample angles", c->label);
+    CHECK(t, hb_sample_vectors(plan, N, &vin, &vout, &rv) == HB_OK, "%s: sample vectors", c->label);
     CHECK(t, ra.invalid == 0 && rv.invalid == 0, "%s: invalid %zu %zu", c->label, ra.invalid, rv.invalid);
     double worst_dir = 0.0, worst_pdf = 0.0, worst_weight = 0.0;
     size_t differ = 0, pdf_differ = 0;
@@ -290,10 +288,10 @@ static void test_renderer_calls_api(hb_test_ctx *t)
     float u[5][3], wi[3][3], pdf[3], w[3][3];
     for (int d = 0; d < 5; d++)
         u[d][0] = u[d][1] = u[d][2] = 0.3f;
-    hb_sample_vectors_in in = { wo[0], wo[1], wo[2], { u[0], u[1], u[2], u[3], u[4] } };
+    hb_sample_vectors_in in = { wo[0], wo[1], wo[2], (const float *const[]){ u[0], u[1], u[2], u[3], u[4] } };
     hb_sample_vectors_out out = { wi[0], wi[1], wi[2], pdf, { w[0], w[1], w[2] } };
     hb_eval_report report;
-    CHECK(t, hb_sample_vectors(plan, 3, in, out, &report) == HB_OK, "sample vectors");
+    CHECK(t, hb_sample_vectors(plan, 3, &in, &out, &report) == HB_OK, "sample vectors");
     CHECK(t, report.invalid == 2, "invalid count %zu, want 2", report.invalid);
     CHECK(t, pdf[0] > 0.0f && w[0][0] > 0.0f, "the valid sample: pdf %g weight %g", pdf[0], w[0][0]);
     for (int k = 1; k < 3; k++)
@@ -301,7 +299,7 @@ static void test_renderer_calls_api(hb_test_ctx *t)
               "invalid sample %d: (%g, %g, %g) pdf %g", k, wi[0][k], wi[1][k], wi[2][k], pdf[k]);
     hb_sample_vectors_out missing = out;
     missing.wi_y = NULL;
-    CHECK(t, hb_sample_vectors(plan, 3, in, missing, NULL) == HB_ERR_NULL, "a missing w_i stream is refused");
+    CHECK(t, hb_sample_vectors(plan, 3, &in, &missing, NULL) == HB_ERR_NULL, "a missing w_i stream is refused");
     float f[3][3];
     hb_vectors_soa pairs = { wo[0], wo[1], wo[2], wo[0], wo[1], wo[2] };
     CHECK(t, hb_eval_pdf_vectors(plan, 3, pairs, (hb_rgb_soa){ f[0], f[1], f[2] }, pdf, &report) == HB_OK &&
@@ -316,7 +314,7 @@ static void test_renderer_calls_api(hb_test_ctx *t)
                                          HB_AZIMUTHAL_QUADRATURE }; /* MJC03 samples on its kernels only */
     if (!(plan = case_plan(t, &marschner)))
         return;
-    CHECK(t, hb_sample_vectors(plan, 3, in, out, NULL) == HB_ERR_UNSUPPORTED &&
+    CHECK(t, hb_sample_vectors(plan, 3, &in, &out, NULL) == HB_ERR_UNSUPPORTED &&
                  hb_pdf_vectors(plan, 3, pairs, pdf, NULL) == HB_ERR_UNSUPPORTED &&
                  hb_eval_pdf_vectors(plan, 3, pairs, (hb_rgb_soa){ f[0], f[1], f[2] }, pdf, NULL) == HB_ERR_UNSUPPORTED,
           "a plan without a sampler refuses the sampling calls");

@@ -247,17 +247,18 @@ static void test_sample_api(hb_test_ctx *t)
             u[d][k] = 0.25f;
     u[3][2] = 1.5f;
     float ti[4], pi[4], pdf[4], w[3][4];
-    hb_sample_in in = { to, po, { u[0], u[1], u[2], u[3], u[4] } };
+    const float *planes[5] = { u[0], u[1], u[2], u[3], u[4] };
+    hb_sample_in in = { to, po, planes };
     hb_sample_out out = { ti, pi, pdf, { w[0], w[1], w[2] } };
     hb_eval_report report;
-    CHECK(t, hb_sample_angles(plan, 4, in, out, &report) == HB_OK, "sample");
+    CHECK(t, hb_sample_angles(plan, 4, &in, &out, &report) == HB_OK, "sample");
     CHECK(t, report.invalid == 3, "invalid count %zu, want 3", report.invalid);
     CHECK(t, pdf[0] > 0.0f && w[0][0] > 0.0f, "valid sample: pdf %g weight %g", pdf[0], w[0][0]);
     for (int k = 1; k < 4; k++)
         CHECK(t, ti[k] == 0.0f && pi[k] == 0.0f && pdf[k] == 0.0f && w[0][k] == 0.0f && w[2][k] == 0.0f,
               "invalid sample %d: %g %g %g %g", k, ti[k], pi[k], pdf[k], w[0][k]);
-    in.u[4] = NULL;
-    CHECK(t, hb_sample_angles(plan, 4, in, out, NULL) == HB_ERR_NULL, "a missing u stream is refused");
+    planes[4] = NULL;
+    CHECK(t, hb_sample_angles(plan, 4, &in, &out, NULL) == HB_ERR_NULL, "a missing u stream is refused");
     hb_plan_destroy(plan);
 
     hb_material m;
@@ -268,7 +269,7 @@ static void test_sample_api(hb_test_ctx *t)
     o.quality = HB_QUALITY_REFERENCE;
     CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "marschner plan");
     CHECK(t, hb_plan_sample_dimensions(plan) == 0, "MJC03 has no double-precision sampler");
-    CHECK(t, hb_sample_angles(plan, 0, in, out, NULL) == HB_ERR_UNSUPPORTED, "MJC03 reference sampling is refused");
+    CHECK(t, hb_sample_angles(plan, 0, &in, &out, NULL) == HB_ERR_UNSUPPORTED, "MJC03 reference sampling is refused");
     hb_plan_destroy(plan);
     o.model = HB_MODEL_DEON;
     o.quality = HB_QUALITY_BALANCED;
@@ -306,6 +307,9 @@ static void test_sample_extreme_u(hb_test_ctx *t)
         { "chiang", HB_MODEL_CHIANG, HB_LOBES_DEFAULT, 0 }, { "chiang near", HB_MODEL_CHIANG, HB_LOBES_DEFAULT, 1 },
         { "huang R", HB_MODEL_HUANG, 1u << HB_LOBE_R, 0 },
     };
+    const float *planes[HB_SAMPLE_DIMENSIONS];
+    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+        planes[d] = u[d];
     for (int k = 0; k < K; k++) {
         to[k] = (float)hb_test_range(t, -1.5, 1.5), po[k] = (float)hb_test_range(t, -3, 3);
         h[k] = (float)hb_test_range(t, -1, 1);
@@ -331,15 +335,11 @@ static void test_sample_extreme_u(hb_test_ctx *t)
             hb_eval_report report = { 0 };
             hb_status st;
             if (cases[c].near) {
-                hb_sample_near_in in = { to, po, h, { 0 } };
-                for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
-                    in.u[d] = u[d];
-                st = hb_sample_near(plan, K, in, out, &report);
+                hb_sample_near_in in = { to, po, h, planes };
+                st = hb_sample_near(plan, K, &in, &out, &report);
             } else {
-                hb_sample_in in = { to, po, { 0 } };
-                for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
-                    in.u[d] = u[d];
-                st = hb_sample_angles(plan, K, in, out, &report);
+                hb_sample_in in = { to, po, planes };
+                st = hb_sample_angles(plan, K, &in, &out, &report);
             }
             CHECK(t, st == HB_OK, "%s: status %d", cases[c].name, (int)st);
             invalid[reference] = report.invalid;

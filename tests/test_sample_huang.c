@@ -202,9 +202,9 @@ static void test_huang_sample_beckmann_top(hb_test_ctx *t)
         hb_test_sample_batch(t, plan, n, tops[c].theta_o, tops[c].phi_o, hb_test_next_seed(t));
         for (size_t i = 0; i < n; i++) /* 1 - u1 log-uniform over [1e-6, 1e-1] */
             buf->u[1][i] = (float)(1.0 - pow(10.0, -1.0 - 5.0 * (double)i / (double)n));
-        hb_sample_in in = { buf->to, buf->po, { buf->u[0], buf->u[1], buf->u[2] } };
+        hb_sample_in in = { buf->to, buf->po, (const float *const[]){ buf->u[0], buf->u[1], buf->u[2] } };
         hb_sample_out out = { buf->ti, buf->pi, buf->pdf, { buf->w[0], buf->w[1], buf->w[2] } };
-        CHECK(t, hb_sample_angles(plan, n, in, out, NULL) == HB_OK, "hb_sample_angles failed");
+        CHECK(t, hb_sample_angles(plan, n, &in, &out, NULL) == HB_OK, "hb_sample_angles failed");
         char text[160];
         describe(&tops[c], text, sizeof text);
         for (size_t i = 0; i < n; i++) {
@@ -370,8 +370,8 @@ static void test_huang_sample_hard_cases(hb_test_ctx *t)
             return;
         CHECK(t, hb_plan_sample_dimensions(plan) == 3, "huang reads %d numbers", hb_plan_sample_dimensions(plan));
         hb_eval_report report;
-        hb_sample_angles(plan, n, (hb_sample_in){ to, po, { u[0], u[1], u[2] } },
-                         (hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, &report);
+        hb_sample_angles(plan, n, &(hb_sample_in){ to, po, (const float *const[]){ u[0], u[1], u[2] } },
+                         &(hb_sample_out){ ti, pi, pdf, { w[0], w[1], w[2] } }, &report);
         CHECK(t, report.invalid == 0, "material %d: %zu invalid", k, report.invalid);
         int bad = 0;
         for (size_t i = 0; i < n; i++)
@@ -582,11 +582,11 @@ static void test_huang_path_isa(hb_test_ctx *t)
                 for (int d = 0; d < 8; d++)
                     buf->u[d][i] = edges[(i / 24 + (size_t)d) % 4];
         }
-        hb_sample_in in = { buf->to, buf->po, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
+        hb_sample_in in = { buf->to, buf->po, (const float *const[]){ u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
         hb_eval_report report;
-        hb_sample_angles(plan, n, in, (hb_sample_out){ buf->ti, buf->pi, buf->pdf, { buf->w[0], buf->w[1], buf->w[2] } },
+        hb_sample_angles(plan, n, &in, &(hb_sample_out){ buf->ti, buf->pi, buf->pdf, { buf->w[0], buf->w[1], buf->w[2] } },
                          &report);
-        hb_sample_angles(scalar, n, in, (hb_sample_out){ ref_ti, ref_pi, ref_pdf, { ref_w[0], ref_w[1], ref_w[2] } }, NULL);
+        hb_sample_angles(scalar, n, &in, &(hb_sample_out){ ref_ti, ref_pi, ref_pdf, { ref_w[0], ref_w[1], ref_w[2] } }, NULL);
         hb_pdf_angles(plan, n, (hb_angles_soa){ buf->ti, buf->pi, buf->to, buf->po }, buf->pdf2, NULL);
         int bad = 0, differ = 0, pdf_bits = 0;
         for (size_t i = 0; i < n; i++) {

@@ -161,7 +161,7 @@ static void test_shaders_match_cpu(hb_test_ctx *t)
             o.quality = strands ? HB_QUALITY_FAST : HB_QUALITY_BALANCED;
             hb_plan *plan;
             hb_error error;
-            hb_table_view v;
+            hb_table_view v = { .struct_size = sizeof v };
             if (hb_plan_create(&m, &o, &plan, &error) != HB_OK || hb_plan_table(plan, &v) != HB_OK ||
                 hb_plan_shader_constants(plan, params) != HB_OK) {
                 CHECK(t, 0, "%s: %s", s->name, error.message);
@@ -220,7 +220,7 @@ static void test_huang_shader(hb_test_ctx *t)
             o.shadowing = HB_SHADOWING_NONE; /* App. A's closed form is without G */
             hb_plan *plan;
             hb_error error;
-            hb_table_view v;
+            hb_table_view v = { .struct_size = sizeof v };
             if (hb_plan_create(&m, &o, &plan, &error) != HB_OK || hb_plan_table(plan, &v) != HB_OK ||
                 hb_plan_shader_constants(plan, params) != HB_OK) {
                 CHECK(t, 0, "%s: %s", materials[mi].name, error.message);

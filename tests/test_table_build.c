@@ -122,7 +122,7 @@ static void test_parallel_same_table(hb_test_ctx *t)
         int calls[2] = { 0, 0 };
         o.parallel = reversed_on_two_threads, o.parallel_context = calls;
         CHECK(t, hb_plan_create(&m, &o, &parallel, &error) == HB_OK, "%s", error.message);
-        hb_table_view a, b;
+        hb_table_view a = { .struct_size = sizeof a }, b = { .struct_size = sizeof b };
         CHECK(t, hb_plan_table(serial, &a) == HB_OK && hb_plan_table(parallel, &b) == HB_OK && a.count == b.count &&
                      memcmp(a.values, b.values, a.count * sizeof *a.values) == 0,
               "%s: the table built through the job system differs from one thread's", huang ? "huang" : "deon");

@@ -27,11 +27,12 @@ static void run_share(const shared_work *w)
         if (hb_plan_sample_dimensions(w->plans[p]) == 0 || p == 3)
             continue;
         float *s[4] = { w->sampled[p][0] + k0, w->sampled[p][1] + k0, w->sampled[p][2] + k0, w->sampled[p][3] + k0 };
-        hb_sample_in in = { w->to + k0, w->po + k0, { 0 } };
+        const float *u[HB_SAMPLE_DIMENSIONS];
         for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
-            in.u[d] = w->u[d] + k0;
+            u[d] = w->u[d] + k0;
+        hb_sample_in in = { w->to + k0, w->po + k0, u };
         static float sink[2][THREADS * N];
-        hb_sample_angles(w->plans[p], n, in, (hb_sample_out){ s[0], s[1], s[2], { s[3], sink[0] + k0, sink[1] + k0 } },
+        hb_sample_angles(w->plans[p], n, &in, &(hb_sample_out){ s[0], s[1], s[2], { s[3], sink[0] + k0, sink[1] + k0 } },
                          NULL);
     }
 }

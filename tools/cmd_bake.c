@@ -110,7 +110,7 @@ int cmd_bake(int argc, char **argv)
         fprintf(stderr, "hairbsdf bake: %s\n", error.message);
         return 2;
     }
-    hb_table_view v;
+    hb_table_view v = { .struct_size = sizeof v };
     int st = hb_plan_table(plan, &v) == HB_OK ? 0 : 2;
     if (st)
         fprintf(stderr, "hairbsdf bake: this plan has no table (huang without TT and TRT?)\n");

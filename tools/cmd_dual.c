@@ -66,7 +66,7 @@ int cmd_dual(int argc, char **argv)
     printf("\n");
     for (int k = 0; k < thetas; k++) {
         double theta = -M_PI_2 + M_PI * (k + 0.5) / thetas;
-        hb_dual_terms d;
+        hb_dual_terms d = { .struct_size = sizeof d };
         hb_dual_terms_at(plan, theta, density, &d);
         const double *columns[] = { d.a_f, d.a_b, d.alpha_f, d.beta_f2, d.alpha_b, d.beta_b2, d.A_b, d.delta_b, d.sigma_b2 };
         printf("%.6f", theta);

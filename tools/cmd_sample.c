@@ -116,11 +116,11 @@ int cmd_sample(int argc, char **argv)
         hb_uniforms(seed, first, n, dims, streams);
         hb_sample_out out = { ti, pi, pdf, { w[0], w[1], w[2] } };
         if (have_h) {
-            hb_sample_near_in in = { to, po, hs, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
-            hb_sample_near(plan, n, in, out, NULL);
+            hb_sample_near_in in = { to, po, hs, (const float *const *)streams };
+            hb_sample_near(plan, n, &in, &out, NULL);
         } else {
-            hb_sample_in in = { to, po, { u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7] } };
-            hb_sample_angles(plan, n, in, out, NULL);
+            hb_sample_in in = { to, po, (const float *const *)streams };
+            hb_sample_angles(plan, n, &in, &out, NULL);
         }
         for (size_t k = 0; k < n; k++) {
             for (int c = 0; c < 3; c++) {

@@ -6,9 +6,12 @@
  * mirror symmetry, f(phi_o) = f(-phi_o), halves the azimuths: phi_o in [0, pi], counted twice.
  * Evaluated in stack chunks by the plan's own batch call. No allocation. */
 #include <math.h>
+#include <stddef.h>
+#include <string.h>
 
 #include "math/dual_scattering.h"
 #include "math/quadrature.h"
+#include "checks.h"
 #include "models/interface/model.h"
 
 enum { CHUNK = 512, RULE = 8, QUARTERS = 4, HALF = 2 /* quarters of the azimuths in [0, pi] */ };
@@ -44,9 +47,17 @@ static void flush(const hb_plan *plan, pending *q, hemisphere_sums *s)
 hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms)
 {
     if (!plan || !terms)
-        return HB_ERR_NULL;
-    if (!(fabs(theta) < M_PI_2) || !(d_b >= 0.0 && d_b <= 1.0))
-        return HB_ERR_PARAM;
+        return hb_fail_null(__func__, !plan ? "plan" : "terms");
+    size_t size = terms->struct_size;
+    hb_status st = hb_api_struct_size(__func__, "terms", size, offsetof(hb_dual_terms, sigma_b2) + sizeof terms->sigma_b2,
+                                      sizeof *terms);
+    if (st != HB_OK)
+        return st;
+    if (!(fabs(theta) < M_PI_2))
+        return hb_fail(HB_ERR_PARAM, "%s: theta = %g is outside (-pi/2, pi/2)", __func__, theta);
+    if (!(d_b >= 0.0 && d_b <= 1.0))
+        return hb_fail(HB_ERR_PARAM, "%s: d_b = %g is outside [0, 1]", __func__, d_b);
+    hb_dual_terms all = { .struct_size = size };
     const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
     double beta_m;
     int azimuths, passes;
@@ -79,17 +90,18 @@ hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dua
     if (q.count)
         flush(plan, &q, &sums);
     for (int c = 0; c < 3; c++) {
-        double *energy[2] = { &terms->a_f[c], &terms->a_b[c] }, *mean[2] = { &terms->alpha_f[c], &terms->alpha_b[c] },
-               *variance[2] = { &terms->beta_f2[c], &terms->beta_b2[c] };
+        double *energy[2] = { &all.a_f[c], &all.a_b[c] }, *mean[2] = { &all.alpha_f[c], &all.alpha_b[c] },
+               *variance[2] = { &all.beta_f2[c], &all.beta_b2[c] };
         for (int h = 0; h < 2; h++) {
             double e = sums.energy[h][c], m = e > 0.0 ? sums.first[h][c] / e : 0.0;
             *energy[h] = e;
             *mean[h] = m;
             *variance[h] = e > 0.0 ? fmax(0.0, sums.second[h][c] / e - m * m) : 0.0;
         }
-        terms->A_b[c] = hb_dual_back_energy(terms->a_f[c], terms->a_b[c]);
-        terms->delta_b[c] = hb_dual_back_shift(terms->a_f[c], terms->a_b[c], terms->alpha_f[c], terms->alpha_b[c]);
-        terms->sigma_b2[c] = hb_dual_back_variance(terms->a_f[c], terms->a_b[c], terms->beta_f2[c], terms->beta_b2[c], d_b);
+        all.A_b[c] = hb_dual_back_energy(all.a_f[c], all.a_b[c]);
+        all.delta_b[c] = hb_dual_back_shift(all.a_f[c], all.a_b[c], all.alpha_f[c], all.alpha_b[c]);
+        all.sigma_b2[c] = hb_dual_back_variance(all.a_f[c], all.a_b[c], all.beta_f2[c], all.beta_b2[c], d_b);
     }
+    memcpy(terms, &all, size);
     return HB_OK;
 }

@@ -5,7 +5,7 @@
  * each vector is orthonormal to float rounding even for a normal close to the tangent. */
 #include <math.h>
 
-#include "hairbsdf.h"
+#include "models/interface/plan.h"
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -23,10 +23,11 @@ static int normalise(double v[3], double floor)
 hb_status hb_frame_from_tangent(const float tangent[3], const float *normal, hb_frame *frame)
 {
     if (!tangent || !frame)
-        return HB_ERR_NULL;
+        return hb_fail_null(__func__, !tangent ? "tangent" : "frame");
     double y[3] = { tangent[0], tangent[1], tangent[2] }, z[3] = { 0.0, 0.0, 0.0 };
     if (!normalise(y, 0.0))
-        return HB_ERR_PARAM;
+        return hb_fail(HB_ERR_PARAM, "%s: the tangent (%g, %g, %g) has no direction (zero, or not finite)", __func__,
+                       tangent[0], tangent[1], tangent[2]);
     int have_normal = 0;
     if (normal) { /* Gram-Schmidt: the normal less its part along y, kept above 1e-6 of the normal */
         double n[3] = { normal[0], normal[1], normal[2] }, along = dot3(n, y), scale = sqrt(dot3(n, n));

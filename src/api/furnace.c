@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "checks.h"
 #include "math/quadrature.h"
 #include "models/interface/model.h"
 #include "ref/reference.h"
@@ -15,9 +16,9 @@ enum { CHUNK = 512, RULE = 8 };
 hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
 {
     if (!plan || !energy)
-        return HB_ERR_NULL;
+        return hb_fail_null(__func__, !plan ? "plan" : "energy");
     if (!(fabs(theta_o) <= M_PI_2))
-        return HB_ERR_PARAM;
+        return hb_fail(HB_ERR_PARAM, "%s: theta_o = %g is outside [-pi/2, pi/2]", __func__, theta_o);
     const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
     int longitudinal = plan->options.term == HB_TERM_LONGITUDINAL, nphi, passes;
     double beta_m;
@@ -33,7 +34,7 @@ hb_status hb_furnace(const hb_plan *plan, double theta_o, double energy[3])
     size_t bytes = sizeof *plan + plan->state_size;
     hb_plan *varied = ops->rekey ? malloc(bytes) : NULL;
     if (ops->rekey && !varied)
-        return HB_ERR_NOMEM;
+        return hb_fail(HB_ERR_NOMEM, "%s: the plan's copy (%zu bytes) could not be allocated", __func__, bytes);
     if (varied)
         memcpy(varied, plan, bytes);
     const hb_plan *evaluated = varied ? varied : plan;
@@ -78,11 +79,13 @@ hb_status hb_furnace_orders(const hb_plan *plan, double theta, long paths, unsig
                             double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS])
 {
     if (!plan || !energy)
-        return HB_ERR_NULL;
+        return hb_fail_null(__func__, !plan ? "plan" : "energy");
     if (!plan->reference->orders || plan->material.eccentricity != 0.0)
-        return HB_ERR_UNSUPPORTED;
-    if (!(fabs(theta) < M_PI_2) || paths < 1)
-        return HB_ERR_PARAM;
+        return hb_api_unsupported(__func__, plan, "walk by scattering order (HHH22, circular fibres)");
+    if (!(fabs(theta) < M_PI_2))
+        return hb_fail(HB_ERR_PARAM, "%s: theta = %g is outside (-pi/2, pi/2)", __func__, theta);
+    if (paths < 1)
+        return hb_fail(HB_ERR_PARAM, "%s: paths = %ld; at least 1", __func__, paths);
     double unused[HB_ORDER_GROUPS];
     plan->reference->orders(plan, theta, paths, seed, energy, standard_error ? standard_error : unused);
     return HB_OK;

@@ -4,6 +4,7 @@
 #include <float.h>
 #include <math.h>
 
+#include "checks.h"
 #include "math/hash.h"
 #include "math/valid.h"
 #include "models/interface/model.h"
@@ -104,30 +105,50 @@ static size_t sample_ref(const hb_plan *plan, int dims, size_t n, const hb_sampl
     return invalid;
 }
 
-/* Whether a sampling batch of n > 0 samples has every pointer it reads and writes. */
-static int sample_pointers(size_t n, const hb_sample_batch *b, int dims, const float *h, int near)
+/* HB_ERR_NULL naming the first pointer a sampling batch of n > 0 samples reads or writes that is
+ * NULL (u: the caller's array of planes, which holds dims of them), else HB_OK; b's u gets the planes. */
+static hb_status sample_pointers(const char *call, size_t n, hb_sample_batch *b, const float *const *u, int dims,
+                                 int near)
 {
     if (!n)
-        return 1;
-    int in = b->wo[0] ? b->wo[1] && b->wo[2] : b->in.theta_o && b->in.phi_o;
-    int out = b->wi[0] ? b->wi[1] && b->wi[2] : b->out.theta_i && b->out.phi_i;
-    if (!in || !out || (near && !h) || !b->out.pdf || !b->out.weight.r || !b->out.weight.g || !b->out.weight.b)
-        return 0;
-    for (int d = 0; d < dims; d++)
-        if (!b->in.u[d])
-            return 0;
-    return 1;
+        return HB_OK;
+    const void *planes[12];
+    const char *names[12];
+    int count = 0;
+#define HB_PLANE(plane, name) (planes[count] = (plane), names[count++] = (name))
+    if (b->wo[0])
+        HB_PLANE(b->wo[0], "in->wo_x"), HB_PLANE(b->wo[1], "in->wo_y"), HB_PLANE(b->wo[2], "in->wo_z");
+    else
+        HB_PLANE(b->in.theta_o, "in->theta_o"), HB_PLANE(b->in.phi_o, "in->phi_o");
+    if (near)
+        HB_PLANE(b->in.h, "in->h");
+    if (b->wi[0])
+        HB_PLANE(b->wi[0], "out->wi_x"), HB_PLANE(b->wi[1], "out->wi_y"), HB_PLANE(b->wi[2], "out->wi_z");
+    else
+        HB_PLANE(b->out.theta_i, "out->theta_i"), HB_PLANE(b->out.phi_i, "out->phi_i");
+    HB_PLANE(b->out.pdf, "out->pdf"), HB_PLANE(b->out.weight.r, "out->weight.r");
+    HB_PLANE(b->out.weight.g, "out->weight.g"), HB_PLANE(b->out.weight.b, "out->weight.b"), HB_PLANE(u, "in->u");
+#undef HB_PLANE
+    hb_status st = hb_api_present(call, n, count, planes, names);
+    for (int d = 0; st == HB_OK && d < dims; d++) {
+        b->in.u[d] = u[d];
+        if (!u[d])
+            st = hb_fail(HB_ERR_NULL, "%s: in->u[%d] is NULL (this plan reads %d planes)", call, d, dims);
+    }
+    return st;
 }
 
-static hb_status sample_batch(const hb_plan *plan, size_t n, const hb_sample_batch *b, hb_eval_report *report)
+static hb_status sample_batch(const char *call, const hb_plan *plan, size_t n, hb_sample_batch *b,
+                              const float *const *u, hb_eval_report *report)
 {
     if (!plan)
-        return HB_ERR_NULL;
+        return hb_fail_null(call, "plan");
     int dims = hb_plan_sample_dimensions(plan);
     if (dims == 0)
-        return HB_ERR_UNSUPPORTED;
-    if (!sample_pointers(n, b, dims, NULL, 0))
-        return HB_ERR_NULL;
+        return hb_api_unsupported(call, plan, "sampler");
+    hb_status st = sample_pointers(call, n, b, u, dims, 0);
+    if (st != HB_OK)
+        return st;
     size_t invalid = 0;
     if (!plan->kernels)
         invalid = sample_ref(plan, dims, n, b, NULL);
@@ -137,23 +158,26 @@ static hb_status sample_batch(const hb_plan *plan, size_t n, const hb_sample_bat
     return HB_OK;
 }
 
-hb_status hb_sample_angles(const hb_plan *plan, size_t n, hb_sample_in in, hb_sample_out out, hb_eval_report *report)
+hb_status hb_sample_angles(const hb_plan *plan, size_t n, const hb_sample_in *in, const hb_sample_out *out,
+                           hb_eval_report *report)
 {
-    hb_sample_batch b = { .in = in, .out = out };
-    return sample_batch(plan, n, &b, report);
+    if (!in || !out)
+        return hb_fail_null(__func__, !in ? "in" : "out");
+    hb_sample_batch b = { .in = { in->theta_o, in->phi_o }, .out = *out };
+    return sample_batch(__func__, plan, n, &b, in->u, report);
 }
 
-hb_status hb_sample_vectors(const hb_plan *plan, size_t n, hb_sample_vectors_in in, hb_sample_vectors_out out,
-                            hb_eval_report *report)
+hb_status hb_sample_vectors(const hb_plan *plan, size_t n, const hb_sample_vectors_in *in,
+                            const hb_sample_vectors_out *out, hb_eval_report *report)
 {
-    hb_sample_batch b = { .wo = { in.wo_x, in.wo_y, in.wo_z }, .wi = { out.wi_x, out.wi_y, out.wi_z } };
-    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
-        b.in.u[d] = in.u[d];
-    b.out.pdf = out.pdf;
-    b.out.weight = out.weight;
-    if (n && (!in.wo_x || !out.wi_x)) /* a batch without wo[0] or wi[0] would read or write angles */
-        return HB_ERR_NULL;
-    return sample_batch(plan, n, &b, report);
+    if (!in || !out)
+        return hb_fail_null(__func__, !in ? "in" : "out");
+    hb_sample_batch b = { .wo = { in->wo_x, in->wo_y, in->wo_z }, .wi = { out->wi_x, out->wi_y, out->wi_z } };
+    b.out.pdf = out->pdf;
+    b.out.weight = out->weight;
+    if (n && (!in->wo_x || !out->wi_x)) /* a batch without wo[0] or wi[0] would read or write angles */
+        return hb_fail_null(__func__, !in->wo_x ? "in->wo_x" : "out->wi_x");
+    return sample_batch(__func__, plan, n, &b, in->u, report);
 }
 
 /* The reference pdf (and f where f is not NULL), one sample at a time; h: offsets, or NULL. */
@@ -186,23 +210,21 @@ static size_t pdf_ref(const hb_plan *plan, size_t n, const hb_pair_batch *in, co
     return invalid;
 }
 
-static int pairs_present(const hb_pair_batch *in)
-{
-    if (in->vectors.wi_x)
-        return in->vectors.wi_y && in->vectors.wi_z && in->vectors.wo_x && in->vectors.wo_y && in->vectors.wo_z;
-    return in->angles.theta_i && in->angles.phi_i && in->angles.theta_o && in->angles.phi_o;
-}
-
 /* pdf, and f where f is not NULL, of direction pairs. */
-static hb_status pdf_batch(const hb_plan *plan, size_t n, const hb_pair_batch *in, const hb_rgb_soa *f, float *pdf,
-                           hb_eval_report *report)
+static hb_status pdf_batch(const char *call, const hb_plan *plan, size_t n, const hb_pair_batch *in, int vectors,
+                           const hb_rgb_soa *f, float *pdf, hb_eval_report *report)
 {
     if (!plan)
-        return HB_ERR_NULL;
+        return hb_fail_null(call, "plan");
     if (hb_plan_sample_dimensions(plan) == 0)
-        return HB_ERR_UNSUPPORTED;
-    if (n && (!pairs_present(in) || !pdf || (f && (!f->r || !f->g || !f->b))))
-        return HB_ERR_NULL;
+        return hb_api_unsupported(call, plan, "sampler, so no pdf");
+    hb_status st = vectors ? hb_api_vectors_present(call, n, &in->vectors) : hb_api_angles_present(call, n, &in->angles);
+    if (st == HB_OK && f)
+        st = hb_api_rgb_present(call, n, "f", f);
+    if (st == HB_OK && n && !pdf)
+        st = hb_fail_null(call, "pdf");
+    if (st != HB_OK)
+        return st;
     size_t invalid = 0;
     const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
     if (!plan->kernels)
@@ -218,31 +240,27 @@ static hb_status pdf_batch(const hb_plan *plan, size_t n, const hb_pair_batch *i
 hb_status hb_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, float *pdf, hb_eval_report *report)
 {
     hb_pair_batch pairs = { .angles = in };
-    return pdf_batch(plan, n, &pairs, NULL, pdf, report);
+    return pdf_batch(__func__, plan, n, &pairs, 0, NULL, pdf, report);
 }
 
 hb_status hb_pdf_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, float *pdf, hb_eval_report *report)
 {
-    if (n && !in.wi_x)
-        return HB_ERR_NULL;
     hb_pair_batch pairs = { .vectors = in };
-    return pdf_batch(plan, n, &pairs, NULL, pdf, report);
+    return pdf_batch(__func__, plan, n, &pairs, 1, NULL, pdf, report);
 }
 
 hb_status hb_eval_pdf_angles(const hb_plan *plan, size_t n, hb_angles_soa in, hb_rgb_soa f, float *pdf,
                              hb_eval_report *report)
 {
     hb_pair_batch pairs = { .angles = in };
-    return pdf_batch(plan, n, &pairs, &f, pdf, report);
+    return pdf_batch(__func__, plan, n, &pairs, 0, &f, pdf, report);
 }
 
 hb_status hb_eval_pdf_vectors(const hb_plan *plan, size_t n, hb_vectors_soa in, hb_rgb_soa f, float *pdf,
                               hb_eval_report *report)
 {
-    if (n && !in.wi_x)
-        return HB_ERR_NULL;
     hb_pair_batch pairs = { .vectors = in };
-    return pdf_batch(plan, n, &pairs, &f, pdf, report);
+    return pdf_batch(__func__, plan, n, &pairs, 1, &f, pdf, report);
 }
 
 /* The near field's number count: the far-field sampler's less the one it turns into h. */
@@ -251,24 +269,23 @@ static int near_dimensions(const hb_plan *plan)
     return plan && hb_model_ops_of(plan->options.model)->sample_near ? hb_plan_sample_dimensions(plan) - 1 : 0;
 }
 
-hb_status hb_sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out,
+hb_status hb_sample_near(const hb_plan *plan, size_t n, const hb_sample_near_in *in, const hb_sample_out *out,
                          hb_eval_report *report)
 {
-    if (!plan)
-        return HB_ERR_NULL;
+    if (!plan || !in || !out)
+        return hb_fail_null(__func__, !plan ? "plan" : !in ? "in" : "out");
     int dims = near_dimensions(plan);
     if (dims <= 0)
-        return HB_ERR_UNSUPPORTED;
-    hb_sample_batch b = { .in = { in.theta_o, in.phi_o, { 0 } }, .out = out };
-    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
-        b.in.u[d] = in.u[d];
-    if (!sample_pointers(n, &b, dims, in.h, 1))
-        return HB_ERR_NULL;
+        return hb_api_unsupported(__func__, plan, "near-field sampler");
+    hb_sample_batch b = { .in = { in->theta_o, in->phi_o, in->h }, .out = *out };
+    hb_status st = sample_pointers(__func__, n, &b, in->u, dims, 1);
+    if (st != HB_OK)
+        return st;
     size_t invalid = 0;
     if (!plan->kernels)
-        invalid = sample_ref(plan, dims, n, &b, in.h);
+        invalid = sample_ref(plan, dims, n, &b, in->h);
     else
-        hb_model_ops_of(plan->options.model)->sample_near(plan, n, in, out, &invalid);
+        hb_model_ops_of(plan->options.model)->sample_near(plan, n, b.in, *out, &invalid);
     report_invalid(report, invalid);
     return HB_OK;
 }
@@ -276,11 +293,14 @@ hb_status hb_sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb
 hb_status hb_pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *pdf, hb_eval_report *report)
 {
     if (!plan)
-        return HB_ERR_NULL;
+        return hb_fail_null(__func__, "plan");
     if (near_dimensions(plan) <= 0)
-        return HB_ERR_UNSUPPORTED;
-    if (n && (!in.theta_i || !in.phi_i || !in.theta_o || !in.phi_o || !in.h || !pdf))
-        return HB_ERR_NULL;
+        return hb_api_unsupported(__func__, plan, "near-field sampler, so no pdf");
+    hb_status st = hb_api_near_present(__func__, n, &in);
+    if (st == HB_OK && n && !pdf)
+        st = hb_fail_null(__func__, "pdf");
+    if (st != HB_OK)
+        return st;
     size_t invalid = 0;
     if (!plan->kernels) {
         hb_pair_batch pairs = { .angles = { in.theta_i, in.phi_i, in.theta_o, in.phi_o } };

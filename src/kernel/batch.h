@@ -184,19 +184,25 @@ HB_INLINE vm load_sample(const hb_sample_batch *b, int dims, size_t i, size_t la
 /* h in [-1, 1]; false for NaN. */
 HB_INLINE vm offset_valid(vf h) { return vf_le(vf_abs(h), vf_set1(1.0f)); }
 
-/* Direction pairs and three absorption streams: a[4..6] = sigma_a log2(e) per channel, each rounded
- * from its product in double and capped at 1e30 as a plan's constant is (src/models/build/derive.h), so that
- * a sample's absorption gives what a plan of that material gives. A lane is also invalid when an
- * absorption is NaN, negative or infinite; invalid lanes get zeros. */
-HB_INLINE vm load_absorbing(const hb_absorbing_batch *b, size_t i, size_t lanes, vf a[7])
+/* Three absorption streams into a[0..2] = sigma_a log2(e) per channel, each rounded from its product
+ * in double and capped at 1e30 as a plan's constant is (src/models/build/derive.h), so that a sample's
+ * absorption gives what a plan of that material gives; valid less the lanes whose absorption is NaN,
+ * negative or infinite. */
+HB_INLINE vm load_absorption(const float *const sigma_a[3], size_t i, size_t lanes, vm valid, vf a[3])
 {
-    vm valid = load_pairs(&b->pairs, i, lanes, a);
-    load_block(b->sigma_a, 3, i, lanes, 0.0f, a + 4);
+    load_block(sigma_a, 3, i, lanes, 0.0f, a);
     HB_UNROLL
     for (int c = 0; c < 3; c++) {
-        valid = vm_and(valid, vm_and(vf_ge(a[4 + c], vf_set1(0.0f)), vf_le(a[4 + c], vf_set1(FLT_MAX))));
-        a[4 + c] = vdw_to_vf(vdw_min(vdw_mul(vdw_from_vf(a[4 + c]), vdw_set1(1.4426950408889634)), vdw_set1(1e30)));
+        valid = vm_and(valid, vm_and(vf_ge(a[c], vf_set1(0.0f)), vf_le(a[c], vf_set1(FLT_MAX))));
+        a[c] = vdw_to_vf(vdw_min(vdw_mul(vdw_from_vf(a[c]), vdw_set1(1.4426950408889634)), vdw_set1(1e30)));
     }
+    return valid;
+}
+
+/* Direction pairs and three absorption streams (a[4..6], load_absorption); invalid lanes get zeros. */
+HB_INLINE vm load_absorbing(const hb_absorbing_batch *b, size_t i, size_t lanes, vf a[7])
+{
+    vm valid = load_absorption(b->sigma_a, i, lanes, load_pairs(&b->pairs, i, lanes, a), a + 4);
     HB_UNROLL
     for (int k = 0; k < 7; k++)
         a[k] = vf_keep(valid, a[k]);
@@ -218,6 +224,16 @@ HB_INLINE vm load_near(hb_near_soa in, size_t i, size_t lanes, vf a[5])
     return valid;
 }
 
+/* The near field's five streams and three absorption streams (a[5..7], load_absorption). */
+HB_INLINE vm load_near_absorbing(const hb_absorbing_near *b, size_t i, size_t lanes, vf a[8])
+{
+    vm valid = load_absorption(b->sigma_a, i, lanes, load_near(b->near, i, lanes, a), a + 5);
+    HB_UNROLL
+    for (int k = 0; k < 8; k++)
+        a[k] = vf_keep(valid, a[k]);
+    return valid;
+}
+
 /* Sample k of a near-field batch in every lane (the one-sample paths), as load_near checks it. */
 HB_INLINE vm load_near_one(hb_near_soa in, size_t k, vf a[5])
 {
@@ -230,11 +246,9 @@ HB_INLINE vm load_near_one(hb_near_soa in, size_t k, vf a[5])
 }
 
 /* A near-field sampling batch: theta_o, phi_o, the `dims` uniform numbers, then h last. */
-HB_INLINE vm load_sample_near(hb_sample_near_in in, int dims, size_t i, size_t lanes, vf *a)
+HB_INLINE vm load_sample_near(hb_sample_streams in, int dims, size_t i, size_t lanes, vf *a)
 {
-    hb_sample_batch far = { .in = { in.theta_o, in.phi_o, { 0 } } };
-    for (int d = 0; d < dims; d++)
-        far.in.u[d] = in.u[d];
+    hb_sample_batch far = { .in = in }; /* load_sample reads theta_o, phi_o and u */
     vm valid = load_sample(&far, dims, i, lanes, a);
     vf *h = a + 2 + dims;
     load_block(&in.h, 1, i, lanes, 0.0f, h);

@@ -14,6 +14,12 @@ typedef struct hb_pair_batch {
     hb_vectors_soa vectors;
 } hb_pair_batch;
 
+/* The near field's angles and h with a per-sample absorption sigma_a[c][k] (hb_eval_near_absorption). */
+typedef struct hb_absorbing_near {
+    hb_near_soa near;
+    const float *sigma_a[3];
+} hb_absorbing_near;
+
 /* Direction pairs with a per-sample absorption sigma_a[c][k] (hb_eval_angles_absorption). */
 typedef struct hb_absorbing_batch {
     hb_pair_batch pairs;
@@ -22,8 +28,15 @@ typedef struct hb_absorbing_batch {
 
 /* A sampling batch: w_o from wo when wo[0] is not NULL, else from in.theta_o and in.phi_o; w_i to
  * wi when wi[0] is not NULL (invalid samples get (0, 0, 0)), else to out.theta_i and out.phi_i. */
+/* A sampling batch's input planes as the kernels read them: the caller's, with u copied up to the
+ * plan's dimensions (h: the near field's offsets, else NULL). */
+typedef struct hb_sample_streams {
+    const float *theta_o, *phi_o, *h;
+    const float *u[HB_SAMPLE_DIMENSIONS];
+} hb_sample_streams;
+
 typedef struct hb_sample_batch {
-    hb_sample_in in;
+    hb_sample_streams in;
     const float *wo[3];
     hb_sample_out out;
     float *wi[3];

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "calibration.h"
+#include "models/interface/plan.h"
 
 static const hb_calibration_entry builtin[] = {
 #include "calibration_builtin.h"
@@ -14,11 +15,7 @@ static const hb_calibration_entry builtin[] = {
 static hb_status bad_file(hb_error *error, const char *path, int line, const char *what, hb_calibration *c)
 {
     hb_calibration_close(c);
-    if (error) {
-        error->status = HB_ERR_PARAM;
-        snprintf(error->message, sizeof error->message, "calibration %s, line %d: %s", path, line, what);
-    }
-    return HB_ERR_PARAM;
+    return hb_plan_fail(error, HB_ERR_PARAM, "calibration %s, line %d: %s", path, line, what);
 }
 
 hb_status hb_calibration_open(const char *path, hb_calibration *c, hb_error *error)

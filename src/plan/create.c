@@ -24,15 +24,21 @@ static hb_status upgrade_struct(const char *name, const void *in, size_t size, v
     return HB_OK;
 }
 
+hb_status hb_material_upgrade(const hb_material *material, hb_material *m, hb_error *error)
+{
+    hb_material_default(m);
+    hb_status st = upgrade_struct("hb_material", material, material->struct_size, m, sizeof *m, _Alignof(hb_material), error);
+    m->struct_size = sizeof *m;
+    return st;
+}
+
 static hb_status upgrade_structs(const hb_material *material, const hb_options *options, hb_material *m,
                                  hb_options *o, hb_error *error)
 {
-    hb_material_default(m);
     hb_options_default(o);
-    hb_status st = upgrade_struct("hb_material", material, material->struct_size, m, sizeof *m, _Alignof(hb_material), error);
+    hb_status st = hb_material_upgrade(material, m, error);
     if (st == HB_OK)
         st = upgrade_struct("hb_options", options, options->struct_size, o, sizeof *o, _Alignof(hb_options), error);
-    m->struct_size = sizeof *m;
     o->struct_size = sizeof *o;
     return st;
 }
@@ -83,7 +89,7 @@ hb_status hb_plan_make(const hb_material *given_material, const hb_options *give
         st = hb_plan_build(material, &chosen, isa, &selection, out, error);
         if (st == HB_OK && error) /* an earlier attempt's message is not this call's */
             error->status = HB_OK, error->message[0] = '\0';
-        if (st != HB_ERR_UNSUPPORTED || selection.preset >= 32)
+        if ((st != HB_ERR_UNSUPPORTED && st != HB_ERR_LIMIT) || selection.preset >= 32)
             return st;
         selection.refused |= 1u << selection.preset;
         snprintf(selection.refusal, sizeof selection.refusal, "%s: %.120s", selection.configuration,

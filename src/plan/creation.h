@@ -9,6 +9,9 @@
  * resolved, its configuration chosen for a tolerance or budget, built (create.c). */
 hb_status hb_plan_make(const hb_material *material, const hb_options *options, hb_plan **out, hb_error *error);
 
+/* The caller's material (of this header's or an older one's size) at this header's size (create.c). */
+hb_status hb_material_upgrade(const hb_material *material, hb_material *out, hb_error *error);
+
 /* The plan of validated, concrete options on an ISA; selection (NULL for a plain plan) is what
  * chose them (create.c). hb_plan_free releases one. */
 hb_status hb_plan_build(const hb_material *material, const hb_options *options, hb_isa isa,

@@ -90,10 +90,8 @@ static hb_status measure_lobes(const hb_material *m, const hb_options *base, hb_
     for (int p = 0; p <= HB_LOBE_RESIDUAL && st == HB_OK; p++)
         share[p] = peak > 0.0 ? lobe_max[p] / peak : 0.0;
     free(buffer), free(sum), free(lobe_max);
-    if (st == HB_ERR_NOMEM && error) {
-        error->status = st;
-        snprintf(error->message, sizeof error->message, "could not allocate the lobe probes");
-    }
+    if (st == HB_ERR_NOMEM)
+        hb_plan_fail(error, st, "could not allocate the lobe probes");
     return st;
 }
 
@@ -172,12 +170,12 @@ hb_status hb_plan_select(const hb_material *m, const hb_options *in, hb_isa isa,
                           "no calibrated configuration of the %s model for these options: tolerance and budget plans "
                           "cover deon, marschner, and huang with R alone or R + TT + TRT", ops->name);
     else if (!best && in->tolerance > 0.0)
-        st = hb_plan_fail(error, HB_ERR_UNSUPPORTED,
+        st = hb_plan_fail(error, HB_ERR_LIMIT,
                           "tolerance %g leaves %.3g for the configuration after dropped lobes, below every calibrated "
                           "one (the most accurate, %s, measured %.3g)", in->tolerance, allowed,
                           most_accurate->configuration, most_accurate->error);
     else if (!best)
-        st = hb_plan_fail(error, HB_ERR_UNSUPPORTED,
+        st = hb_plan_fail(error, HB_ERR_LIMIT,
                           "budget %g ns: no configuration fits on %s (the fastest, %s, takes %.3g ns)", in->budget_ns,
                           hb_isa_name(isa), fastest->configuration, hb_calibration_ns(&calibration, fastest));
     if (st != HB_OK) {

@@ -1,5 +1,5 @@
 /* What differs between the compilers the library builds with (GCC, Clang, MinGW's GCC; MSVC and
- * clang-cl): forced inlining, loop unrolling hints, printf-format checking, bit counting, and which
+ * clang-cl): forced inlining, loop unrolling hints, printf-format checking, thread-local storage, bit counting, and which
  * architecture this is. Everything else in the library is C11. Internal. */
 #ifndef HB_SIMD_COMPILER_H
 #define HB_SIMD_COMPILER_H
@@ -9,7 +9,9 @@
 #define HB_NOINLINE __declspec(noinline)
 #define HB_PRAGMA_UNROLL
 #define HB_PRINTF_FORMAT(fmt, args)
+#define HB_THREAD_LOCAL __declspec(thread)
 #else
+#define HB_THREAD_LOCAL _Thread_local
 #define HB_ALWAYS_INLINE inline __attribute__((always_inline))
 #define HB_NOINLINE __attribute__((noinline, unused))
 #define HB_PRAGMA_UNROLL _Pragma("GCC unroll 8")

@@ -105,8 +105,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         hb_eval_report rep;
         /* every dimension a sampler may read (HHH22 with TT/TRT reads 8) */
-        hb_sample_in in = { a[2], a[3], { u[0], u[1], u[2], a[0], a[1], u[1], u[2], u[0] } };
-        if (hb_sample_angles(plan, n, in, (hb_sample_out){ ti, pi, pdf, { f[0], f[1], f[2] } }, &rep) != HB_OK)
+        hb_sample_in in = { a[2], a[3], (const float *const[]){ u[0], u[1], u[2], a[0], a[1], u[1], u[2], u[0] } };
+        if (hb_sample_angles(plan, n, &in, &(hb_sample_out){ ti, pi, pdf, { f[0], f[1], f[2] } }, &rep) != HB_OK)
             abort();
         if (rep.invalid > n)
             abort();
@@ -123,8 +123,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 abort();
         /* the vector forms, on the same numbers as vectors (most not unit length: counted) */
         float wi[3][MAX_SAMPLES];
-        hb_sample_vectors_in vin = { a[1], a[2], a[3], { u[0], u[1], u[2], a[0], a[1], u[1], u[2], u[0] } };
-        if (hb_sample_vectors(plan, n, vin, (hb_sample_vectors_out){ wi[0], wi[1], wi[2], pdf, { f[0], f[1], f[2] } },
+        hb_sample_vectors_in vin = { a[1], a[2], a[3], (const float *const[]){ u[0], u[1], u[2], a[0], a[1], u[1], u[2], u[0] } };
+        if (hb_sample_vectors(plan, n, &vin, &(hb_sample_vectors_out){ wi[0], wi[1], wi[2], pdf, { f[0], f[1], f[2] } },
                               &rep) != HB_OK || rep.invalid > n)
             abort();
         for (size_t k = 0; k < n; k++)
@@ -155,8 +155,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         float u[MAX_SAMPLES];
         for (size_t k = 0; k < n; k++)
             u[k] = a[0][k] - floorf(a[0][k]);
-        hb_sample_near_in in = { a[2], a[3], h, { u, a[1], u, a[0], u, u, u, u } };
-        hb_status sampled = hb_sample_near(plan, n, in, (hb_sample_out){ ti, pi, pdf, { f[0], f[1], f[2] } }, &rep);
+        hb_sample_near_in in = { a[2], a[3], h, (const float *const[]){ u, a[1], u, a[0], u, u, u, u } };
+        hb_status sampled = hb_sample_near(plan, n, &in, &(hb_sample_out){ ti, pi, pdf, { f[0], f[1], f[2] } }, &rep);
         if (sampled == HB_ERR_UNSUPPORTED && hb_plan_sample_dimensions(plan) == 0) { /* a near field without a sampler */
             hb_plan_destroy(plan);
             return 0;

@@ -15,5 +15,7 @@ hb_status hb_chiang_derive(hb_plan *plan, hb_error *error);
  * logistic scale s from beta_n, both in [0, 1]. */
 double hb_chiang_variance_r(double beta_m);
 double hb_chiang_logistic_scale(double beta_n);
+void hb_chiang_look(const hb_material *m, hb_look *look); /* look.c */
+hb_status hb_chiang_set_look(const hb_look *look, hb_material *m, hb_error *error);
 
 #endif

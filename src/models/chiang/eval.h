@@ -15,12 +15,21 @@ typedef struct chiang_offset {
     vf A[HB_CHIANG_TERMS][3], P[HB_CHIANG_TERMS], Phi[HB_CHIANG_ORDERS];
 } chiang_offset;
 
-/* cos theta_o and sin theta_o carry w_o; h in [-1, 1]. With eta' cos theta_o = sqrt(eta^2 - sin^2
+/* The plan's absorption per unit radius times log2(e), per channel, as chiang_offset_at takes it (a
+ * sample's own, hb_eval_angles_absorption, comes from load_absorption). */
+HB_INLINE void chiang_plan_absorption(const hb_chiang *c, vf absorption[3])
+{
+    for (int ch = 0; ch < 3; ch++)
+        absorption[ch] = vf_set1(c->sigma_a_log2e[ch]);
+}
+
+/* cos theta_o and sin theta_o carry w_o; h in [-1, 1]; absorption: sigma_a log2(e) per channel. With eta' cos theta_o = sqrt(eta^2 - sin^2
  * theta_o) = sqrt(eta^2 - 1 + cos^2 theta_o) (Bravais' index), sin gamma_t = h / eta'
  * and the path 2 cos gamma_t / cos theta_t (the absorption of HHH22 sec. 3.1.2) need no division by cos theta_o, so w_o at a pole
  * (cos theta_o = 0: gamma_t = 0) is finite. cos gamma_t = sqrt(eta^2 - 1 + cos^2 theta_o cos^2 gamma_o) / (eta' cos theta_o),
  * a sum of two non-negative terms: 1 - sin^2 gamma_t would cancel to 0 as eta -> 1 and |h| -> 1, losing the path inside. */
-HB_INLINE void chiang_offset_at(const hb_chiang *c, vf cos_theta_o, vf h, int with_pdf, chiang_offset *o)
+HB_INLINE void chiang_offset_at(const hb_chiang *c, const vf absorption[3], vf cos_theta_o, vf h, int with_pdf,
+                                chiang_offset *o)
 {
     vf cos_o = vf_abs(cos_theta_o); /* |cos theta_o|, as pbrt takes it: the float pi/2 lies beyond the pole */
     vf cos_gamma_o = vf_sqrt(vf_max(vf_mul(vf_sub(vf_set1(1.0f), h), vf_add(vf_set1(1.0f), h)), vf_set1(0.0f)));
@@ -36,7 +45,7 @@ HB_INLINE void chiang_offset_at(const hb_chiang *c, vf cos_theta_o, vf h, int wi
     vf mean[HB_CHIANG_TERMS] = { vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f) };
     vf TF[3], den[3], residual_den = vf_set1(1.0f);
     for (int ch = 0; ch < 3; ch++) {
-        vf t = vf_mul(vf_set1(c->sigma_a_log2e[ch]), path);
+        vf t = vf_mul(absorption[ch], path);
         vf T = vf_min(vf_exp2_neg(t), vf_set1(1.0f)); /* T = e^(-sigma_a path); 2^-0 rounds above 1 */
         TF[ch] = vf_mul(T, F);
         o->A[0][ch] = F;                                          /* dFH11 eq. 13: p = 0 */
@@ -145,12 +154,13 @@ HB_INLINE void chiang_accumulate(const hb_chiang *c, const chiang_offset *o, con
     }
 }
 
-/* The near field at h: f, and the sampler's pdf when pdf is not NULL. */
-HB_INLINE void chiang_near(const hb_chiang *c, const vf M[HB_CHIANG_TERMS], vf cos_theta_o, vf phi, vf h, vf f[3],
-                           vf *pdf)
+/* The near field at h: f, and the sampler's pdf when pdf is not NULL; absorption per channel as
+ * chiang_offset_at takes it. */
+HB_INLINE void chiang_near(const hb_chiang *c, const vf absorption[3], const vf M[HB_CHIANG_TERMS], vf cos_theta_o,
+                           vf phi, vf h, vf f[3], vf *pdf)
 {
     chiang_offset o;
-    chiang_offset_at(c, cos_theta_o, h, pdf != NULL, &o);
+    chiang_offset_at(c, absorption, cos_theta_o, h, pdf != NULL, &o);
     f[0] = f[1] = f[2] = vf_set1(0.0f);
     if (pdf)
         *pdf = vf_set1(0.0f);
@@ -167,7 +177,9 @@ HB_INLINE void chiang_near_lanes(const hb_chiang *c, const mp_inclinations *in, 
                                  vf f[3])
 {
     chiang_offset o;
-    chiang_offset_at(c, cos_theta_o, h, 0, &o);
+    vf absorption[3];
+    chiang_plan_absorption(c, absorption);
+    chiang_offset_at(c, absorption, cos_theta_o, h, 0, &o);
     vf order = vf_lane_index(), Phi = o.Phi[0], A[3] = { o.A[0][0], o.A[0][1], o.A[0][2] };
     vm at;
     HB_UNROLL
@@ -187,15 +199,17 @@ HB_INLINE void chiang_near_lanes(const hb_chiang *c, const mp_inclinations *in, 
         f[ch] = vf_set1(vf_sum_first(vf_mul(MN, A[ch]), HB_CHIANG_TERMS < HB_W ? HB_CHIANG_TERMS : HB_W));
 }
 
-/* The far field: the mean over h in [-1, 1] by the plan's nodes, each pairing h and -h. */
-HB_INLINE void chiang_far(const hb_chiang *c, const vf M[HB_CHIANG_TERMS], vf cos_theta_o, vf phi, vf f[3], vf *pdf)
+/* The far field: the mean over h in [-1, 1] by the plan's nodes, each pairing h and -h; absorption as
+ * chiang_near's. */
+HB_INLINE void chiang_far(const hb_chiang *c, const vf absorption[3], const vf M[HB_CHIANG_TERMS], vf cos_theta_o,
+                          vf phi, vf f[3], vf *pdf)
 {
     f[0] = f[1] = f[2] = vf_set1(0.0f);
     if (pdf)
         *pdf = vf_set1(0.0f);
     for (int j = 0; j < c->nodes; j++) {
         chiang_offset o;
-        chiang_offset_at(c, cos_theta_o, vf_set1(c->h[j]), pdf != NULL, &o);
+        chiang_offset_at(c, absorption, cos_theta_o, vf_set1(c->h[j]), pdf != NULL, &o);
         chiang_accumulate(c, &o, M, phi, 1, vf_set1(c->weight[j]), f, pdf);
     }
 }

@@ -4,7 +4,7 @@
 #include "kernels.h"
 #include "sample.h"
 
-HB_INLINE vm load_chiang_sample_near(hb_sample_near_in in, size_t i, size_t lanes, vf *a)
+HB_INLINE vm load_chiang_sample_near(hb_sample_streams in, size_t i, size_t lanes, vf *a)
 {
     return load_sample_near(in, HB_CHIANG_NEAR_DIMENSIONS, i, lanes, a);
 }
@@ -18,21 +18,46 @@ HB_INLINE vf cos_theta_of(vf theta) { return cos_near_pole(theta, vf_set1(HB_PIO
 
 static void angles_kernel(const hb_chiang *c, size_t n, hb_angles_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    vf M[HB_CHIANG_TERMS], f[3];
+    vf M[HB_CHIANG_TERMS], f[3], absorption[3];
+    chiang_plan_absorption(c, absorption);
     HB_BATCH(load_angles, 4, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_far(c, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, NULL), store_rgb(out, i, lanes, valid, f)));
+              chiang_far(c, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, NULL),
+              store_rgb(out, i, lanes, valid, f)));
+}
+
+/* f at each sample's absorption a[4..6] (load_absorbing): the far field, from angles or vectors. */
+static void absorbing_kernel(const hb_chiang *c, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
+                             size_t *invalid)
+{
+    vf M[HB_CHIANG_TERMS], f[3];
+    HB_BATCH(load_absorbing, 7, in, n, invalid,
+             (chiang_longitudinal_angles(c, a[0], a[2], M),
+              chiang_far(c, a + 4, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, NULL),
+              store_rgb(out, i, lanes, valid, f)));
+}
+
+/* The near field at each sample's h (a[4]) and absorption a[5..7] (load_near_absorbing). */
+static void near_absorbing_kernel(const hb_chiang *c, size_t n, const hb_absorbing_near *in, hb_rgb_soa out,
+                                  size_t *invalid)
+{
+    vf M[HB_CHIANG_TERMS], f[3];
+    HB_BATCH(load_near_absorbing, 8, in, n, invalid,
+             (chiang_longitudinal_angles(c, a[0], a[2], M),
+              chiang_near(c, a + 5, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, NULL),
+              store_rgb(out, i, lanes, valid, f)));
 }
 
 /* theta_o's cosine and phi = phi_o - phi_i from unit vectors: cos phi and sin phi are
  * proportional to the planar parts' dot and cross products (docs/conventions.md's frame). */
 HB_INLINE void chiang_vectors_far(const hb_chiang *c, const vf wi[3], const vf wo[3], vf f[3])
 {
-    vf M[HB_CHIANG_TERMS], sin_o, cos_o;
+    vf M[HB_CHIANG_TERMS], sin_o, cos_o, absorption[3];
     chiang_longitudinal_vectors(c, wi, wo, M);
     inclination(wo[0], wo[1], wo[2], &sin_o, &cos_o);
     vf phi = azimuth_difference(wi, wo);
-    chiang_far(c, M, cos_o, phi, f, NULL);
+    chiang_plan_absorption(c, absorption);
+    chiang_far(c, absorption, M, cos_o, phi, f, NULL);
 }
 
 static void vectors_kernel(const hb_chiang *c, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
@@ -53,19 +78,21 @@ static void sample_kernel(const hb_chiang *c, size_t n, const hb_sample_batch *b
 static void f_pdf_kernel(const hb_chiang *c, size_t n, const hb_pair_batch *in, const hb_rgb_soa *out, float *pdf,
                          size_t *invalid)
 {
-    vf M[HB_CHIANG_TERMS], f[3], p;
+    vf M[HB_CHIANG_TERMS], f[3], p, absorption[3];
+    chiang_plan_absorption(c, absorption);
     HB_BATCH(load_pairs, 4, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_far(c, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, &p),
+              chiang_far(c, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, &p),
               store_block(pdf, i, lanes, vf_keep(valid, p)), out ? store_rgb(*out, i, lanes, valid, f) : (void)0));
 }
 
 static void near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    vf M[HB_CHIANG_TERMS], f[3];
+    vf M[HB_CHIANG_TERMS], f[3], absorption[3];
+    chiang_plan_absorption(c, absorption);
     HB_BATCH(load_near, 5, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_near(c, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, NULL),
+              chiang_near(c, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, NULL),
               store_rgb(out, i, lanes, valid, f)));
 }
 
@@ -82,7 +109,7 @@ static void near_few_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb
                    store_rgb_one(out, k, valid, f)));
 }
 
-static void sample_near_kernel(const hb_chiang *c, size_t n, hb_sample_near_in in, hb_sample_out out,
+static void sample_near_kernel(const hb_chiang *c, size_t n, hb_sample_streams in, hb_sample_out out,
                                size_t *invalid)
 {
     vf theta_i, phi_i, pdf, weight[3];
@@ -94,10 +121,11 @@ static void sample_near_kernel(const hb_chiang *c, size_t n, hb_sample_near_in i
 
 static void pdf_near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, float *pdf, size_t *invalid)
 {
-    vf M[HB_CHIANG_TERMS], f[3], p;
+    vf M[HB_CHIANG_TERMS], f[3], p, absorption[3];
+    chiang_plan_absorption(c, absorption);
     HB_BATCH(load_near, 5, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_near(c, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, &p),
+              chiang_near(c, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, &p),
               store_block(pdf, i, lanes, vf_keep(valid, p))));
 }
 
@@ -107,6 +135,8 @@ const hb_chiang_kernels HB_ISA_SYMBOL(chiang_kernels) = {
     .sample = sample_kernel,
     .f_pdf = f_pdf_kernel,
     .near = near_kernel,
+    .absorbing = absorbing_kernel,
+    .near_absorbing = near_absorbing_kernel,
     .near_few = near_few_kernel,
     .near_few_max = HB_W > 1,
     .sample_near = sample_near_kernel,

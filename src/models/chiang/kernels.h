@@ -16,12 +16,15 @@ typedef struct hb_chiang_kernels {
     /* the pdf, and f where out is not NULL, in one pass */
     void (*f_pdf)(const hb_chiang *c, size_t n, const hb_pair_batch *in, const hb_rgb_soa *out, float *pdf,
                   size_t *invalid);
+    /* f at each sample's absorption: far field (angles or vectors), near field at h */
+    void (*absorbing)(const hb_chiang *c, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out, size_t *invalid);
+    void (*near_absorbing)(const hb_chiang *c, size_t n, const hb_absorbing_near *in, hb_rgb_soa out, size_t *invalid);
     /* near field, at each sample's h */
     void (*near)(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);
     /* calls of at most near_few_max samples on the float M_p path, each alone (kernels.c) */
     void (*near_few)(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);
     int near_few_max;
-    void (*sample_near)(const hb_chiang *c, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid);
+    void (*sample_near)(const hb_chiang *c, size_t n, hb_sample_streams in, hb_sample_out out, size_t *invalid);
     void (*pdf_near)(const hb_chiang *c, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
 } hb_chiang_kernels;
 

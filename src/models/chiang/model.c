@@ -52,7 +52,21 @@ static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa 
         kernels_of(plan, n)->near(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
 }
 
-static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)
+static hb_status eval_absorption(const hb_plan *plan, size_t n, const hb_absorbing_batch *in, hb_rgb_soa out,
+                                 size_t *invalid)
+{
+    kernels_of(plan, n)->absorbing(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
+    return HB_OK;
+}
+
+static hb_status eval_near_absorption(const hb_plan *plan, size_t n, const hb_absorbing_near *in, hb_rgb_soa out,
+                                      size_t *invalid)
+{
+    kernels_of(plan, n)->near_absorbing(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
+    return HB_OK;
+}
+
+static void sample_near(const hb_plan *plan, size_t n, hb_sample_streams in, hb_sample_out out, size_t *invalid)
 {
     kernels_of(plan, n)->sample_near(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
 }
@@ -136,7 +150,11 @@ const hb_model_ops hb_chiang_model = {
     .table = table,
     .eval_near = eval_near,
     .sample_near = sample_near,
+    .eval_absorption = eval_absorption,
+    .eval_near_absorption = eval_near_absorption,
     .pdf_near = pdf_near,
+    .look = hb_chiang_look,
+    .set_look = hb_chiang_set_look,
     .describe = describe,
     .furnace_rule = furnace_rule,
     .presets = presets,

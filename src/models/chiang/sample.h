@@ -24,7 +24,9 @@ HB_INLINE void chiang_sample_near(const hb_chiang *c, vf theta_o, vf phi_o, vf h
 {
     vf cos_theta_o = cos_near_pole(theta_o, vf_set1(HB_PIO2_LO));
     chiang_offset o;
-    chiang_offset_at(c, cos_theta_o, h, 1, &o);
+    vf absorption[3];
+    chiang_plan_absorption(c, absorption);
+    chiang_offset_at(c, absorption, cos_theta_o, h, 1, &o);
     /* the lobe: the first p whose cumulative probability passes u[0] */
     vf cumulative = vf_set1(0.0f), Phi = cumulative, cos_shift = vf_set1(1.0f), sin_shift = cumulative;
     vf v = vf_set1(c->v[0]), e2 = vf_set1(c->exp_minus_two_inv_v[0]); /* R's, where no lobe has any mass */
@@ -67,7 +69,9 @@ HB_INLINE void chiang_sample_far(const hb_chiang *c, vf theta_o, vf phi_o, const
     chiang_sample_near(c, theta_o, phi_o, h, u, theta_i, phi_i, pdf, near_weight);
     vf M[HB_CHIANG_TERMS], f[3];
     chiang_longitudinal_angles(c, *theta_i, theta_o, M);
-    chiang_far(c, M, cos_near_pole(theta_o, vf_set1(HB_PIO2_LO)), vf_sub(phi_o, *phi_i), f, pdf);
+    vf absorption[3];
+    chiang_plan_absorption(c, absorption);
+    chiang_far(c, absorption, M, cos_near_pole(theta_o, vf_set1(HB_PIO2_LO)), vf_sub(phi_o, *phi_i), f, pdf);
     vf zero = vf_set1(0.0f);
     vm some = vf_gt(*pdf, zero);
     for (int ch = 0; ch < 3; ch++)

@@ -157,7 +157,7 @@ hb_status hb_deon_build_colour_table(hb_plan *plan, hb_error *error)
     for (;;) {
         double work = 4.0 * a.n_cd * a.n_phi * a.n_x / 3.0 * d->nodes;
         if (work > 4.0 * HB_DEON_TABLE_MAX_WORK)
-            return hb_plan_fail(error, HB_ERR_UNSUPPORTED,
+            return hb_plan_fail(error, HB_ERR_LIMIT,
                                 "table_tolerance %g needs a finer colour table than %.3g node evaluations allow (this "
                                 "beta_n and quality): loosen it or use the quadrature", tol, work);
         int part = hb_build_part(a.n_cd);
@@ -220,7 +220,7 @@ hb_status hb_deon_build_colour_table(hb_plan *plan, hb_error *error)
         int *axis = error_cd >= error_phi && error_cd >= error_x ? &a.n_cd : error_phi >= error_x ? &a.n_phi : &a.n_x;
         int most = axis == &a.n_cd ? HB_DEON_TABLE_MAX_CD : axis == &a.n_phi ? HB_DEON_TABLE_MAX_PHI : MAX_X;
         if (*axis >= most)
-            return hb_plan_fail(error, HB_ERR_UNSUPPORTED,
+            return hb_plan_fail(error, HB_ERR_LIMIT,
                                 "table_tolerance %g is not reached by the largest colour table (midpoint error %.2g): "
                                 "loosen it or use the quadrature", tol, total);
         *axis = 2 * *axis - 1;

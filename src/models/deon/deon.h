@@ -14,5 +14,7 @@ hb_status hb_deon_table_view(const hb_plan *plan, hb_table_view *view, int *chan
 hb_status hb_deon_build_colour_table(hb_plan *plan, hb_error *error);                  /* colour_table.c */
 hb_status hb_deon_colour_table_view(const hb_plan *plan, hb_table_view *view, int *channels);
 hb_status hb_deon_shader_constants(const hb_plan *plan, float *constants); /* table_build.c */
+void hb_deon_look(const hb_material *m, hb_look *look); /* look.c */
+hb_status hb_deon_set_look(const hb_look *look, hb_material *m, hb_error *error);
 
 #endif

@@ -9,7 +9,7 @@ HB_INLINE vm load_deon_sample(const hb_sample_batch *b, size_t i, size_t lanes, 
     return load_sample(b, HB_DEON_SAMPLE_DIMENSIONS, i, lanes, a);
 }
 
-HB_INLINE vm load_deon_sample_near(hb_sample_near_in in, size_t i, size_t lanes, vf *a)
+HB_INLINE vm load_deon_sample_near(hb_sample_streams in, size_t i, size_t lanes, vf *a)
 {
     return load_sample_near(in, HB_DEON_NEAR_DIMENSIONS, i, lanes, a);
 }
@@ -37,18 +37,34 @@ HB_INLINE vf deon_f_pdf_angles(const hb_deon *d, const vf a[4], hb_i0 i0, vf f[3
     return deon_f_pdf(d, M, &g, a[2], f);
 }
 
-/* f at each sample's absorption a[4..6] (load_absorbing), by the quadrature or the colour table: the
- * plan's geometry with the sample's sigma_a in every channel, three channels computed. */
+/* M and the geometry of a sample that carries its own absorption (sigma_a log2(e) per channel): the
+ * plan's geometry with that absorption in every channel, three channels computed. */
+HB_INLINE void deon_absorbing_setup(const hb_deon *d, const vf a[4], const vf absorption[3], hb_i0 i0,
+                                    vf M[HB_MAX_LOBES + 1], deon_geometry *g)
+{
+    deon_longitudinal_groups(d, a[0], a[2], i0, M);
+    deon_geometry_angles(d, a[0], a[1], a[2], a[3], g);
+    for (int c = 0; c < 3; c++)
+        g->absorption[c] = absorption[c];
+    g->grey = 0;
+}
+
+/* f at each sample's absorption a[4..6] (load_absorbing), by the quadrature or the colour table. */
 HB_INLINE void deon_absorbing_angles(const hb_deon *d, const vf a[7], hb_i0 i0, vf f[3])
 {
     vf M[HB_MAX_LOBES + 1];
-    deon_longitudinal_groups(d, a[0], a[2], i0, M);
     deon_geometry g;
-    deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
-    for (int c = 0; c < 3; c++)
-        g.absorption[c] = a[4 + c];
-    g.grey = 0;
+    deon_absorbing_setup(d, a, a + 4, i0, M, &g);
     deon_eval(d, &g, M, f);
+}
+
+/* The near field at each sample's h (a[4]) and absorption a[5..7] (load_near_absorbing). */
+HB_INLINE void deon_near_absorbing_angles(const hb_deon *d, const vf a[8], hb_i0 i0, vf f[3])
+{
+    vf M[HB_MAX_LOBES + 1];
+    deon_geometry g;
+    deon_absorbing_setup(d, a, a + 5, i0, M, &g);
+    deon_near(d, &g, M, a[4], f, NULL);
 }
 
 /* How many samples a call may have for the kernels to take them one at a time, the far field's
@@ -128,6 +144,7 @@ const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
     .absorbing = { deon_absorbing_abramowitz, deon_absorbing_paper },
     .near = { deon_near_abramowitz, deon_near_paper },
     .near_few = { deon_near_few_abramowitz, deon_near_few_paper },
+    .near_absorbing = { deon_near_absorbing_abramowitz, deon_near_absorbing_paper },
     .near_few_max = HB_DEON_NEAR_FEW_MAX,
     .pdf_near = { deon_pdf_near_abramowitz, deon_pdf_near_paper },
     .sample_near = { deon_sample_near_abramowitz, deon_sample_near_paper },

@@ -92,6 +92,14 @@ static void HB_DEON_VARIANT(deon_near)(const hb_deon *deon, size_t n, hb_near_so
              (deon_near_angles(deon, a, HB_DEON_I0, f, NULL), store_rgb(out, i, lanes, valid, f)));
 }
 
+static void HB_DEON_VARIANT(deon_near_absorbing)(const hb_deon *deon, size_t n, const hb_absorbing_near *in,
+                                         hb_rgb_soa out, size_t *invalid)
+{
+    vf f[3];
+    HB_BATCH(load_near_absorbing, 8, in, n, invalid,
+             (deon_near_absorbing_angles(deon, a, HB_DEON_I0, f), store_rgb(out, i, lanes, valid, f)));
+}
+
 static void HB_DEON_VARIANT(deon_pdf_near)(const hb_deon *deon, size_t n, hb_near_soa in, float *pdf,
                                    size_t *invalid)
 {
@@ -100,7 +108,7 @@ static void HB_DEON_VARIANT(deon_pdf_near)(const hb_deon *deon, size_t n, hb_nea
              (deon_near_angles(deon, a, HB_DEON_I0, f, &p), store_block(pdf, i, lanes, vf_keep(valid, p))));
 }
 
-static void HB_DEON_VARIANT(deon_sample_near)(const hb_deon *deon, size_t n, hb_sample_near_in in,
+static void HB_DEON_VARIANT(deon_sample_near)(const hb_deon *deon, size_t n, hb_sample_streams in,
                                       hb_sample_out out, size_t *invalid)
 {
     vf theta_i, phi_i, pdf, weight[3];

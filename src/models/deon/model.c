@@ -135,7 +135,14 @@ static void eval_near(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa 
         deon_kernels_for(plan, n)->near[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
 }
 
-static void sample_near(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid)
+static hb_status eval_near_absorption(const hb_plan *plan, size_t n, const hb_absorbing_near *in, hb_rgb_soa out,
+                                      size_t *invalid)
+{
+    deon_kernels_for(plan, n)->near_absorbing[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
+    return HB_OK;
+}
+
+static void sample_near(const hb_plan *plan, size_t n, hb_sample_streams in, hb_sample_out out, size_t *invalid)
 {
     deon_kernels_for(plan, n)->sample_near[plan->options.i0](&hb_deon_of(plan)->kernel, n, in, out, invalid);
 }
@@ -242,9 +249,12 @@ const hb_model_ops hb_deon_model = {
     .eval_absorption = eval_absorption,
     .eval_near = eval_near,
     .sample_near = sample_near,
+    .eval_near_absorption = eval_near_absorption,
     .pdf_near = pdf_near,
     .table = hb_deon_table_view,
     .shader_constants = hb_deon_shader_constants,
+    .look = hb_deon_look,
+    .set_look = hb_deon_set_look,
     .describe = describe,
     .furnace_rule = furnace_rule,
     .presets = presets,

@@ -131,7 +131,7 @@ hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
     for (;;) {
         double work = 3.0 * n_phi * n_cd * d->nodes;
         if (work > MAX_WORK)
-            return hb_plan_fail(error, HB_ERR_UNSUPPORTED,
+            return hb_plan_fail(error, HB_ERR_LIMIT,
                               "table_tolerance %g needs a finer N_p table than %.3g node evaluations allow (this "
                               "beta_n and quality): loosen it or use the quadrature", tol, work);
         size_t nodes = (size_t)n_phi * (size_t)n_cd;
@@ -188,7 +188,7 @@ hb_status hb_deon_build_table(hb_plan *plan, hb_error *error)
         free(values);
         int refine_phi = error_phi >= error_cd ? n_phi < MAX_PHI : n_cd >= MAX_CD;
         if (refine_phi ? n_phi >= MAX_PHI : n_cd >= MAX_CD)
-            return hb_plan_fail(error, HB_ERR_UNSUPPORTED,
+            return hb_plan_fail(error, HB_ERR_LIMIT,
                               "table_tolerance %g is not reached by the largest N_p table (midpoint error %.2g): "
                               "loosen it or use the quadrature", tol, error_phi + error_cd);
         if (refine_phi)

@@ -15,5 +15,7 @@ int hb_huang_table_fits(hb_plan *plan);                           /* its build t
 int hb_huang_table_grid_of(hb_quality quality);                   /* a quality's own table grid */
 hb_status hb_huang_table_view(const hb_plan *plan, hb_table_view *view, int *channels);
 hb_status hb_huang_shader_constants(const hb_plan *plan, float *constants); /* table_build.c */
+void hb_huang_look(const hb_material *m, hb_look *look); /* look.c */
+hb_status hb_huang_set_look(const hb_look *look, hb_material *m, hb_error *error);
 
 #endif

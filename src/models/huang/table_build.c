@@ -62,11 +62,7 @@ static hb_status out_of_memory(hb_error *error, void *a, void *b, void *c)
     free(a);
     free(b);
     free(c);
-    if (error) {
-        error->status = HB_ERR_NOMEM;
-        snprintf(error->message, sizeof error->message, "could not allocate the huang TT/TRT table");
-    }
-    return HB_ERR_NOMEM;
+    return hb_plan_fail(error, HB_ERR_NOMEM, "could not allocate the huang TT/TRT table");
 }
 
 /* Exit-to-node connections a build of the plan's grid makes with `paths` per node: its cost. */
@@ -195,16 +191,11 @@ hb_status hb_huang_build_table(hb_plan *plan, hb_error *error)
     size_t row = (size_t)t->n_sum * (size_t)t->n_delta * 3;
     size_t rows = (size_t)t->n_theta_i * (size_t)t->n_phi_i;
     size_t exits = 2 * (size_t)lattice->points * (size_t)(t->panels + 1);
-    if (connections > MAX_CONNECTIONS) {
-        if (error) {
-            error->status = HB_ERR_UNSUPPORTED;
-            snprintf(error->message, sizeof error->message,
-                     "the TT/TRT table at roughness %g and this quality needs %.2g path connections (about %.0f s "
-                     "to build; the limit is %.0g): use a coarser quality, tt_trt = mc, or fewer tt_panels",
-                     r, connections, connections * 2.1e-9, MAX_CONNECTIONS);
-        }
-        return HB_ERR_UNSUPPORTED;
-    }
+    if (connections > MAX_CONNECTIONS)
+        return hb_plan_fail(error, HB_ERR_LIMIT,
+                            "the TT/TRT table at roughness %g and this quality needs %.2g path connections (about %.0f s "
+                            "to build; the limit is %.0g): use a coarser quality, tt_trt = mc, or fewer tt_panels", r,
+                            connections, connections * 2.1e-9, MAX_CONNECTIONS);
     int count = (int)rows, part = hb_build_part(count);
     size_t scratch_floats = exits * HB_HUANG_EXIT_FLOATS;
     float *values = malloc(rows * row * sizeof *values);

@@ -28,6 +28,13 @@ typedef struct hb_preset {
     hb_tt_trt tt_trt;
 } hb_preset;
 
+/* A material's look in terms every model converts through (hb_material_convert), in radians: the
+ * R lobe's longitudinal standard deviation in theta_o, the azimuthal spread as a Gaussian's
+ * standard deviation, and the tilt that puts the R peak at theta_o = -theta_i - 2 tilt. */
+typedef struct hb_look {
+    double longitudinal, azimuthal, tilt;
+} hb_look;
+
 typedef struct hb_model_ops {
     const char *name; /* "deon": as the CLI, the bench and the calibration name the model */
     const struct hb_reference_ops *reference; /* its double-precision procedures (its reference.h) */
@@ -68,8 +75,17 @@ typedef struct hb_model_ops {
     /* Near-field models: the same at each sample's offset h (plan->kernels != NULL); NULL when the
      * model has no near field. */
     void (*eval_near)(const hb_plan *plan, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);
-    void (*sample_near)(const hb_plan *plan, size_t n, hb_sample_near_in in, hb_sample_out out, size_t *invalid);
+    void (*sample_near)(const hb_plan *plan, size_t n, hb_sample_streams in, hb_sample_out out, size_t *invalid);
+    /* f at each sample's h and absorption (hb_eval_near_absorption); HB_ERR_UNSUPPORTED for plans
+     * whose path cannot take it. */
+    hb_status (*eval_near_absorption)(const hb_plan *plan, size_t n, const hb_absorbing_near *in, hb_rgb_soa out,
+                                      size_t *invalid);
     void (*pdf_near)(const hb_plan *plan, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
+
+    /* The look of a material's roughness and tilt, and the parameters that give a look (the
+     * material's others untouched); HB_ERR_PARAM when the look is beyond the model's range. */
+    void (*look)(const hb_material *m, hb_look *look);
+    hb_status (*set_look)(const hb_look *look, hb_material *m, hb_error *error);
 
     /* hb_plan_describe's model paragraph. */
     void (*describe)(hb_text *t, const hb_plan *plan);

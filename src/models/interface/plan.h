@@ -1,7 +1,7 @@
 /* The plan's data (struct hb_plan): the validated inputs, what a tolerance or budget plan chose,
  * and after them the model's own state (src/models/<model>/state.h). Written once at plan creation
- * (src/plan/create.c and the model's derive), read by every evaluation; also hb_plan_fail, which
- * words a refusal. Internal. */
+ * (src/plan/create.c and the model's derive), read by every evaluation; also hb_plan_fail and
+ * hb_fail, which word a failure. Internal. */
 #ifndef HB_MODELS_PLAN_H
 #define HB_MODELS_PLAN_H
 
@@ -40,7 +40,12 @@ struct hb_plan {
     max_align_t state[];    /* the model's own state: hb_<model>_of (src/models/<model>/state.h) */
 };
 
-/* Fills error (if not NULL) with status and the formatted message; returns status (src/models/fail.c). */
+/* A failure (src/models/text/fail.c): records status and the formatted message as the calling
+ * thread's last error (hb_last_error), copies it to error if not NULL, and returns status. */
 hb_status hb_plan_fail(hb_error *error, hb_status status, const char *fmt, ...) HB_PRINTF_FORMAT(3, 4);
+hb_status hb_fail(hb_status status, const char *fmt, ...) HB_PRINTF_FORMAT(2, 3);
+/* HB_ERR_NULL, "call: argument is NULL". */
+hb_status hb_fail_null(const char *call, const char *argument);
+const hb_error *hb_thread_error(void);
 
 #endif
