@@ -650,6 +650,13 @@ typedef struct hb_dual_terms {
  * HB_ERR_PARAM for theta outside (-pi/2, pi/2) or d_b outside [0, 1]. */
 HB_API hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms);
 
+/* Each lobe's part of a_f and a_b at theta: forward[p] and backward[p] per channel for the orders p
+ * of the plan's lobe set and HB_LOBE_RESIDUAL (0 for the others), integrated on the plan's own nodes,
+ * so that they sum to hb_dual_terms_at's a_f and a_b. Creates (and frees) a plan of each lobe alone,
+ * which costs what that plan's creation costs (a table plan builds its table). */
+HB_API hb_status hb_dual_lobe_energies(const hb_plan *plan, double theta, double forward[HB_MAX_LOBES + 1][3],
+                                       double backward[HB_MAX_LOBES + 1][3]);
+
 /* Instruction sets: names as used by --isa and the HB_ISA environment variable
  * ("scalar", "sse4.1", "avx2", "avx512", "neon"). */
 HB_API const char *hb_isa_name(hb_isa isa);

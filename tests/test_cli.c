@@ -663,7 +663,7 @@ static void test_model_by_command(hb_test_ctx *t)
         const char *model = models[m];
         static const char *const commands[] = {
             "eval", "pdf", "sample --theta-o 0.5 --count 4", "plan", "furnace --theta-o -1,0.5",
-            "furnace --by-lobe --theta-o -1,0.5", "dual --thetas 2",
+            "furnace --by-lobe --theta-o -1,0.5", "dual --thetas 2", "dual --thetas 2 --by-lobe",
         };
         for (size_t c = 0; c < sizeof commands / sizeof commands[0]; c++) {
             snprintf(args, sizeof args, "%s --model %s --quality fast", commands[c], model);
@@ -672,9 +672,11 @@ static void test_model_by_command(hb_test_ctx *t)
                 return;
             CHECK(t, r.status == 0 && r.out[0] && !r.err[0], "%s: exit %d, stdout '%.80s', stderr '%s'", args, r.status,
                   r.out, r.err);
-            if (strstr(commands[c], "--by-lobe"))
+            if (strstr(commands[c], "furnace --by-lobe"))
                 CHECK(t, strncmp(r.out, lobe_columns[m], strlen(lobe_columns[m])) == 0, "%s: header '%.80s', expected '%s'",
                       args, r.out, lobe_columns[m]);
+            if (strstr(commands[c], "dual --thetas 2 --by-lobe"))
+                CHECK(t, strstr(r.out, ",a_f_TT_r,") && strstr(r.out, ",a_b_R_b,"), "%s: header '%.300s'", args, r.out);
         }
         snprintf(args, sizeof args, "dump --model %s --quality fast --theta-i 0.3 --phi-i 0 --width 16 --height 8 -o \"%s\"",
                  model, dir_image);

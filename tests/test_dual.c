@@ -168,7 +168,53 @@ static void test_back_scattering(hb_test_ctx *t)
     hb_plan_destroy(plan);
 }
 
+/* hb_dual_lobe_energies: each lobe's part of a_f and a_b, its own plan on the parent's nodes, sums to
+ * the parent's energies (the integrals are linear in f) to 1e-6; HHH22's TT and TRT plans build a
+ * table each, where the parent tabulates their sum, and the tables' own errors (docs/huang.md: a mean
+ * 2e-3 of the peak at the fast grid) differ, so its bound is 5e-3. The parts are non-negative; TT
+ * carries most of a blond fibre's forward energy, R and TRT its backward. */
+static void test_lobe_energies(hb_test_ctx *t)
+{
+    static const int picks[] = { 1, 6, 10, 11 }; /* dFH11, CBTB16, MJC03 and HHH22 blond */
+    static const double bounds[] = { 1e-6, 1e-6, 1e-6, 5e-3 };
+    for (int k = 0; k < 4; k++) {
+        double worst = 0.0;
+        const dual_case *c = &cases[picks[k]];
+        hb_plan *plan = dual_plan(t, c);
+        if (!plan)
+            continue;
+        for (int j = 0; j < (t->quick ? 2 : 4); j++) {
+            double theta = theta_node(j, 4), forward[HB_MAX_LOBES + 1][3], backward[HB_MAX_LOBES + 1][3];
+            hb_dual_terms d = { .struct_size = sizeof d };
+            hb_status st = hb_dual_lobe_energies(plan, theta, forward, backward);
+            CHECK(t, st == HB_OK && hb_dual_terms_at(plan, theta, HB_DUAL_DENSITY, &d) == HB_OK, "%s: %s", c->name,
+                  hb_last_error()->message);
+            if (st != HB_OK)
+                break;
+            for (int ch = 0; ch < 3; ch++) {
+                double sum_f = 0.0, sum_b = 0.0;
+                for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+                    CHECK(t, forward[p][ch] >= 0.0 && backward[p][ch] >= 0.0, "%s: lobe %d negative", c->name, p);
+                    sum_f += forward[p][ch], sum_b += backward[p][ch];
+                }
+                worst = fmax(worst, fabs(sum_f - d.a_f[ch]) / d.a_f[ch]);
+                worst = fmax(worst, fabs(sum_b - d.a_b[ch]) / d.a_b[ch]);
+            }
+            if (j == 1)
+                hb_test_note(t, "%-13s theta %+.2f, green: a_f %.4f of which TT %.4f; a_b %.4f of which R %.4f, TRT %.4f",
+                             c->name, theta, d.a_f[1], forward[HB_LOBE_TT][1], d.a_b[1], backward[HB_LOBE_R][1],
+                             backward[HB_LOBE_TRT][1]);
+            CHECK(t, forward[HB_LOBE_TT][1] > 0.5 * d.a_f[1], "%s: TT carries %g of a_f %g", c->name,
+                  forward[HB_LOBE_TT][1], d.a_f[1]);
+        }
+        hb_plan_destroy(plan);
+        hb_test_note(t, "%-13s the lobes' parts sum to a_f and a_b within %.1e relative", c->name, worst);
+        CHECK(t, worst <= bounds[k], "%s: the lobes' parts differ from the whole by %.3g", c->name, worst);
+    }
+}
+
 const hb_test hb_tests_dual[] = {
+    { "dual_lobe_energies", test_lobe_energies, 0 },
     { "dual_lossless_sum", test_lossless_sum, 0 },
     { "dual_independent_rule", test_independent_rule, 0 },
     { "dual_back_scattering", test_back_scattering, 0 },

@@ -31,6 +31,9 @@ hb_status cli_plan_create(const cli_model_args *args, const hb_options *options,
  * -1 on a bad value (err holds the message). */
 int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, char *err, size_t err_size);
 
+/* The name of lobe p (an order, or HB_LOBE_RESIDUAL) in columns and messages: R, TT, TRT, TRRT, p4..p7, residual. */
+const char *cli_lobe_name(int p);
+
 /* A whole field as an integer in [0, 2^64 - 1]; 0 for anything else (a sign, an overflow). */
 int cli_parse_u64(const char *s, unsigned long long *out);
 

@@ -214,6 +214,12 @@ static int parse_int(const char *s, int lo, int hi, int *out)
     return 1;
 }
 
+const char *cli_lobe_name(int p)
+{
+    static const char *const names[HB_MAX_LOBES + 1] = { "R", "TT", "TRT", "TRRT", "p4", "p5", "p6", "p7", "residual" };
+    return p >= 0 && p <= HB_LOBE_RESIDUAL ? names[p] : "?";
+}
+
 /* Lobe names R, TT, TRT, TRRT, residual, or an order p as a number. */
 static int parse_lobes(const char *s, unsigned *mask)
 {

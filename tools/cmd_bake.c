@@ -121,11 +121,10 @@ int cmd_bake(int argc, char **argv)
     for (int k = 0; !st && k < v.axes; k++)
         printf("axis %d: %d nodes, %g to %g, %s\n", k, v.size[k], v.lo[k], v.hi[k], v.axis[k]);
     for (int s = 0; !st && s < v.slots; s++) {
-        static const char *const names[HB_MAX_LOBES + 1] = { "R", "TT", "TRT", "TRRT", "p4", "p5", "p6", "p7", "residual" };
         printf("slot %d: lobes ", s);
         for (int p = 0, first = 1; p <= HB_LOBE_RESIDUAL; p++)
             if (v.slot_lobes[s] >> p & 1u) {
-                printf("%s%s", first ? "" : "+", names[p]);
+                printf("%s%s", first ? "" : "+", cli_lobe_name(p));
                 first = 0;
             }
         printf(" (mask 0x%x)\n", v.slot_lobes[s]);

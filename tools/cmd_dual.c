@@ -9,11 +9,12 @@
 
 static void dual_usage(FILE *to)
 {
-    fprintf(to, "usage: hairbsdf dual [options] [--thetas N] [--density D]\n"
+    fprintf(to, "usage: hairbsdf dual [options] [--thetas N] [--density D] [--by-lobe]\n"
                 "Prints, per channel at N inclinations theta of the light (the midpoints of N equal parts\n"
                 "of (-pi/2, pi/2), default 64): the forward and backward energies a_f, a_b, their mean\n"
                 "theta_h alpha_f, alpha_b and variances beta_f2, beta_b2, and the multiple back-scattering\n"
-                "A_b, delta_b, sigma_b2 with the density factor D (default 0.7).\n%s",
+                "A_b, delta_b, sigma_b2 with the density factor D (default 0.7). With --by-lobe, each\n"
+                "lobe's part of a_f and a_b follows (hb_dual_lobe_energies).\n%s",
             cli_model_options_help);
 }
 
@@ -21,7 +22,7 @@ int cmd_dual(int argc, char **argv)
 {
     cli_model_args args;
     cli_model_args_default(&args);
-    int thetas = 64;
+    int thetas = 64, by_lobe = 0;
     double density = HB_DUAL_DENSITY;
     char err[256];
     for (int i = 1; i < argc; i++) {
@@ -30,6 +31,10 @@ int cmd_dual(int argc, char **argv)
             return 0;
         }
         char *end;
+        if (strcmp(argv[i], "--by-lobe") == 0) {
+            by_lobe = 1;
+            continue;
+        }
         if (strcmp(argv[i], "--thetas") == 0 && i + 1 < argc) {
             long n = strtol(argv[++i], &end, 10);
             if (*end || n < 1 || n > 4096) {
@@ -63,6 +68,22 @@ int cmd_dual(int argc, char **argv)
     printf("theta");
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
         printf(",%s_r,%s_g,%s_b", names[k], names[k], names[k]);
+    double forward[HB_MAX_LOBES + 1][3], backward[HB_MAX_LOBES + 1][3];
+    unsigned lobes = 0; /* the lobes with energy at the first theta: the plan's set */
+    if (by_lobe) {
+        if (hb_dual_lobe_energies(plan, -M_PI_2 + M_PI * 0.5 / thetas, forward, backward) != HB_OK) {
+            fprintf(stderr, "hairbsdf dual: %s\n", hb_last_error()->message);
+            hb_plan_destroy(plan);
+            return 2;
+        }
+        for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+            if (forward[p][1] > 0.0 || backward[p][1] > 0.0) {
+                lobes |= HB_LOBE_BIT(p);
+                for (int h = 0; h < 2; h++)
+                    printf(",%s_%s_r,%s_%s_g,%s_%s_b", h ? "a_b" : "a_f", cli_lobe_name(p), h ? "a_b" : "a_f",
+                           cli_lobe_name(p), h ? "a_b" : "a_f", cli_lobe_name(p));
+            }
+    }
     printf("\n");
     for (int k = 0; k < thetas; k++) {
         double theta = -M_PI_2 + M_PI * (k + 0.5) / thetas;
@@ -72,6 +93,11 @@ int cmd_dual(int argc, char **argv)
         printf("%.6f", theta);
         for (size_t c = 0; c < sizeof columns / sizeof columns[0]; c++)
             printf(",%.6g,%.6g,%.6g", columns[c][0], columns[c][1], columns[c][2]);
+        if (lobes && hb_dual_lobe_energies(plan, theta, forward, backward) == HB_OK)
+            for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
+                if (lobes >> p & 1u)
+                    printf(",%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", forward[p][0], forward[p][1], forward[p][2], backward[p][0],
+                           backward[p][1], backward[p][2]);
         printf("\n");
     }
     hb_plan_destroy(plan);

@@ -191,7 +191,7 @@ int cmd_eval(int argc, char **argv, int pdf)
                 break;
             }
             if (header >= ROW_MELANIN && !absorbing) {
-                fprintf(stderr, "%s: absorption columns need eval with deon (quadrature) or marschner\n", name);
+                fprintf(stderr, "%s: absorption columns need eval with deon (quadrature), marschner or chiang\n", name);
                 status = 2;
                 break;
             }

@@ -140,10 +140,9 @@ static int furnace_rows(FILE *out, const furnace_request *q)
         if (!model_lobes(&args, &lobes))
             return 2;
         fprintf(out, "theta_o");
-        static const char *const names[] = { "R", "TT", "TRT", "TRRT", "p4", "p5", "p6", "p7", "residual" };
         for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
             if (lobes >> p & 1u)
-                fprintf(out, ",%s", names[p]);
+                fprintf(out, ",%s", cli_lobe_name(p));
         fprintf(out, ",total,share_p3_and_above\n");
     } else {
         fprintf(out, "theta_o,E_r,E_g,E_b\n");

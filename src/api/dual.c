@@ -4,7 +4,8 @@
  * furnace's rule) times Gauss-Legendre panels on each quarter of the azimuths, so that the
  * hemispheres' edge at |phi| = pi/2 is an edge of the rule. With w_i at phi_i = 0, every model's
  * mirror symmetry, f(phi_o) = f(-phi_o), halves the azimuths: phi_o in [0, pi], counted twice.
- * Evaluated in stack chunks by the plan's own batch call. No allocation. */
+ * Evaluated in stack chunks by the plan's own batch call. hb_dual_lobe_energies: the same integrals
+ * of each lobe alone, by a plan of that lobe (allocated and freed). */
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -44,28 +45,18 @@ static void flush(const hb_plan *plan, pending *q, hemisphere_sums *s)
     q->count = 0;
 }
 
-hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms)
+/* The hemisphere sums of `evaluated` at theta by the rule of `rule`'s plan (its furnace rule): a
+ * lobe's own plan integrated on its parent's nodes, so that the lobes' energies sum to the parent's. */
+static void hemispheres(const hb_plan *rule, const hb_plan *evaluated, double theta, hemisphere_sums *sums)
 {
-    if (!plan || !terms)
-        return hb_fail_null(__func__, !plan ? "plan" : "terms");
-    size_t size = terms->struct_size;
-    hb_status st = hb_api_struct_size(__func__, "terms", size, offsetof(hb_dual_terms, sigma_b2) + sizeof terms->sigma_b2,
-                                      sizeof *terms);
-    if (st != HB_OK)
-        return st;
-    if (!(fabs(theta) < M_PI_2))
-        return hb_fail(HB_ERR_PARAM, "%s: theta = %g is outside (-pi/2, pi/2)", __func__, theta);
-    if (!(d_b >= 0.0 && d_b <= 1.0))
-        return hb_fail(HB_ERR_PARAM, "%s: d_b = %g is outside [0, 1]", __func__, d_b);
-    hb_dual_terms all = { .struct_size = size };
-    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    const hb_model_ops *ops = hb_model_ops_of(rule->options.model);
     double beta_m;
     int azimuths, passes;
-    ops->furnace_rule(plan, &beta_m, &azimuths, &passes);
+    ops->furnace_rule(rule, &beta_m, &azimuths, &passes);
     int theta_panels = (int)ceil(M_PI / (2.0 * fmin(beta_m, 0.5)));
     int phi_panels = (azimuths + QUARTERS * RULE - 1) / (QUARTERS * RULE); /* per quarter */
     double xt[RULE], wt[RULE], xp[RULE], wp[RULE];
-    hemisphere_sums sums = { { { 0 } }, { { 0 } }, { { 0 } } };
+    *sums = (hemisphere_sums){ { { 0 } }, { { 0 } }, { { 0 } } };
     pending q;
     q.count = 0;
     for (int a = 0; a < theta_panels; a++) {
@@ -82,13 +73,31 @@ hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dua
                     q.theta_h[q.count] = 0.5 * (theta + xt[j]);
                     q.backward[q.count] = xp[l] < M_PI_2;
                     if (++q.count == CHUNK)
-                        flush(plan, &q, &sums);
+                        flush(evaluated, &q, sums);
                 }
             }
         }
     }
     if (q.count)
-        flush(plan, &q, &sums);
+        flush(evaluated, &q, sums);
+}
+
+hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms)
+{
+    if (!plan || !terms)
+        return hb_fail_null(__func__, !plan ? "plan" : "terms");
+    size_t size = terms->struct_size;
+    hb_status st = hb_api_struct_size(__func__, "terms", size, offsetof(hb_dual_terms, sigma_b2) + sizeof terms->sigma_b2,
+                                      sizeof *terms);
+    if (st != HB_OK)
+        return st;
+    if (!(fabs(theta) < M_PI_2))
+        return hb_fail(HB_ERR_PARAM, "%s: theta = %g is outside (-pi/2, pi/2)", __func__, theta);
+    if (!(d_b >= 0.0 && d_b <= 1.0))
+        return hb_fail(HB_ERR_PARAM, "%s: d_b = %g is outside [0, 1]", __func__, d_b);
+    hb_dual_terms all = { .struct_size = size };
+    hemisphere_sums sums;
+    hemispheres(plan, plan, theta, &sums);
     for (int c = 0; c < 3; c++) {
         double *energy[2] = { &all.a_f[c], &all.a_b[c] }, *mean[2] = { &all.alpha_f[c], &all.alpha_b[c] },
                *variance[2] = { &all.beta_f2[c], &all.beta_b2[c] };
@@ -103,5 +112,34 @@ hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dua
         all.sigma_b2[c] = hb_dual_back_variance(all.a_f[c], all.a_b[c], all.beta_f2[c], all.beta_b2[c], d_b);
     }
     memcpy(terms, &all, size);
+    return HB_OK;
+}
+
+hb_status hb_dual_lobe_energies(const hb_plan *plan, double theta, double forward[HB_MAX_LOBES + 1][3],
+                                double backward[HB_MAX_LOBES + 1][3])
+{
+    if (!plan || !forward || !backward)
+        return hb_fail_null(__func__, !plan ? "plan" : !forward ? "forward" : "backward");
+    if (!(fabs(theta) < M_PI_2))
+        return hb_fail(HB_ERR_PARAM, "%s: theta = %g is outside (-pi/2, pi/2)", __func__, theta);
+    unsigned lobes = hb_model_ops_of(plan->options.model)->lobes(&plan->options);
+    for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
+        for (int c = 0; c < 3; c++)
+            forward[p][c] = backward[p][c] = 0.0;
+        if (!(lobes >> p & 1u))
+            continue;
+        hb_options o = plan->options; /* the plan's own configuration, one lobe of it */
+        o.lobes = HB_LOBE_BIT(p), o.tolerance = 0.0, o.budget_ns = 0.0;
+        hb_plan *lobe;
+        hb_error error;
+        hb_status st = hb_plan_create(&plan->material, &o, &lobe, &error);
+        if (st != HB_OK)
+            return hb_fail(st, "%s: the plan of lobe %s alone: %s", __func__, hb_lobe_name(p), error.message);
+        hemisphere_sums sums;
+        hemispheres(plan, lobe, theta, &sums);
+        hb_plan_destroy(lobe);
+        for (int c = 0; c < 3; c++)
+            forward[p][c] = sums.energy[0][c], backward[p][c] = sums.energy[1][c];
+    }
     return HB_OK;
 }
