@@ -646,7 +646,8 @@ typedef struct hb_dual_terms {
 /* The terms at theta in (-pi/2, pi/2), by deterministic quadrature over w_o fine enough for the
  * plan's roughness (the furnace's rule, Gauss-Legendre on each quarter of the azimuths), with the
  * plan's own evaluation (its kernels, or its double reference for a reference plan); d_b is the
- * backward density factor of eq. 17 (HB_DUAL_DENSITY). The far field of a near-field model.
+ * backward density factor of eq. 17 (HB_DUAL_DENSITY). The far field of a near-field model; for an
+ * elliptical fibre, the mean over its orientations to the light (16 of them, each over both sides).
  * HB_ERR_PARAM for theta outside (-pi/2, pi/2) or d_b outside [0, 1]. */
 HB_API hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms);
 

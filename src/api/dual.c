@@ -2,8 +2,9 @@
  * (Zinke et al. 2008, eqs. 6 and 12-17; docs/multiple-scattering.md). The hemisphere integrals of
  * f over w_o are Gauss-Legendre panels in theta_o two longitudinal widths wide (the
  * furnace's rule) times Gauss-Legendre panels on each quarter of the azimuths, so that the
- * hemispheres' edge at |phi| = pi/2 is an edge of the rule. With w_i at phi_i = 0, every model's
- * mirror symmetry, f(phi_o) = f(-phi_o), halves the azimuths: phi_o in [0, pi], counted twice.
+ * hemispheres' edge at |phi| = pi/2 is an edge of the rule. For a circular fibre, w_i at phi_i = 0
+ * and every model's mirror symmetry, f(phi_o) = f(-phi_o), halves the azimuths: phi_o in [0, pi],
+ * counted twice; an elliptical fibre's terms are the mean over its orientations to the light.
  * Evaluated in stack chunks by the plan's own batch call. hb_dual_lobe_energies: the same integrals
  * of each lobe alone, by a plan of that lobe (allocated and freed). */
 #include <math.h>
@@ -15,7 +16,10 @@
 #include "checks.h"
 #include "models/interface/model.h"
 
-enum { CHUNK = 512, RULE = 8, QUARTERS = 4, HALF = 2 /* quarters of the azimuths in [0, pi] */ };
+enum {
+    CHUNK = 512, RULE = 8, QUARTERS = 4, HALF = 2, /* quarters of the azimuths in [0, pi] */
+    ORIENTATIONS = 16 /* an elliptical fibre's orientations to the light, averaged by the midpoint rule */
+};
 
 /* Per channel and hemisphere (0 forward, 1 backward): the energy and its first two moments in theta_h. */
 typedef struct hemisphere_sums {
@@ -46,9 +50,13 @@ static void flush(const hb_plan *plan, pending *q, hemisphere_sums *s)
 }
 
 /* The hemisphere sums of `evaluated` at theta by the rule of `rule`'s plan (its furnace rule): a
- * lobe's own plan integrated on its parent's nodes, so that the lobes' energies sum to the parent's. */
+ * lobe's own plan integrated on its parent's nodes, so that the lobes' energies sum to the parent's.
+ * An elliptical fibre's sums are the mean over its orientations to the light, w_i at phi_i = psi for
+ * ORIENTATIONS midpoints psi of [0, pi) (its cross-section repeats after pi), each over both sides
+ * phi_o = psi +- x, which the mirror symmetry no longer makes equal. */
 static void hemispheres(const hb_plan *rule, const hb_plan *evaluated, double theta, hemisphere_sums *sums)
 {
+    int orientations = rule->material.eccentricity > 0.0 ? ORIENTATIONS : 1, sides = orientations > 1 ? 2 : 1;
     const hb_model_ops *ops = hb_model_ops_of(rule->options.model);
     double beta_m;
     int azimuths, passes;
@@ -59,21 +67,25 @@ static void hemispheres(const hb_plan *rule, const hb_plan *evaluated, double th
     *sums = (hemisphere_sums){ { { 0 } }, { { 0 } }, { { 0 } } };
     pending q;
     q.count = 0;
-    for (int a = 0; a < theta_panels; a++) {
-        hb_gauss_legendre(RULE, -M_PI_2 + M_PI * a / theta_panels, -M_PI_2 + M_PI * (a + 1) / theta_panels, xt, wt);
-        for (int j = 0; j < RULE; j++) {
-            double cos_o = cos(xt[j]);
-            for (int b = 0; b < HALF * phi_panels; b++) {
-                hb_gauss_legendre(RULE, M_PI_2 * b / phi_panels, M_PI_2 * (b + 1) / phi_panels, xp, wp);
-                for (int l = 0; l < RULE; l++) {
-                    q.ti[q.count] = (float)theta, q.pi[q.count] = 0.0f;
-                    q.to[q.count] = (float)xt[j], q.po[q.count] = (float)xp[l];
-                    /* eq. 6: f dw_o (f = S cos(theta_i)), dw_o = cos(theta_o) dtheta_o dphi_o */
-                    q.weight[q.count] = 2.0 * wt[j] * wp[l] * cos_o;
-                    q.theta_h[q.count] = 0.5 * (theta + xt[j]);
-                    q.backward[q.count] = xp[l] < M_PI_2;
-                    if (++q.count == CHUNK)
-                        flush(evaluated, &q, sums);
+    for (int pass = 0; pass < orientations * sides; pass++) {
+        int side = pass % sides;
+        double psi = orientations > 1 ? M_PI * (pass / sides + 0.5) / orientations : 0.0;
+        for (int a = 0; a < theta_panels; a++) {
+            hb_gauss_legendre(RULE, -M_PI_2 + M_PI * a / theta_panels, -M_PI_2 + M_PI * (a + 1) / theta_panels, xt, wt);
+            for (int j = 0; j < RULE; j++) {
+                double cos_o = cos(xt[j]);
+                for (int b = 0; b < HALF * phi_panels; b++) {
+                    hb_gauss_legendre(RULE, M_PI_2 * b / phi_panels, M_PI_2 * (b + 1) / phi_panels, xp, wp);
+                    for (int l = 0; l < RULE; l++) {
+                        q.ti[q.count] = (float)theta, q.pi[q.count] = (float)psi;
+                        q.to[q.count] = (float)xt[j], q.po[q.count] = (float)(psi + (side ? -xp[l] : xp[l]));
+                        /* eq. 6: f dw_o (f = S cos(theta_i)), dw_o = cos(theta_o) dtheta_o dphi_o */
+                        q.weight[q.count] = 2.0 / (sides * orientations) * wt[j] * wp[l] * cos_o;
+                        q.theta_h[q.count] = 0.5 * (theta + xt[j]);
+                        q.backward[q.count] = xp[l] < M_PI_2;
+                        if (++q.count == CHUNK)
+                            flush(evaluated, &q, sums);
+                    }
                 }
             }
         }
