@@ -6,8 +6,9 @@ hb_status hb_hit_sample(const hb_plan *plan, const float wo[3], const float *h, 
 {
     if (!wo || !u || !wi || !pdf || !weight)
         return hb_fail_null(__func__, !wo ? "wo" : !u ? "u" : !wi ? "wi" : !pdf ? "pdf" : "weight");
-    const float *planes[HB_SAMPLE_DIMENSIONS];
-    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+    const float *planes[HB_SAMPLE_DIMENSIONS] = { NULL }; /* u[d] as plane d, for the numbers the plan reads */
+    int dimensions = plan ? hb_plan_sample_dimensions(plan) : 0;
+    for (int d = 0; d < dimensions; d++)
         planes[d] = u + d;
     hb_sample_vectors_out out = { &wi[0], &wi[1], &wi[2], pdf, { &weight[0], &weight[1], &weight[2] } };
     if (h) {
