@@ -185,8 +185,7 @@ $(B)/docs_blocks.c: $(wildcard docs/*.md) tests/docs_blocks.awk
 	awk -f tests/docs_blocks.awk $(wildcard docs/*.md) > $@
 
 $(DOCS_BLOCKS): $(B)/docs_blocks.c include/hairbsdf.h
-	$(CC) $(ALL_CFLAGS) -Wno-uninitialized -Wno-maybe-uninitialized -Wno-unused-variable -Wno-unused-but-set-variable \
-	    -Wno-missing-prototypes -c -o $@ $<
+	$(CC) $(ALL_CFLAGS) -Wno-unused-variable -Wno-unused-but-set-variable -c -o $@ $<
 
 $(B)/readme_%$(EXE): $(B)/readme_%.c $(STATIC_LIB)
 	$(CC) $(ALL_CFLAGS) $(LDFLAGS) $(LDSTATIC) -o $@ $< $(STATIC_LIB) $(LDLIBS)

@@ -1,7 +1,7 @@
 # Every ```c block of the pages given, as a function body to compile (make test): a fragment uses
 # names it does not declare, so the HTML comment on the line before it,
 #     <!-- compiled with: hb_plan *plan; float *theta_o; -->
-# declares them (uninitialised: the compiler only checks the calls against hairbsdf.h).
+# declares them, each as a static local (zero: the compiler only checks the calls against hairbsdf.h).
 BEGIN {
     print "#include <stddef.h>"
     print "#include <stdio.h>"
@@ -16,7 +16,11 @@ FNR == 1 { before = "" }
         decls = before
         sub(/^<!-- compiled with: /, "", decls)
         sub(/ -->$/, "", decls)
-        print decls
+        count = split(decls, declaration, ";")
+        for (k = 1; k <= count; k++)
+            if (declaration[k] ~ /[^ ]/)
+                print "static " declaration[k] ";"
+
     }
     next
 }

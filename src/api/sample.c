@@ -163,7 +163,7 @@ hb_status hb_sample_angles(const hb_plan *plan, size_t n, const hb_sample_in *in
 {
     if (!in || !out)
         return hb_fail_null(__func__, !in ? "in" : "out");
-    hb_sample_batch b = { .in = { in->theta_o, in->phi_o }, .out = *out };
+    hb_sample_batch b = { .in = { .theta_o = in->theta_o, .phi_o = in->phi_o }, .out = *out };
     return sample_batch(__func__, plan, n, &b, in->u, report);
 }
 
@@ -277,7 +277,7 @@ hb_status hb_sample_near(const hb_plan *plan, size_t n, const hb_sample_near_in 
     int dims = near_dimensions(plan);
     if (dims <= 0)
         return hb_api_unsupported(__func__, plan, "near-field sampler");
-    hb_sample_batch b = { .in = { in->theta_o, in->phi_o, in->h }, .out = *out };
+    hb_sample_batch b = { .in = { .theta_o = in->theta_o, .phi_o = in->phi_o, .h = in->h }, .out = *out };
     hb_status st = sample_pointers(__func__, n, &b, in->u, dims, 1);
     if (st != HB_OK)
         return st;
