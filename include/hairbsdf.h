@@ -651,6 +651,16 @@ typedef struct hb_dual_terms {
  * HB_ERR_PARAM for theta outside (-pi/2, pi/2) or d_b outside [0, 1]. */
 HB_API hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms);
 
+/* The terms at `count` inclinations, the midpoints theta_k = -pi/2 + pi (k + 1/2) / count (the
+ * function of theta an engine bakes per material): terms[k] as hb_dual_terms_at writes it, the array's
+ * elements terms[0].struct_size bytes apart (set it, as for one). Rows run as `count` tasks through
+ * parallel (an engine's job system, as hb_options.parallel; NULL: in order on this thread), in parts,
+ * with progress (as hb_options.progress, may be NULL) called between parts; a nonzero return cancels
+ * with HB_ERR_CANCELLED. The terms are the same bit for bit however the tasks run. */
+HB_API hb_status hb_dual_terms_grid(const hb_plan *plan, int count, double d_b, hb_dual_terms *terms,
+                                    hb_progress_fn progress, void *progress_context, hb_parallel_fn parallel,
+                                    void *parallel_context);
+
 /* Each lobe's part of a_f and a_b at theta: forward[p] and backward[p] per channel for the orders p
  * of the plan's lobe set and HB_LOBE_RESIDUAL (0 for the others), integrated on the plan's own nodes,
  * so that they sum to hb_dual_terms_at's a_f and a_b. Creates (and frees) a plan of each lobe alone,

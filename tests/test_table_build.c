@@ -132,7 +132,48 @@ static void test_parallel_same_table(hb_test_ctx *t)
     }
 }
 
+/* hb_dual_terms_grid: the rows through the job system equal one thread's and hb_dual_terms_at's, bit
+ * for bit; progress rises to 1 and cancels. */
+static void test_dual_grid(hb_test_ctx *t)
+{
+    enum { COUNT = 24 };
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.eumelanin = 0.3, o.quality = HB_QUALITY_FAST, o.isa = t->isa;
+    hb_plan *plan;
+    CHECK(t, hb_plan_create(&m, &o, &plan, NULL) == HB_OK, "dFH11 plan");
+    if (!plan)
+        return;
+    static hb_dual_terms serial[COUNT], parallel[COUNT], one;
+    serial[0].struct_size = parallel[0].struct_size = one.struct_size = sizeof one;
+    progress_log log = { 0, 0, { 0 } };
+    int calls[2] = { 0, 0 };
+    CHECK(t, hb_dual_terms_grid(plan, COUNT, HB_DUAL_DENSITY, serial, log_progress, &log, NULL, NULL) == HB_OK &&
+                 hb_dual_terms_grid(plan, COUNT, HB_DUAL_DENSITY, parallel, NULL, NULL, reversed_on_two_threads, calls) ==
+                     HB_OK,
+          "grid: %s", hb_last_error()->message);
+    int differ = memcmp(serial, parallel, sizeof serial) != 0;
+    for (int k = 0; k < COUNT; k++) {
+        hb_dual_terms_at(plan, -M_PI_2 + M_PI * (k + 0.5) / COUNT, HB_DUAL_DENSITY, &one);
+        differ += memcmp(&one, &serial[k], sizeof one) != 0;
+    }
+    CHECK(t, differ == 0 && calls[0] == COUNT && calls[1] == 0, "%d rows differ; %d tasks ran once, %d not", differ,
+          calls[0], calls[1]);
+    int rising = log.reports > 1 && log.fraction[log.reports - 1] == 1.0;
+    for (int k = 1; k < log.reports && k < MAX_REPORTS; k++)
+        rising = rising && log.fraction[k] >= log.fraction[k - 1];
+    CHECK(t, rising, "%d progress reports, last %g", log.reports, log.reports ? log.fraction[log.reports - 1] : 0.0);
+    progress_log cancel = { 0, 2, { 0 } };
+    CHECK(t, hb_dual_terms_grid(plan, COUNT, HB_DUAL_DENSITY, serial, log_progress, &cancel, NULL, NULL) ==
+                 HB_ERR_CANCELLED && cancel.reports == 2,
+          "cancel at the second report: %d reports", cancel.reports);
+    hb_plan_destroy(plan);
+}
+
 const hb_test hb_tests_table_build[] = {
+    { "dual_grid_tasks", test_dual_grid, 1 },
     { "table_build_progress_and_cancel", test_progress_and_cancel, 0 },
     { "table_build_parallel_same_table", test_parallel_same_table, 1 },
     { NULL, NULL, 0 },

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_threads.h"
 
 static void dual_usage(FILE *to)
 {
@@ -14,7 +15,8 @@ static void dual_usage(FILE *to)
                 "of (-pi/2, pi/2), default 64): the forward and backward energies a_f, a_b, their mean\n"
                 "theta_h alpha_f, alpha_b and variances beta_f2, beta_b2, and the multiple back-scattering\n"
                 "A_b, delta_b, sigma_b2 with the density factor D (default 0.7). With --by-lobe, each\n"
-                "lobe's part of a_f and a_b follows (hb_dual_lobe_energies).\n%s",
+                "lobe's part of a_f and a_b follows (hb_dual_lobe_energies). --threads N computes the rows on N\n"
+                "threads (hb_dual_terms_grid), the same numbers.\n%s",
             cli_model_options_help);
 }
 
@@ -85,10 +87,17 @@ int cmd_dual(int argc, char **argv)
             }
     }
     printf("\n");
+    hb_dual_terms *grid = calloc((size_t)thetas, sizeof *grid);
+    if (!grid) {
+        fprintf(stderr, "hairbsdf dual: out of memory\n");
+        hb_plan_destroy(plan);
+        return 1;
+    }
+    grid[0].struct_size = sizeof *grid; /* the rows on --threads threads (the CLI's job system) */
+    hb_dual_terms_grid(plan, thetas, density, grid, NULL, NULL, args.threads > 1 ? cli_parallel : NULL, &args.threads);
     for (int k = 0; k < thetas; k++) {
         double theta = -M_PI_2 + M_PI * (k + 0.5) / thetas;
-        hb_dual_terms d = { .struct_size = sizeof d };
-        hb_dual_terms_at(plan, theta, density, &d);
+        const hb_dual_terms d = grid[k];
         const double *columns[] = { d.a_f, d.a_b, d.alpha_f, d.beta_f2, d.alpha_b, d.beta_b2, d.A_b, d.delta_b, d.sigma_b2 };
         printf("%.6f", theta);
         for (size_t c = 0; c < sizeof columns / sizeof columns[0]; c++)
@@ -100,6 +109,7 @@ int cmd_dual(int argc, char **argv)
                            backward[p][1], backward[p][2]);
         printf("\n");
     }
+    free(grid);
     hb_plan_destroy(plan);
     return 0;
 }

@@ -14,6 +14,7 @@
 #include "math/dual_scattering.h"
 #include "math/quadrature.h"
 #include "checks.h"
+#include "models/build/build_tasks.h"
 #include "models/interface/model.h"
 
 enum {
@@ -154,4 +155,42 @@ hb_status hb_dual_lobe_energies(const hb_plan *plan, double theta, double forwar
             forward[p][c] = sums.energy[0][c], backward[p][c] = sums.energy[1][c];
     }
     return HB_OK;
+}
+
+/* One row of hb_dual_terms_grid. */
+typedef struct grid_rows {
+    const hb_plan *plan;
+    int count;
+    double d_b;
+    unsigned char *terms;
+    size_t size;
+} grid_rows;
+
+static void grid_row(void *context, int k)
+{
+    const grid_rows *g = context;
+    hb_dual_terms *t = (hb_dual_terms *)(g->terms + (size_t)k * g->size);
+    t->struct_size = g->size;
+    hb_dual_terms_at(g->plan, -M_PI_2 + M_PI * (k + 0.5) / g->count, g->d_b, t);
+}
+
+hb_status hb_dual_terms_grid(const hb_plan *plan, int count, double d_b, hb_dual_terms *terms, hb_progress_fn progress,
+                             void *progress_context, hb_parallel_fn parallel, void *parallel_context)
+{
+    if (!plan || !terms)
+        return hb_fail_null(__func__, !plan ? "plan" : "terms");
+    if (count < 1)
+        return hb_fail(HB_ERR_PARAM, "%s: count = %d; at least 1", __func__, count);
+    size_t size = terms->struct_size;
+    hb_status st = hb_api_struct_size(__func__, "terms", size, offsetof(hb_dual_terms, sigma_b2) + sizeof terms->sigma_b2,
+                                      sizeof *terms);
+    if (st == HB_OK && !(d_b >= 0.0 && d_b <= 1.0))
+        st = hb_fail(HB_ERR_PARAM, "%s: d_b = %g is outside [0, 1]", __func__, d_b);
+    if (st != HB_OK)
+        return st;
+    hb_options run = { .progress = progress, .progress_context = progress_context, .parallel = parallel,
+                       .parallel_context = parallel_context };
+    grid_rows rows = { plan, count, d_b, (unsigned char *)terms, size };
+    st = hb_build_tasks(&run, count, hb_build_part(count), grid_row, &rows, 0.0, 1.0, NULL);
+    return st == HB_OK ? hb_build_finish(&run, NULL) : st;
 }

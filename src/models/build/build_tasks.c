@@ -16,8 +16,7 @@ static void run_in_part(void *run, int k)
 static hb_status report(const hb_options *o, double fraction, hb_error *error)
 {
     if (o->progress && o->progress(o->progress_context, fraction))
-        return hb_plan_fail(error, HB_ERR_CANCELLED, "plan creation cancelled by the progress callback at %.0f%%",
-                            100.0 * fraction);
+        return hb_plan_fail(error, HB_ERR_CANCELLED, "cancelled by the progress callback at %.0f%%", 100.0 * fraction);
     return HB_OK;
 }
 
