@@ -315,6 +315,8 @@ images: $(TOOL)
 	  --svg docs/images/deon_energy_by_lobe.svg > /dev/null
 	$(TOOL) furnace --fig16 --paths 20000 --theta-o -1.4,-1.2,-1,-0.8,-0.6,-0.4,-0.2,0,0.2,0.4,0.6,0.8,1,1.2,1.4 \
 	  --svg docs/images/huang_fig16_beyond_trt.svg > /dev/null
+	$(TOOL) assembly --model chiang --eumelanin 0.3 --layers 16 --depth-bins 16 --paths 100000 \
+	  --svg docs/images/assembly_blond_depth.svg > /dev/null
 
 # The pkg-config file is written at install time, so it always names this PREFIX.
 install: all

@@ -13,6 +13,7 @@
 #include "clock.h"
 #include "platform.h"
 #include "readme.h"
+#include "assembly.h"
 #include "dual.h"
 #include "table_files.h"
 #include "huang_table.h"
@@ -973,6 +974,8 @@ int main(int argc, char **argv)
         bench_huang_table(scaling_out);
     if ((!partial || !strcmp(only, "dual")) && scaling_out)
         bench_dual(&m, scaling_out);
+    if ((!partial || !strcmp(only, "assembly")) && scaling_out)
+        bench_assembly(&m, scaling_out);
     char *scaling_text = bench_text_close(scaling_out);
     printf("%s", scaling_text ? scaling_text : "");
     if (results_dir && !partial) { /* what tolerance and budget plans choose from (options.calibration) */

@@ -668,6 +668,77 @@ HB_API hb_status hb_dual_terms_grid(const hb_plan *plan, int count, double d_b, 
 HB_API hb_status hb_dual_lobe_energies(const hb_plan *plan, double theta, double forward[HB_MAX_LOBES + 1][3],
                                        double backward[HB_MAX_LOBES + 1][3]);
 
+/* Light in a fibre assembly, traced fibre by fibre (docs/multiple-scattering.md): the ground truth the
+ * dual-scattering terms and the engines' tables approximate. Parallel circular fibres of radius 1
+ * along the frame's y, placed at random without overlap (random sequential addition from the seed),
+ * fill a slab (0 <= z <= 2 layers radii, periodic along x with the given period) or a round bundle
+ * (a tress of radius 2 layers radii about the origin). A directional light from w(theta_light,
+ * phi_light) (the fibre frame's angles; for the slab above it, |phi_light| < pi/2) falls uniformly on
+ * the assembly's width. Each path starts at the light and scatters at every fibre it meets by the
+ * plan's own sampler in reverse (w_o toward where the light came from, the sampled w_i where it goes,
+ * the weight f / pdf; exact for a reciprocal model, hb_sample_angles): the near field at the hit's
+ * offset h where the model has one, else the far field, the path leaving from the hit point and
+ * passing the fibre it scattered from. After 3 scatterings Russian roulette ends a path with
+ * probability 1 - min(1, its largest channel), unbiased; a path still going after max_bounces, or
+ * running along the fibres or a slab's faces without end, is counted as unfinished, never dropped. Paths run as tasks of HB_ASSEMBLY_BATCH paths, each advanced
+ * as one batch through one sampler call per bounce; the numbers are a pure function of the seed and
+ * the path's index, so the result is the same bit for bit however the tasks run. */
+typedef enum hb_assembly_shape {
+    HB_ASSEMBLY_SLAB = 0, /* reflected: leaving through z = 2 layers (the lit side); transmitted: through z = 0 */
+    HB_ASSEMBLY_BUNDLE    /* reflected: leaving toward the light's half (w . w_light's part in the x-z plane > 0) */
+} hb_assembly_shape;
+
+typedef struct hb_assembly {
+    size_t struct_size; /* sizeof(hb_assembly), set by hb_assembly_default */
+    hb_assembly_shape shape; /* default HB_ASSEMBLY_SLAB */
+    double layers;     /* the slab's thickness, the bundle's radius, in fibre diameters (default 8) */
+    double packing;    /* the fibres' share of the cross-section's area, in (0, 0.5] (default 0.3) */
+    int period;        /* the slab's period along x in fibre diameters, at least 4 (default 32) */
+    double theta_light, phi_light; /* default (0.3, 0) */
+    long paths;        /* default 100000 */
+    int max_bounces;   /* 1..100000, default 10000 */
+    unsigned long long seed; /* places the fibres and keys the paths' numbers; default 1 */
+    int theta_bins, phi_bins; /* the exit directions' bins: uniform in theta over [-pi/2, pi/2] and in
+                                 phi_o over [-pi, pi]; default 18 and 36 */
+    int depth_bins;    /* the bins of fibre depth, one per fibre diameter from the lit side (default 8) */
+} hb_assembly;
+HB_API void hb_assembly_default(hb_assembly *assembly);
+
+#define HB_ASSEMBLY_BATCH 512 /* the paths of one task, advanced together through one sampler call per bounce */
+#define HB_ASSEMBLY_ORDERS 9 /* by_order[side][k]: the light that scattered k times, k < 8, and 8 or more at k = 8 */
+
+/* Every figure is a fraction of the light falling on the assembly, per channel, with the standard
+ * error of its mean over paths (_se). The caller may point the three arrays at storage, or leave them
+ * NULL: radiance and radiance_se, 2 x theta_bins x phi_bins x 3 doubles ([side][theta][phi][channel],
+ * side 0 reflected): each bin's fraction per unit solid angle (the exit's radiant intensity over the
+ * incident power) of the light that scattered at least once; depth, depth_bins x 3 x 3 doubles ([depth][order 1, 2, 3 and above][channel]): the
+ * light arriving at the fibres of each depth, by the order of the scattering it arrives for. */
+typedef struct hb_assembly_result {
+    size_t struct_size; /* the caller sets sizeof(hb_assembly_result); the library fills that much */
+    double reflected[3], transmitted[3], absorbed[3], unfinished[3];
+    double reflected_se[3], transmitted_se[3], absorbed_se[3];
+    double by_order[2][HB_ASSEMBLY_ORDERS][3]; /* reflected (0) and transmitted (1) by scattering order
+                                                  (order 0: light that met no fibre) */
+    double by_order_square[2][HB_ASSEMBLY_ORDERS][3]; /* the mean over paths of the square of what each path carries
+                                                         out in that order; a path leaves in one order, so the standard
+                                                         error of the sum over a set K of orders is
+                                                         sqrt((sum_K square - (sum_K by_order)^2) / (paths - 1)) */
+    double *radiance, *radiance_se, *depth;
+    long fibres;           /* the fibres placed (in one period of the slab) */
+    double packing;        /* their share of the area, as placed */
+    long long events;      /* the scatterings traced */
+    long long invalid;     /* samples the sampler refused (their light counts as absorbed) */
+} hb_assembly_result;
+
+/* Traces assembly->paths paths through the assembly with plan's sampler (plans that can sample;
+ * circular fibres only, else HB_ERR_UNSUPPORTED). HB_ERR_PARAM for a field outside its range (named),
+ * HB_ERR_LIMIT when random placement cannot reach the packing (the message gives what it reached),
+ * HB_ERR_VERSION for a struct_size this release does not know; progress and parallel as for
+ * hb_dual_terms_grid. */
+HB_API hb_status hb_assembly_trace(const hb_plan *plan, const hb_assembly *assembly, hb_assembly_result *result,
+                                   hb_progress_fn progress, void *progress_context, hb_parallel_fn parallel,
+                                   void *parallel_context);
+
 /* Instruction sets: names as used by --isa and the HB_ISA environment variable
  * ("scalar", "sse4.1", "avx2", "avx512", "neon"). */
 HB_API const char *hb_isa_name(hb_isa isa);

@@ -1,7 +1,7 @@
 #!/bin/sh
 # make layers: the include rules of docs/architecture.md, checked on every file under src/.
 # - A layer includes only its own folder and the layers below it:
-#   simd < math < kernel < models < plan < api, and ref (the reference) below api only.
+#   simd < math < kernel < models < plan < api < assembly, and ref (the reference) below api only.
 # - A model's folder includes no other model's folder. The shared folders of models/ (common/:
 #   equations two models use; interface/, build/, file/, text/: the interface and list, builds,
 #   the table-file format, text and refusals) include no model's folder.
@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.." || exit 2
 rank() {
     case "$1" in
     simd) echo 0 ;; math) echo 1 ;; kernel) echo 2 ;; models) echo 3 ;; ref) echo 4 ;; plan) echo 4 ;;
-    api) echo 5 ;; *) echo -1 ;;
+    api) echo 5 ;; assembly) echo 6 ;; *) echo -1 ;;
     esac
 }
 status=0

@@ -79,6 +79,10 @@ static void test_eval_errors(hb_test_ctx *t)
     CHECK(t, r.status == 0 && strncmp(r.out, "0,0,0\n0,0,0\n", 12) == 0, "NaN/Inf rows give 0,0,0: %s", r.out);
     CHECK(t, strstr(r.err, "2 invalid samples") != NULL, "invalid rows counted on stderr: %s", r.err);
 
+    run_tool(t, "assembly --packing 0.9", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--packing"), "assembly packing 0.9: %d %s", r.status, r.err);
+    run_tool(t, "assembly --layers 2 --packing 0.5 --paths 10", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "reached packing"), "assembly that cannot be packed: %d %s", r.status, r.err);
     run_tool(t, "eval --bogus 3", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "--bogus"), "unknown option: %d %s", r.status, r.err);
     run_tool(t, "eval --term longitudinal --beta-m 7", "", &r);
@@ -664,6 +668,7 @@ static void test_model_by_command(hb_test_ctx *t)
         static const char *const commands[] = {
             "eval", "pdf", "sample --theta-o 0.5 --count 4", "plan", "furnace --theta-o -1,0.5",
             "furnace --by-lobe --theta-o -1,0.5", "dual --thetas 2", "dual --thetas 2 --by-lobe",
+            "assembly --layers 2 --paths 600 --bins 2,4 --depth-bins 2 --radiance --depth",
         };
         for (size_t c = 0; c < sizeof commands / sizeof commands[0]; c++) {
             snprintf(args, sizeof args, "%s --model %s --quality fast", commands[c], model);
@@ -675,6 +680,10 @@ static void test_model_by_command(hb_test_ctx *t)
             if (strstr(commands[c], "furnace --by-lobe"))
                 CHECK(t, strncmp(r.out, lobe_columns[m], strlen(lobe_columns[m])) == 0, "%s: header '%.80s', expected '%s'",
                       args, r.out, lobe_columns[m]);
+            if (strstr(commands[c], "assembly"))
+                CHECK(t, strstr(r.out, "\nreflected,") && strstr(r.out, "\nreflected_order_8+,") &&
+                             strstr(r.out, "\nside,theta_lo,") && strstr(r.out, "\n1,3+,"),
+                      "%s: '%.300s'", args, r.out);
             if (strstr(commands[c], "dual --thetas 2 --by-lobe"))
                 CHECK(t, strstr(r.out, ",a_f_TT_r,") && strstr(r.out, ",a_b_R_b,"), "%s: header '%.300s'", args, r.out);
         }

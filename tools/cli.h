@@ -44,6 +44,7 @@ int cmd_eval(int argc, char **argv, int pdf); /* pdf: hairbsdf pdf */
 int cmd_sample(int argc, char **argv);
 int cmd_furnace(int argc, char **argv);
 int cmd_dual(int argc, char **argv);
+int cmd_assembly(int argc, char **argv);
 int cmd_dump(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_bake(int argc, char **argv);
