@@ -674,19 +674,33 @@ HB_API hb_status hb_dual_lobe_energies(const hb_plan *plan, double theta, double
  * fill a slab (0 <= z <= 2 layers radii, periodic along x with the given period) or a round bundle
  * (a tress of radius 2 layers radii about the origin). A directional light from w(theta_light,
  * phi_light) (the fibre frame's angles; for the slab above it, |phi_light| < pi/2) falls uniformly on
- * the assembly's width. Each path starts at the light and scatters at every fibre it meets by the
- * plan's own sampler in reverse (w_o toward where the light came from, the sampled w_i where it goes,
- * the weight f / pdf; exact for a reciprocal model, hb_sample_angles): the near field at the hit's
- * offset h where the model has one, else the far field, the path leaving from the hit point and
- * passing the fibre it scattered from. After 3 scatterings Russian roulette ends a path with
+ * the assembly's width. Each path starts at the light and scatters at every fibre it meets, the
+ * plan's own sampler drawing where it goes next (its w_o toward where the light came from), the path
+ * leaving from the hit point and passing the fibre it scattered from; `transport` says what weighs
+ * each scattering. After 3 scatterings Russian roulette ends a path with
  * probability 1 - min(1, its largest channel), unbiased; a path still going after max_bounces, or
- * running along the fibres or a slab's faces without end, is counted as unfinished, never dropped. Paths run as tasks of HB_ASSEMBLY_BATCH paths, each advanced
- * as one batch through one sampler call per bounce; the numbers are a pure function of the seed and
- * the path's index, so the result is the same bit for bit however the tasks run. */
+ * running along the fibres or a slab's faces without end, is counted as unfinished, never dropped.
+ * Paths run as tasks of HB_ASSEMBLY_BATCH paths, each advanced as one batch through the plan's batch
+ * calls once per bounce; the numbers are a pure function of the seed and the path's index, so the
+ * result is the same bit for bit however the tasks run. */
 typedef enum hb_assembly_shape {
     HB_ASSEMBLY_SLAB = 0, /* reflected: leaving through z = 2 layers (the lit side); transmitted: through z = 0 */
     HB_ASSEMBLY_BUNDLE    /* reflected: leaving toward the light's half (w . w_light's part in the x-z plane > 0) */
 } hb_assembly_shape;
+
+typedef enum hb_assembly_transport {
+    /* The far-field sampler draws w_next from w_o = w_from (where the light came from) and the path
+     * carries S(w_from, w_next) cos(theta_next) / pdf, S the plan's far field (hb_eval_angles):
+     * light scattered by the model as the model's equations send it, for any model, reciprocal or
+     * not, what a path tracer from the eye converges to. Two calls per bounce (sample, evaluate).
+     * Plans whose pdf is an estimate (hb_plan_pdf_is_estimate) return HB_ERR_UNSUPPORTED. */
+    HB_ASSEMBLY_LIGHT_TRANSPORT = 0,
+    /* The sampler's own weight f(w_next, w_from) / pdf, the near field at the hit's offset h where the
+     * model has one (hb_sample_near) and the far field otherwise: the same as the light's transport
+     * where S is reciprocal (MJC03, untilted dFH11), that of S transposed where it is not (CBTB16,
+     * tilted dFH11; docs/multiple-scattering.md measures by how much). One call per bounce. */
+    HB_ASSEMBLY_SAMPLER_WEIGHTS
+} hb_assembly_transport;
 
 typedef struct hb_assembly {
     size_t struct_size; /* sizeof(hb_assembly), set by hb_assembly_default */
@@ -701,10 +715,11 @@ typedef struct hb_assembly {
     int theta_bins, phi_bins; /* the exit directions' bins: uniform in theta over [-pi/2, pi/2] and in
                                  phi_o over [-pi, pi]; default 18 and 36 */
     int depth_bins;    /* the bins of fibre depth, one per fibre diameter from the lit side (default 8) */
+    hb_assembly_transport transport; /* default HB_ASSEMBLY_LIGHT_TRANSPORT */
 } hb_assembly;
 HB_API void hb_assembly_default(hb_assembly *assembly);
 
-#define HB_ASSEMBLY_BATCH 512 /* the paths of one task, advanced together through one sampler call per bounce */
+#define HB_ASSEMBLY_BATCH 512 /* the paths of one task, advanced together through the same calls each bounce */
 #define HB_ASSEMBLY_ORDERS 9 /* by_order[side][k]: the light that scattered k times, k < 8, and 8 or more at k = 8 */
 
 /* Every figure is a fraction of the light falling on the assembly, per channel, with the standard

@@ -81,6 +81,10 @@ static void test_eval_errors(hb_test_ctx *t)
 
     run_tool(t, "assembly --packing 0.9", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "--packing"), "assembly packing 0.9: %d %s", r.status, r.err);
+    run_tool(t, "assembly --model huang --quality fast --paths 10", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "estimate"), "HHH22 under the light's transport: %d %s", r.status, r.err);
+    run_tool(t, "assembly --model chiang --layers 2 --paths 600", "", &r);
+    CHECK(t, r.status == 0 && strstr(r.out, "\nreflected,"), "CBTB16 under the light's transport: %d %s", r.status, r.err);
     run_tool(t, "assembly --layers 2 --packing 0.5 --paths 10", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "reached packing"), "assembly that cannot be packed: %d %s", r.status, r.err);
     run_tool(t, "eval --bogus 3", "", &r);
@@ -668,7 +672,7 @@ static void test_model_by_command(hb_test_ctx *t)
         static const char *const commands[] = {
             "eval", "pdf", "sample --theta-o 0.5 --count 4", "plan", "furnace --theta-o -1,0.5",
             "furnace --by-lobe --theta-o -1,0.5", "dual --thetas 2", "dual --thetas 2 --by-lobe",
-            "assembly --layers 2 --paths 600 --bins 2,4 --depth-bins 2 --radiance --depth",
+            "assembly --transport sampler --layers 2 --paths 600 --bins 2,4 --depth-bins 2 --radiance --depth",
         };
         for (size_t c = 0; c < sizeof commands / sizeof commands[0]; c++) {
             snprintf(args, sizeof args, "%s --model %s --quality fast", commands[c], model);

@@ -14,6 +14,7 @@ static void assembly_usage(FILE *to)
     fprintf(to, "usage: hairbsdf assembly [options] [--shape slab|bundle] [--layers L] [--packing P]\n"
                 "       [--period W] [--light THETA,PHI] [--paths N] [--bounces B] [--seed S]\n"
                 "       [--bins NT,NP] [--depth-bins ND] [--radiance] [--depth] [--svg FILE]\n"
+                "       [--transport light|sampler]\n"
                 "Traces N paths (default 100000) of light from the direction (THETA, PHI) (default 0.3,0)\n"
                 "through a slab L fibre diameters thick (default 8; periodic along x every W diameters,\n"
                 "default 32) or a bundle of radius L diameters, its fibres covering a share P (default 0.3)\n"
@@ -21,7 +22,10 @@ static void assembly_usage(FILE *to)
                 "shares with their standard errors, then the shares by scattering order. --radiance adds\n"
                 "the light leaving per unit solid angle in NT x NP bins of theta and phi (default 18,36),\n"
                 "--depth the light arriving at each of ND depths (default 8) by order, and --svg FILE\n"
-                "plots it (green channel). --threads N runs the paths on N threads, the same numbers.\n%s",
+                "plots it (green channel). --transport: each scattering weighed by the model's S from\n"
+                "where the light came (light, default: far field, any model but HHH22's estimated pdf)\n"
+                "or by the sampler's own weight (sampler: near field at the hit's offset; exact where S\n"
+                "is reciprocal). --threads N runs the paths on N threads, the same numbers.\n%s",
             cli_model_options_help);
 }
 
@@ -62,6 +66,10 @@ static int parse_assembly_option(int argc, char **argv, int *i, hb_assembly *a, 
     int ok;
     if (strcmp(o, "--svg") == 0)
         ok = (*svg = v, *depth = 1);
+    else if (strcmp(o, "--transport") == 0)
+        ok = strcmp(v, "light") == 0     ? (a->transport = HB_ASSEMBLY_LIGHT_TRANSPORT, 1)
+             : strcmp(v, "sampler") == 0 ? (a->transport = HB_ASSEMBLY_SAMPLER_WEIGHTS, 1)
+                                         : 0;
     else if (strcmp(o, "--shape") == 0)
         ok = strcmp(v, "slab") == 0 ? (a->shape = HB_ASSEMBLY_SLAB, 1) : strcmp(v, "bundle") == 0 ? (a->shape = HB_ASSEMBLY_BUNDLE, 1) : 0;
     else if (strcmp(o, "--layers") == 0)

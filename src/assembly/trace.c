@@ -38,14 +38,15 @@ typedef struct path_state {
     double x[BATCH], z[BATCH], dx[BATCH], dy[BATCH], dz[BATCH], beta[3][BATCH], skip_x[BATCH], skip_z[BATCH];
     int order[BATCH], live[BATCH], queued[BATCH];
     float theta_o[BATCH], phi_o[BATCH], h[BATCH], u[HB_SAMPLE_DIMENSIONS][BATCH];
-    float theta_i[BATCH], phi_i[BATCH], pdf[BATCH], weight[3][BATCH];
+    float theta_i[BATCH], phi_i[BATCH], pdf[BATCH], weight[3][BATCH], f[3][BATCH];
 } path_state;
 
 typedef struct run {
     const hb_plan *plan;
     const hb_assembly *a;
     const hb_fibres *fibres;
-    int near, dimensions; /* the near-field sampler, and the numbers it reads */
+    int near, dimensions; /* the near-field sampler (HB_ASSEMBLY_SAMPLER_WEIGHTS), and the numbers it reads */
+    int light_transport;  /* HB_ASSEMBLY_LIGHT_TRANSPORT: weighed by S(w_from, w_next) */
     double light[3];      /* w toward the light */
     double lx, lz;        /* its unit part in the x-z plane */
     unsigned long long key;
@@ -174,6 +175,15 @@ static void scatter(const run *r, tally *t, path_state *s, int queued, unsigned 
         hb_sample_in in = { s->theta_o, s->phi_o, planes };
         hb_sample_angles(r->plan, (size_t)queued, &in, &out, &report);
     }
+    if (r->light_transport) { /* S(w_from, w_next): f with the sampled direction as w_o */
+        hb_angles_soa sent = { s->theta_o, s->phi_o, s->theta_i, s->phi_i };
+        hb_eval_angles(r->plan, (size_t)queued, sent, (hb_rgb_soa){ s->f[0], s->f[1], s->f[2] }, NULL);
+        for (int m = 0; m < queued; m++) {
+            double pdf = s->pdf[m], scale = cos((double)s->theta_i[m]) / (cos((double)s->theta_o[m]) * pdf);
+            for (int c = 0; c < 3; c++)
+                s->weight[c][m] = pdf > 0.0 ? (float)(s->f[c][m] * scale) : 0.0f;
+        }
+    }
     t->invalid += (long long)report.invalid;
     t->events += queued;
     for (int m = 0; m < queued; m++) {
@@ -243,6 +253,11 @@ static hb_status check(const hb_plan *plan, const hb_assembly *a, hb_assembly_re
         return st;
     if (hb_plan_sample_dimensions(plan) <= 0)
         return hb_api_unsupported(call, plan, "sampler, which the paths scatter by");
+    if (a->transport == HB_ASSEMBLY_LIGHT_TRANSPORT && hb_plan_pdf_is_estimate(plan))
+        return hb_fail(HB_ERR_UNSUPPORTED,
+                       "%s: the plan's pdf is a Monte-Carlo estimate, which the light's transport (f / pdf of another "
+                       "direction) cannot divide by without bias; HB_ASSEMBLY_SAMPLER_WEIGHTS uses the sampler's own weights",
+                       call);
     if (plan->material.eccentricity != 0.0)
         return hb_fail(HB_ERR_UNSUPPORTED, "%s: the plan's fibre is elliptical (eccentricity %g); the assembly's are circular",
                        call, plan->material.eccentricity);
@@ -263,6 +278,8 @@ static hb_status check(const hb_plan *plan, const hb_assembly *a, hb_assembly_re
         bad = "paths is outside [1, 2^40]";
     else if (a->max_bounces < 1 || a->max_bounces > 100000)
         bad = "max_bounces is outside [1, 100000]";
+    else if (a->transport != HB_ASSEMBLY_LIGHT_TRANSPORT && a->transport != HB_ASSEMBLY_SAMPLER_WEIGHTS)
+        bad = "transport is neither HB_ASSEMBLY_LIGHT_TRANSPORT nor HB_ASSEMBLY_SAMPLER_WEIGHTS";
     else if (a->theta_bins < 1 || a->theta_bins > 4096 || a->phi_bins < 1 || a->phi_bins > 4096 || a->depth_bins < 1 ||
              a->depth_bins > 4096)
         bad = "a count of bins is outside [1, 4096]";
@@ -345,8 +362,10 @@ hb_status hb_assembly_trace(const hb_plan *plan, const hb_assembly *a, hb_assemb
     st = hb_fibres_place(a, &fibres);
     if (st != HB_OK)
         return st;
-    int near = hb_model_ops_of(plan->options.model)->sample_near != NULL;
-    run r = { .plan = plan, .a = a, .fibres = &fibres, .near = near, .dimensions = hb_plan_sample_dimensions(plan) - near };
+    int light = a->transport == HB_ASSEMBLY_LIGHT_TRANSPORT;
+    int near = !light && hb_model_ops_of(plan->options.model)->sample_near != NULL;
+    run r = { .plan = plan, .a = a, .fibres = &fibres, .near = near, .light_transport = light,
+              .dimensions = hb_plan_sample_dimensions(plan) - near };
     double ct = cos(a->theta_light);
     r.light[0] = sin(a->phi_light) * ct, r.light[1] = sin(a->theta_light), r.light[2] = cos(a->phi_light) * ct;
     r.lx = sin(a->phi_light), r.lz = cos(a->phi_light);
