@@ -71,7 +71,7 @@ static void test_one_fibre(hb_test_ctx *t)
         hb_assembly a;
         hb_assembly_default(&a);
         a.layers = 1.0, a.period = 64, a.packing = M_PI / (2.0 * 128.0), a.theta_light = 0.3, a.phi_light = 0.4;
-        a.paths = (t->quick ? 400000 : 4000000) / (sampler ? 2 : 1), a.theta_bins = THETA_BINS, a.phi_bins = PHI_BINS;
+        a.paths = (t->quick ? 100000 : 4000000) / (sampler ? 2 : 1), a.theta_bins = THETA_BINS, a.phi_bins = PHI_BINS;
         a.seed = 7, a.transport = cases[m].transport;
         static double radiance[SIDES * THETA_BINS * PHI_BINS * 3], se[SIDES * THETA_BINS * PHI_BINS * 3];
         hb_assembly_result r = { .struct_size = sizeof r, .radiance = radiance, .radiance_se = se };
@@ -83,7 +83,9 @@ static void test_one_fibre(hb_test_ctx *t)
             for (int i = 0; i < THETA_BINS; i++)
                 for (int j = 0; j < PHI_BINS; j++) {
                     /* bins along the slab's faces (phi near +-pi/2) also take light that meets the
-                     * fibre's copy a period away: left out */
+                     * fibre's copy a period away: left out; light sent along the faces may still
+                     * scatter off a copy into the other bins, which a period of 64 keeps below the
+                     * noise (at 16 it shows in MJC03's bins as 5 standard errors) */
                     if (j == 2 || j == 3 || j == 8 || j == 9)
                         continue;
                     double phi = -M_PI + 2.0 * M_PI * (j + 0.5) / PHI_BINS;
