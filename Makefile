@@ -317,6 +317,7 @@ images: $(TOOL)
 	  --svg docs/images/huang_fig16_beyond_trt.svg > /dev/null
 	$(TOOL) assembly --model chiang --eumelanin 0.3 --layers 16 --depth-bins 16 --paths 100000 \
 	  --svg docs/images/assembly_blond_depth.svg > /dev/null
+	$(TOOL) dual --model chiang --eumelanin 0.3 --svg docs/images/dual_blond_energies.svg > /dev/null
 
 # The pkg-config file is written at install time, so it always names this PREFIX.
 install: all

@@ -473,6 +473,16 @@ static void test_plot_commands(hb_test_ctx *t)
     CHECK(t, r.status == 0 && strcmp(r.out, plain.out) == 0, "--svg prints the same table");
     CHECK(t, count_of(svg, "<polyline") == 7 && count_of(svg, "<circle") == 21,
           "7 columns of 3 rows: %d polylines, %d points", count_of(svg, "<polyline"), count_of(svg, "<circle"));
+
+    snprintf(args, sizeof args, "dual --model deon --quality fast --thetas 3 --svg \"%s\" --plot a_f,A_b", svg_path);
+    run_tool(t, args, "", &r);
+    run_tool(t, "dual --model deon --quality fast --thetas 3", "", &plain);
+    hb_test_read_text(svg_path, svg, sizeof svg);
+    CHECK(t, r.status == 0 && strcmp(r.out, plain.out) == 0, "dual --svg prints the same table");
+    CHECK(t, count_of(svg, "<polyline") == 6 && strstr(svg, "a_f_g") && strstr(svg, "A_b_b") && strstr(svg, "energy (fraction"),
+          "a_f and A_b per channel: %d polylines", count_of(svg, "<polyline"));
+    run_tool(t, "dual --svg x.svg --plot a_f,beta", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--plot"), "an unknown term: %d %s", r.status, r.err);
     unlink(svg_path);
 }
 

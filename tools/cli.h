@@ -34,6 +34,9 @@ int cli_parse_model_option(int argc, char **argv, int *i, cli_model_args *args, 
 /* The name of lobe p (an order, or HB_LOBE_RESIDUAL) in columns and messages: R, TT, TRT, TRRT, p4..p7, residual. */
 const char *cli_lobe_name(int p);
 
+/* The paper a model follows, as titles name it: MJC03, dFH11, HHH22, CBTB16. */
+const char *cli_model_paper(hb_model model);
+
 /* A whole field as an integer in [0, 2^64 - 1]; 0 for anything else (a sign, an overflow). */
 int cli_parse_u64(const char *s, unsigned long long *out);
 

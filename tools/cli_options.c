@@ -220,6 +220,12 @@ const char *cli_lobe_name(int p)
     return p >= 0 && p <= HB_LOBE_RESIDUAL ? names[p] : "?";
 }
 
+const char *cli_model_paper(hb_model model)
+{
+    static const char *const papers[] = { "MJC03", "dFH11", "HHH22", "CBTB16" }; /* hb_model's order */
+    return (unsigned)model < sizeof papers / sizeof papers[0] ? papers[model] : "?";
+}
+
 /* Lobe names R, TT, TRT, TRRT, residual, or an order p as a number. */
 static int parse_lobes(const char *s, unsigned *mask)
 {

@@ -152,11 +152,10 @@ static int plot_depth(const char *path, const hb_assembly *a, const hb_assembly_
     plot_series series[3] = { { "first scattering", x, y, a->depth_bins },
                               { "second", x, y + a->depth_bins, a->depth_bins },
                               { "third and later", x, y + 2 * a->depth_bins, a->depth_bins } };
-    static const char *const models[] = { "MJC03", "dFH11", "HHH22", "CBTB16" }; /* hb_model's order */
     char title[256];
     snprintf(title, sizeof title, "%s (eumelanin %.2g, pheomelanin %.2g), %s of %g layers at packing %.2f, light at theta %.2f, "
              "phi %.2f: light arriving by depth",
-             models[args->options.model], args->material.eumelanin, args->material.pheomelanin, a->shape == HB_ASSEMBLY_SLAB ? "slab" : "bundle", a->layers, r->packing,
+             cli_model_paper(args->options.model), args->material.eumelanin, args->material.pheomelanin, a->shape == HB_ASSEMBLY_SLAB ? "slab" : "bundle", a->layers, r->packing,
              a->theta_light, a->phi_light);
     int status = plot_write_lines_svg(path, title, "depth from the lit side (fibre diameters)",
                                       "light arriving at the fibres (fraction of incident, green)", series, 3);

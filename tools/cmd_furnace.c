@@ -171,6 +171,8 @@ static int furnace_rows(FILE *out, const furnace_request *q)
     return 0;
 }
 
+static int furnace_table(FILE *out, void *request) { return furnace_rows(out, request); }
+
 int cmd_furnace(int argc, char **argv)
 {
     furnace_request q = { .paths = 20000 };
@@ -232,28 +234,15 @@ int cmd_furnace(int argc, char **argv)
     if (!svg)
         return furnace_rows(stdout, &q);
     /* --svg: the same table, printed and plotted */
-    FILE *in = tmpfile(); /* the table, written and read back */
-    int st = in ? furnace_rows(in, &q) : 1;
-    if (st == 0) {
-        rewind(in);
-        for (int c; (c = getc(in)) != EOF;)
-            putchar(c);
-        rewind(in);
-        char title[160];
-        snprintf(title, sizeof title, "hairbsdf furnace: %s",
-                 q.by_order ? "share of the energy beyond TRT (HHH22 Fig. 16)" : q.by_lobe ? "energy by lobe" : "white furnace energy");
-        const char *y_label = q.by_order ? "share of the energy beyond TRT"
-                              : q.by_lobe ? "energy per lobe (fraction of the incident light)"
-                                          : "white-furnace energy E (fraction of the incident light)";
-        if (plot_csv(in, svg, title, NULL, q.by_order ? "share_beyond" : NULL, "theta_o (radians)", y_label, err,
-                     sizeof err) != 0) {
-            fprintf(stderr, "hairbsdf furnace: --svg: %s\n", err);
-            st = 1;
-        }
-    } else if (!in) {
-        fprintf(stderr, "hairbsdf furnace: --svg: cannot open a temporary file for the table\n");
-    }
-    if (in)
-        fclose(in);
+    char title[160];
+    snprintf(title, sizeof title, "hairbsdf furnace: %s",
+             q.by_order ? "share of the energy beyond TRT (HHH22 Fig. 16)" : q.by_lobe ? "energy by lobe" : "white furnace energy");
+    const char *y_label = q.by_order ? "share of the energy beyond TRT"
+                          : q.by_lobe ? "energy per lobe (fraction of the incident light)"
+                                      : "white-furnace energy E (fraction of the incident light)";
+    int st = plot_table(furnace_table, &q, svg, title, NULL, q.by_order ? "share_beyond" : NULL, "theta_o (radians)", y_label,
+                        err, sizeof err);
+    if (st && err[0])
+        fprintf(stderr, "hairbsdf furnace: --svg: %s\n", err);
     return st;
 }

@@ -37,4 +37,11 @@ int plot_write_lines_svg(const char *path, const char *title, const char *x_labe
 int plot_csv(FILE *csv, const char *path, const char *title, const char *x_column, const char *y_columns,
              const char *x_label, const char *y_label, char *err, size_t err_size);
 
+/* A command's table, printed and plotted: rows(out, context) writes it (0 on success) to a temporary
+ * file, which is copied to stdout and plotted into path as plot_csv. Returns rows' status, 1 with
+ * err filled when the plot or the temporary file fails. */
+typedef int plot_rows_fn(FILE *out, void *context);
+int plot_table(plot_rows_fn *rows, void *context, const char *path, const char *title, const char *x_column,
+               const char *y_columns, const char *x_label, const char *y_label, char *err, size_t err_size);
+
 #endif

@@ -210,3 +210,26 @@ int plot_csv(FILE *csv, const char *path, const char *title, const char *x_colum
         return snprintf(err, err_size, "cannot write %s", path), -1;
     return 0;
 }
+
+int plot_table(plot_rows_fn *rows, void *context, const char *path, const char *title, const char *x_column,
+               const char *y_columns, const char *x_label, const char *y_label, char *err, size_t err_size)
+{
+    FILE *table = tmpfile(); /* the table, written, copied and read back */
+    if (!table) {
+        snprintf(err, err_size, "cannot open a temporary file for the table");
+        return 1;
+    }
+    int st = rows(table, context);
+    if (st == 0) {
+        rewind(table);
+        for (int c; (c = getc(table)) != EOF;)
+            putchar(c);
+        rewind(table);
+        if (plot_csv(table, path, title, x_column, y_columns, x_label, y_label, err, err_size) != 0)
+            st = 1;
+    } else {
+        err[0] = '\0';
+    }
+    fclose(table);
+    return st;
+}
