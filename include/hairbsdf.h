@@ -709,7 +709,7 @@ typedef struct hb_assembly {
     double packing;    /* the fibres' share of the cross-section's area, in (0, 0.5] (default 0.3) */
     int period;        /* the slab's period along x in fibre diameters, at least 4 (default 32) */
     double theta_light, phi_light; /* default (0.3, 0) */
-    long paths;        /* default 100000 */
+    long long paths;   /* default 100000 */
     int max_bounces;   /* 1..100000, default 10000 */
     unsigned long long seed; /* places the fibres and keys the paths' numbers; default 1 */
     int theta_bins, phi_bins; /* the exit directions' bins: uniform in theta over [-pi/2, pi/2] and in

@@ -122,7 +122,7 @@ static void test_one_fibre(hb_test_ctx *t)
                               cases[m].name, side, i, j, c, got, want[c], err);
                     }
                 }
-        hb_test_note(t, "%s, %ld paths: binned exits within %.2f standard errors of the bins' integrals (largest difference %.1e)",
+        hb_test_note(t, "%s, %lld paths: binned exits within %.2f standard errors of the bins' integrals (largest difference %.1e)",
                      cases[m].name, a.paths, worst, worst_abs);
         if (!sampler)
             hb_test_note(t, "%s: what the sampler draws, f(w, w_light), differs from what the fibre sends by %.2f%% of the largest bin",
@@ -322,7 +322,7 @@ static void test_refusals(hb_test_ctx *t)
 }
 
 /* The reflected light of orders first .. HB_ASSEMBLY_ORDERS - 1 in channel c, and its standard error. */
-static double reflected_orders(const hb_assembly_result *r, long paths, int first, int c, double *se)
+static double reflected_orders(const hb_assembly_result *r, long long paths, int first, int c, double *se)
 {
     double sum = 0.0, square = 0.0;
     for (int k = first; k < HB_ASSEMBLY_ORDERS; k++)
@@ -344,8 +344,8 @@ static void test_single_scattering_share(hb_test_ctx *t)
     } fibres[] = { { "lossless", 0.0, 0.0 }, { "blond", 0.3, 0.0 }, { "brown", 1.3, 0.0 }, { "black", 8.0, 0.0 },
                    { "red", 0.0, 2.0 } };
     static const double packings[] = { 0.1, 0.3 }, thetas[] = { 0.0, 0.6 };
-    long paths = t->quick ? 2000 : 100000;
-    hb_test_note(t, "CBTB16, slab of 8 layers lit from above (phi 0), green channel, %ld paths per cell:", paths);
+    long long paths = t->quick ? 2000 : 100000;
+    hb_test_note(t, "CBTB16, slab of 8 layers lit from above (phi 0), green channel, %lld paths per cell:", paths);
     hb_test_note(t, "fibre     packing theta  reflected          scattered more than once       transmitted  absorbed  scatterings");
     for (size_t m = (size_t)t->quick; m < (t->quick ? 2 : sizeof fibres / sizeof fibres[0]); m++) {
         hb_material mat;

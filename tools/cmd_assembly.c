@@ -81,7 +81,7 @@ static int parse_assembly_option(int argc, char **argv, int *i, hb_assembly *a, 
     else if (strcmp(o, "--light") == 0)
         ok = parse_pair(v, &a->theta_light, &a->phi_light);
     else if (strcmp(o, "--paths") == 0)
-        ok = parse_number(v, 1.0, 1e12, &x) && x == floor(x) ? (a->paths = (long)x, 1) : 0;
+        ok = parse_number(v, 1.0, 1e12, &x) && x == floor(x) ? (a->paths = (long long)x, 1) : 0;
     else if (strcmp(o, "--bounces") == 0)
         ok = parse_number(v, 1.0, 100000.0, &x) && x == floor(x) ? (a->max_bounces = (int)x, 1) : 0;
     else if (strcmp(o, "--seed") == 0)

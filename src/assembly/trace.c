@@ -218,7 +218,8 @@ static void trace_task(void *context, int index)
     tally *t = &r->tallies[slot];
     path_state *s = &r->states[slot];
     unsigned long long first = (unsigned long long)index * BATCH;
-    int count = r->a->paths - (long)first < BATCH ? (int)(r->a->paths - (long)first) : BATCH;
+    long long left = r->a->paths - (long long)first;
+    int count = left < BATCH ? (int)left : BATCH;
     for (int k = 0; k < count; k++) {
         launch(r, s, k, first + (unsigned long long)k);
         s->live[k] = 1;
@@ -274,8 +275,8 @@ static hb_status check(const hb_plan *plan, const hb_assembly *a, hb_assembly_re
         bad = "theta_light is outside (-pi/2, pi/2) or phi_light is not finite";
     else if (a->shape == HB_ASSEMBLY_SLAB && !(fabs(a->phi_light) < M_PI_2 - 1e-6))
         bad = "phi_light is outside (-pi/2, pi/2): the slab's light comes from above it";
-    else if (a->paths < 1 || a->paths > (1L << 40))
-        bad = "paths is outside [1, 2^40]";
+    else if (a->paths < 1 || a->paths > (1LL << 39)) /* at most 2^30 tasks of HB_ASSEMBLY_BATCH paths */
+        bad = "paths is outside [1, 2^39]";
     else if (a->max_bounces < 1 || a->max_bounces > 100000)
         bad = "max_bounces is outside [1, 100000]";
     else if (a->transport != HB_ASSEMBLY_LIGHT_TRANSPORT && a->transport != HB_ASSEMBLY_SAMPLER_WEIGHTS)
@@ -370,8 +371,8 @@ hb_status hb_assembly_trace(const hb_plan *plan, const hb_assembly *a, hb_assemb
     r.light[0] = sin(a->phi_light) * ct, r.light[1] = sin(a->theta_light), r.light[2] = cos(a->phi_light) * ct;
     r.lx = sin(a->phi_light), r.lz = cos(a->phi_light);
     r.key = hb_mix64(a->seed + 0x9e3779b97f4a7c15ull);
-    long tasks = (a->paths + BATCH - 1) / BATCH;
-    int part = hb_build_part((int)(tasks < (1L << 30) ? tasks : (1L << 30)));
+    long long tasks = (a->paths + BATCH - 1) / BATCH;
+    int part = hb_build_part((int)tasks);
     r.slots = part < MOST_SLOTS ? part : MOST_SLOTS;
     size_t nbins = (size_t)2 * a->theta_bins * a->phi_bins * 3, ndepth = (size_t)a->depth_bins * DEPTH_ORDERS * 3;
     r.tallies = calloc((size_t)r.slots, sizeof *r.tallies);
