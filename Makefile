@@ -96,7 +96,7 @@ endif
 
 # The layers (docs/architecture.md): every .c under src/ is compiled once, except each model's
 # kernels.c, compiled once per ISA into $(B)/<isa>/ (the same ISAs as src/kernel/isas.h lists).
-KERNEL_SRCS := $(wildcard src/models/*/kernels.c)
+KERNEL_SRCS := $(wildcard src/models/*/kernels.c) src/dual/kernels.c
 LIB_SRCS := $(filter-out $(KERNEL_SRCS),$(wildcard src/*/*.c src/*/*/*.c))
 KERNEL_OBJS := $(foreach isa,$(ISAS),$(KERNEL_SRCS:%.c=$(B)/$(isa)/%.o))
 LIB_OBJS := $(LIB_SRCS:%.c=$(B)/%.o) $(KERNEL_OBJS)

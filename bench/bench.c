@@ -39,9 +39,11 @@ enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
  * (hb_eval_near, hb_sample_near, hb_pdf_near) at each sample's h, or f and the pdf in one call
  * (hb_eval_pdf_angles; its error is f's), or a path tracer's step at one hit from vectors
  * (hb_hit_sample, then hb_hit_eval_pdf of the light's direction; far field, or near at h; its error
- * is the light direction's f). */
+ * is the light direction's f), or the dual-scattering term f_DS from the plan's 64-node table
+ * (hb_dual_eval at each sample's fibre count; its error against hb_dual_radiance of the same table). */
 typedef enum bench_op {
-    OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR, OP_EVAL_PDF, OP_EVAL_ABSORPTION, OP_HIT, OP_HIT_NEAR
+    OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR, OP_EVAL_PDF, OP_EVAL_ABSORPTION, OP_HIT, OP_HIT_NEAR,
+    OP_DUAL
 } bench_op;
 
 static int op_is(bench_op op, bench_op far) { return op == far || op == far + OP_EVAL_NEAR; }
@@ -65,6 +67,8 @@ static float out[3][BATCH], ref[3][BATCH];
 static float absorption[3][BATCH]; /* per sample (OP_EVAL_ABSORPTION): the blond material's sigma_a */
 static float uniforms[HB_SAMPLE_DIMENSIONS][BATCH], sampled_theta[BATCH], sampled_phi[BATCH], sampled_pdf[BATCH];
 static float w_i[BATCH][3], w_o[BATCH][3]; /* the directions as fibre-frame vectors (OP_HIT) */
+static float fibres[BATCH];                 /* the fibres toward the light (OP_DUAL) */
+static hb_dual_table *dual_table;           /* the plan's table while an OP_DUAL row runs */
 
 /* A path tracer's step at hit k: a sample from w_o, then f and the pdf of the light's direction w_i. */
 static void run_hit(const hb_plan *plan, size_t k, const float *h)
@@ -97,6 +101,8 @@ static void run_part(const hb_plan *plan, bench_op op, size_t first, size_t n)
         hb_eval_angles(plan, n, in, f, NULL);
     } else if (op == OP_EVAL_NEAR) {
         hb_eval_near(plan, n, near, f, NULL);
+    } else if (op == OP_DUAL) {
+        hb_dual_eval(dual_table, n, in, fibres + k, NULL, f, NULL);
     } else if (op == OP_EVAL_PDF) {
         hb_eval_pdf_angles(plan, n, in, f, sampled_pdf + k, NULL);
     } else if (op == OP_EVAL_ABSORPTION) {
@@ -145,6 +151,7 @@ static void make_inputs(const hb_material *m)
         phi_i[k] = (float)(2 * M_PI * u - M_PI);
         phi_o[k] = (float)(2 * M_PI * w - M_PI);
         offset_h[k] = (float)(2.0 * rand() / RAND_MAX - 1.0);
+        fibres[k] = k % 4 ? (float)(16.0 * rand() / RAND_MAX) : 0.0f;
         const float *angles[2][2] = { { &theta_i[k], &phi_i[k] }, { &theta_o[k], &phi_o[k] } };
         float *vector[2] = { w_i[k], w_o[k] };
         for (int s = 0; s < 2; s++) { /* w(theta, phi) of docs/conventions.md */
@@ -166,6 +173,12 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int
     }
     int repeats = o->term == HB_TERM_FULL ? REPEATS / 10 : REPEATS;
     double t[REPEATS];
+    if (op == OP_DUAL && hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL,
+                                              &dual_table) != HB_OK) {
+        fprintf(stderr, "bench: %s\n", hb_last_error()->message);
+        hb_plan_destroy(plan);
+        return 0;
+    }
     run_op(plan, op, per_hit); /* warm up */
     double ghz_before = hb_cpu_clock_ghz();
     for (int k = 0; k < repeats; k++) {
@@ -193,6 +206,16 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int
             for (int k = 0; k < NREF; k++)
                 ref[c][k] = sampled_pdf[k] > 0.0f ? ref[c][k] / sampled_pdf[k] : 0.0f;
     }
+    for (int k = 0; op == OP_DUAL && k < NREF; k++) { /* the double reference of the same table */
+        hb_dual_terms d = { .struct_size = sizeof d };
+        double f[3];
+        hb_dual_table_terms(dual_table, theta_i[k], &d);
+        hb_dual_radiance(&d, HB_DUAL_DENSITY, HB_DUAL_DENSITY, theta_i[k], phi_i[k], theta_o[k], phi_o[k], fibres[k], -1.0, f);
+        for (int c = 0; c < 3; c++)
+            ref[c][k] = (float)f[c];
+    }
+    hb_dual_table_destroy(dual_table);
+    dual_table = NULL;
     r->min_ns = t[0];
     r->median_ns = t[repeats / 2];
     r->ghz = fmax(ghz_before, hb_cpu_clock_ghz()); /* the faster clock: the one the minimum ran at */
@@ -303,6 +326,10 @@ static const config configs[] = {
       "dFH11 full, N_p from the table: high", 0 },
     { "deon", "full", "colour-table-fast", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_FAST, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_ABSORPTION, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_COLOUR_TABLE, 0, 0.0,
       "dFH11 full, N_p from the colour table at each sample's absorption: fast", 0 },
+    { "deon", "dual", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_DUAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 balanced: the dual-scattering term f_DS alone (hb_dual_eval, 64-node table, 0..16 fibres)", 0 },
+    { "chiang", "dual", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_DUAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "CBTB16 balanced: the dual-scattering term f_DS alone (hb_dual_eval, 64-node table)", 0 },
     { "marschner", "longitudinal", "gaussian", HB_MODEL_MARSCHNER, HB_TERM_LONGITUDINAL, HB_QUALITY_BALANCED, 0,
       HB_I0_ABRAMOWITZ, HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "MJC03 longitudinal term alone", 0 },

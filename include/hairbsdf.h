@@ -668,6 +668,47 @@ HB_API hb_status hb_dual_terms_grid(const hb_plan *plan, int count, double d_b, 
 HB_API hb_status hb_dual_lobe_energies(const hb_plan *plan, double theta, double forward[HB_MAX_LOBES + 1][3],
                                        double backward[HB_MAX_LOBES + 1][3]);
 
+/* The dual-scattering radiance term per sample (Zinke et al. 2008 sec. 4; docs/multiple-scattering.md,
+ * "The radiance term"): what the light that scattered off other fibres before reaching a shading point
+ * adds to that point's f. An engine shades v f + f_DS, with f the plan's own f (hb_eval_angles), v
+ * the light's direct visibility at the point and f_DS from hb_dual_eval:
+ *   f_DS = v d_b f_back(0) + (1 - v) T_f (f_G(sigma_f^2) + d_b f_back(sigma_f^2)),
+ *   T_f = d_f a_f^n and sigma_f^2 = n beta_f^2 (the paper's global transmittance and spread), n the
+ * fibres between the point and the light,
+ * every term at the light's inclination theta_i and theta_h = (theta_i + theta_o) / 2;
+ *   f_back(s^2) = A_b g(theta_h - delta_b, sigma_b^2 + s^2) / (2 pi cos theta_o) where |phi| < pi/2
+ * (A_b, delta_b, sigma_b^2 of eqs. 14-17), 0 elsewhere; and the forward-scattered light's next scattering
+ *   f_G(s^2) = [a_f |phi| g(theta_h - alpha_f, beta_f^2 + s^2) + a_b (pi - |phi|) g(theta_h - alpha_b,
+ *              beta_b^2 + s^2)] / (2 pi^2 cos theta_o),
+ * phi = phi_o - phi_i in [-pi, pi], g the unit Gaussian: each term integrates over w_o to its energy
+ * (A_b, a_f, a_b), cos theta_o no less than 2^-12. The table holds the terms of hb_dual_terms_grid at
+ * `thetas` midpoints, interpolated linearly in theta_i (constant beyond the outer nodes). */
+typedef struct hb_dual_table hb_dual_table;
+
+/* Builds the table of a plan (its model, lobes and quality; its ISA for hb_dual_eval) with the density
+ * factors d_f and d_b in [0, 1] (HB_DUAL_DENSITY), `thetas` in 2..4096 (64 is an engine's choice);
+ * progress and parallel as hb_dual_terms_grid. HB_ERR_LIMIT when a_f >= 1 at a node (eqs. 14-15's
+ * series of forward scatterings diverges: MJC03's lossless forward energy exceeds 1), naming it. */
+HB_API hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_f, double d_b, hb_progress_fn progress,
+                                      void *progress_context, hb_parallel_fn parallel, void *parallel_context,
+                                      hb_dual_table **table);
+HB_API void hb_dual_table_destroy(hb_dual_table *table);
+
+/* The terms the table gives at theta (its interpolation, in double): what hb_dual_eval evaluates. */
+HB_API hb_status hb_dual_table_terms(const hb_dual_table *table, double theta, hb_dual_terms *terms);
+
+/* f_DS for n samples, in the table's ISA: fibres[k] = n >= 0, direct[k] = v in [0, 1] (direct NULL:
+ * v = max(0, 1 - n), full visibility fading out over the first fibre). A sample is invalid as for
+ * hb_eval_angles, or when n is NaN, negative or infinite, or v is outside [0, 1]; it gets 0. */
+HB_API hb_status hb_dual_eval(const hb_dual_table *table, size_t n, hb_angles_soa in, const float *fibres,
+                              const float *direct, hb_rgb_soa out, hb_eval_report *report);
+
+/* The double-precision reference of f_DS at one sample from the terms at theta_i (hb_dual_terms_at
+ * for the exact ones, hb_dual_table_terms for a table's) with the density factor d_f (d_b is in the
+ * terms' sigma_b2 and passed again for eq. 18's weights); direct < 0 for the default v. */
+HB_API hb_status hb_dual_radiance(const hb_dual_terms *terms, double d_f, double d_b, double theta_i, double phi_i,
+                                  double theta_o, double phi_o, double fibres, double direct, double f[3]);
+
 /* Light in a fibre assembly, traced fibre by fibre (docs/multiple-scattering.md): the ground truth the
  * dual-scattering terms and the engines' tables approximate. Parallel circular fibres of radius 1
  * along the frame's y, placed at random without overlap (random sequential addition from the seed),

@@ -1,11 +1,12 @@
 #!/bin/sh
 # make layers: the include rules of docs/architecture.md, checked on every file under src/.
 # - A layer includes only its own folder and the layers below it:
-#   simd < math < kernel < models < plan < api < assembly, and ref (the reference) below api only.
+#   simd < math < kernel < models, dual < plan < api < assembly, and ref (the reference) below api only.
 # - A model's folder includes no other model's folder. The shared folders of models/ (common/:
 #   equations two models use; interface/, build/, file/, text/: the interface and list, builds,
 #   the table-file format, text and refusals) include no model's folder.
-# - The reference includes nothing of the fast path: no simd/, kernel/ or vector math. The shared
+# - The reference includes nothing of the fast path: no simd/, kernel/ or vector math (src/dual/'s
+#   reference also reads only its folder's constants.h). The shared
 #   reference (src/ref/) reads of models/ only the plan's data (models/interface/plan.h); a model's own
 #   reference (src/models/<model>/reference*) also its folder's constants.h, state.h and
 #   reference.h, and nothing else of models/; no fast-path file includes a reference.
@@ -14,7 +15,7 @@
 cd "$(dirname "$0")/.." || exit 2
 rank() {
     case "$1" in
-    simd) echo 0 ;; math) echo 1 ;; kernel) echo 2 ;; models) echo 3 ;; ref) echo 4 ;; plan) echo 4 ;;
+    simd) echo 0 ;; math) echo 1 ;; kernel) echo 2 ;; models) echo 3 ;; dual) echo 3 ;; ref) echo 4 ;; plan) echo 4 ;;
     api) echo 5 ;; assembly) echo 6 ;; *) echo -1 ;;
     esac
 }
@@ -24,7 +25,7 @@ for file in $(find src -name '*.c' -o -name '*.h' | sort); do
     layer=$(echo "$file" | cut -d/ -f2)
     model=$(echo "$file" | sed -n 's|^src/models/\([^/]*\)/.*|\1|p')
     oracle=""
-    case "$file" in src/models/*/reference*) oracle=yes ;; esac
+    case "$file" in src/models/*/reference* | src/dual/reference*) oracle=yes ;; esac
     grep -n '^#include "' "$file" | while IFS= read -r line; do
         number=${line%%:*}
         target=$(echo "$line" | sed 's/^[0-9]*:#include "\([^"]*\)".*/\1/')

@@ -486,6 +486,41 @@ static void test_plot_commands(hb_test_ctx *t)
     unlink(svg_path);
 }
 
+/* eval with an n column (and v) prints f and then the dual-scattering term, as hb_dual_eval gives it
+ * from the plan's 64-node table; an invalid v writes zeros; pdf has no such column. */
+static void test_eval_dual_columns(hb_test_ctx *t)
+{
+    hb_tool_run r;
+    if (!run_tool(t, "eval --model deon --eumelanin 0.3", "theta_i,phi_i,theta_o,phi_o,n,v\n0.3,0,-0.2,0.4,2,0.25\n"
+                                                          "0.3,0,-0.2,2.9,5,0\n0.3,0,-0.2,0.4,2,1.5\n",
+                  &r))
+        return;
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.eumelanin = 0.3;
+    hb_plan *plan = NULL;
+    hb_dual_table *table = NULL;
+    hb_plan_create(&m, &o, &plan, NULL);
+    CHECK(t, plan && hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL, &table) == HB_OK,
+          "table");
+    float ti[2] = { 0.3f, 0.3f }, pi[2] = { 0, 0 }, to[2] = { -0.2f, -0.2f }, po[2] = { 0.4f, 2.9f }, n[2] = { 2, 5 },
+          v[2] = { 0.25f, 0 }, f[6][2];
+    hb_angles_soa in = { ti, pi, to, po };
+    hb_eval_angles(plan, 2, in, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+    hb_dual_eval(table, 2, in, n, v, (hb_rgb_soa){ f[3], f[4], f[5] }, NULL);
+    char want[512];
+    snprintf(want, sizeof want, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n0,0,0,0,0,0\n", f[0][0],
+             f[1][0], f[2][0], f[3][0], f[4][0], f[5][0], f[0][1], f[1][1], f[2][1], f[3][1], f[4][1], f[5][1]);
+    CHECK(t, r.status == 0 && strcmp(r.out, want) == 0 && strstr(r.err, "1 invalid sample") && f[3][0] > 0.0f,
+          "eval with n,v:\n%s%s, the library:\n%s", r.out, r.err, want);
+    run_tool(t, "pdf --model deon", "theta_i,phi_i,theta_o,phi_o,n\n0.3,0,-0.2,0.4,1\n", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "use eval"), "pdf with n: %d %s", r.status, r.err);
+    hb_dual_table_destroy(table);
+    hb_plan_destroy(plan);
+}
+
 /* hairbsdf plan describes the plan of the same options eval would use; --tolerance and --budget-ns reach
  * the library through every command. */
 static void test_plan_commands(hb_test_ctx *t)
@@ -727,6 +762,7 @@ const hb_test hb_tests_cli[] = {
     { "cli_marschner_commands", test_marschner_commands, 0 },
     { "cli_eval_matches_library", test_eval_matches_library, 0 },
     { "cli_eval_errors", test_eval_errors, 0 },
+    { "cli_eval_dual_columns", test_eval_dual_columns, 0 },
     { "cli_input_edges", test_input_edges, 0 },
     { "cli_help", test_help, 0 },
     { "cli_hostile_inputs", test_hostile_inputs, 0 },

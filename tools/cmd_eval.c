@@ -1,6 +1,6 @@
 /* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o (near-field models: and h; per-sample absorption:
- * and eumelanin,pheomelanin or sigma_a_r,sigma_a_g,sigma_a_b) from a file or stdin, f_r,f_g,f_b to a
- * file or stdout
+ * and eumelanin,pheomelanin or sigma_a_r,sigma_a_g,sigma_a_b; dual scattering: and n, or n,v) from a
+ * file or stdin, f_r,f_g,f_b (and the dual-scattering term after them) to a file or stdout
  * hairbsdf pdf: the same rows, the sampling pdf of w_i given w_o (docs/sampling.md). */
 #include <errno.h>
 #include <math.h>
@@ -14,31 +14,36 @@
 #define BATCH 1024
 
 /* What a row holds after the angles, as its header names it. */
-typedef enum row_kind { ROW_ANGLES, ROW_NEAR, ROW_MELANIN, ROW_SIGMA } row_kind;
+typedef enum row_kind { ROW_ANGLES, ROW_NEAR, ROW_FIBRES, ROW_FIBRES_VISIBLE, ROW_MELANIN, ROW_SIGMA } row_kind;
 
-static const int row_columns[] = { 4, 5, 6, 7 };
+static const int row_columns[] = { 4, 5, 5, 6, 6, 7 };
 
 static const char *const row_names[][7] = {
     { "theta_i", "phi_i", "theta_o", "phi_o" },
     { "theta_i", "phi_i", "theta_o", "phi_o", "h" },
+    { "theta_i", "phi_i", "theta_o", "phi_o", "n" },
+    { "theta_i", "phi_i", "theta_o", "phi_o", "n", "v" },
     { "theta_i", "phi_i", "theta_o", "phi_o", "eumelanin", "pheomelanin" },
     { "theta_i", "phi_i", "theta_o", "phi_o", "sigma_a_r", "sigma_a_g", "sigma_a_b" },
 };
 
 typedef struct eval_batch {
-    float in[7][BATCH]; /* the angles, then h, or sigma_a per channel */
-    float out[3][BATCH];
+    float in[7][BATCH]; /* the angles, then h, or n (and v), or sigma_a per channel */
+    float out[6][BATCH]; /* f, then f_DS */
     size_t count;
+    hb_dual_table *dual; /* for the rows with n: the plan's dual-scattering table */
 } eval_batch;
 
-/* Whether a row is a valid sample as hb_eval_angles defines it (hairbsdf.h): finite angles,
- * |theta| at most the float pi/2, |phi| at most HB_PHI_LIMIT, |h| <= 1 (near field), absorptions
- * and concentrations finite and >= 0. */
+/* Whether a row is a valid sample as hb_eval_angles (hb_dual_eval) defines it (hairbsdf.h): finite
+ * angles, |theta| at most the float pi/2, |phi| at most HB_PHI_LIMIT, |h| <= 1 (near field), v in
+ * [0, 1], n, absorptions and concentrations finite and >= 0. */
 static int row_valid(const float *row, row_kind kind)
 {
     for (int c = 0; c < row_columns[kind]; c++) {
-        int ok = c < 4 ? fabsf(row[c]) <= (c % 2 ? HB_PHI_LIMIT : 1.57079637f)
-                       : kind == ROW_NEAR ? fabsf(row[c]) <= 1.0f : row[c] >= 0.0f && row[c] <= 3.4e38f;
+        int ok = c < 4                      ? fabsf(row[c]) <= (c % 2 ? HB_PHI_LIMIT : 1.57079637f)
+                 : kind == ROW_NEAR         ? fabsf(row[c]) <= 1.0f
+                 : c == 5 && kind == ROW_FIBRES_VISIBLE ? row[c] >= 0.0f && row[c] <= 1.0f
+                                            : row[c] >= 0.0f && row[c] <= 3.4e38f;
         if (!ok)
             return 0;
     }
@@ -75,9 +80,21 @@ static size_t flush(const hb_plan *plan, int pdf, row_kind kind, eval_batch *b, 
         hb_eval_angles_absorption(plan, b->count, in, sigma_a, rgb, &report);
     else
         near ? hb_eval_near(plan, b->count, in_near, rgb, &report) : hb_eval_angles(plan, b->count, in, rgb, &report);
+    int dual = kind == ROW_FIBRES || kind == ROW_FIBRES_VISIBLE;
+    if (dual)
+        hb_dual_eval(b->dual, b->count, in, b->in[4], kind == ROW_FIBRES_VISIBLE ? b->in[5] : NULL,
+                     (hb_rgb_soa){ b->out[3], b->out[4], b->out[5] }, &report); /* its invalid include f's */
+    for (size_t k = 0; dual && k < b->count; k++) { /* a row invalid for its n or v: 0 in every column */
+        float row[6] = { b->in[0][k], b->in[1][k], b->in[2][k], b->in[3][k], b->in[4][k], b->in[5][k] };
+        if (!row_valid(row, kind))
+            b->out[0][k] = b->out[1][k] = b->out[2][k] = 0.0f;
+    }
     for (size_t k = 0; k < b->count; k++)
         if (pdf)
             fprintf(out, "%.9g\n", b->out[0][k]);
+        else if (dual)
+            fprintf(out, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", b->out[0][k], b->out[1][k], b->out[2][k], b->out[3][k],
+                    b->out[4][k], b->out[5][k]);
         else
             fprintf(out, "%.9g,%.9g,%.9g\n", b->out[0][k], b->out[1][k], b->out[2][k]);
     b->count = 0;
@@ -92,7 +109,10 @@ static void eval_usage(FILE *to, int pdf)
                 "field at h) or, without a header, for chiang unless --far (its mean over h); writes %s\n"
                 "per line to OUTPUT or stdout. eval also takes each row's absorption where the header names it:\n"
                 "theta_i,phi_i,theta_o,phi_o,eumelanin,pheomelanin or ...,sigma_a_r,sigma_a_g,sigma_a_b (deon with\n"
-                "the quadrature, marschner). An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1,\n"
+                "the quadrature, marschner). With a header theta_i,phi_i,theta_o,phi_o,n (the fibres between the point\n"
+                "and the light) or ...,n,v (and the light's direct visibility in [0, 1]) eval writes the far field\n"
+                "f_r,f_g,f_b and after it the dual-scattering term f_ds_r,f_ds_g,f_ds_b (hb_dual_eval, a 64-node table,\n"
+                "density factors 0.7). An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1,\n"
                 "a negative absorption) gives %s and is reported with its line; with --strict it is an error.\n%s",
             pdf ? "pdf" : "eval",
             pdf ? "the solid-angle pdf with which 'hairbsdf sample' draws w_i given w_o" : "f_r,f_g,f_b",
@@ -190,6 +210,17 @@ int cmd_eval(int argc, char **argv, int pdf)
                 status = 2;
                 break;
             }
+            if ((header == ROW_FIBRES || header == ROW_FIBRES_VISIBLE) && !batch.dual) {
+                hb_status st = pdf ? HB_ERR_UNSUPPORTED
+                                   : hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL,
+                                                          &batch.dual);
+                if (st != HB_OK) {
+                    fprintf(stderr, "%s: the n column: %s\n", name,
+                            pdf ? "pdf has no dual-scattering term (use eval)" : hb_last_error()->message);
+                    status = 2;
+                    break;
+                }
+            }
             if (header >= ROW_MELANIN && !absorbing) {
                 fprintf(stderr, "%s: absorption columns need eval with deon (quadrature), marschner or chiang\n", name);
                 status = 2;
@@ -206,8 +237,8 @@ int cmd_eval(int argc, char **argv, int pdf)
             first_invalid = first_invalid ? first_invalid : lineno;
             if (strict) {
                 flush(plan, pdf, kind, &batch, out);
-                fprintf(stderr, "%s: line %ld: invalid sample '%s' (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1 or "
-                        "a negative absorption)\n", name, lineno, copy);
+                fprintf(stderr, "%s: line %ld: invalid sample '%s' (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1, "
+                        "v outside [0, 1] or a negative n or absorption)\n", name, lineno, copy);
                 status = 1;
                 break;
             }
@@ -229,12 +260,14 @@ int cmd_eval(int argc, char **argv, int pdf)
     if (!status)
         invalid += flush(plan, pdf, kind, &batch, out);
     free(line);
+    hb_dual_table_destroy(batch.dual);
+    batch.dual = NULL;
     hb_plan_destroy(plan);
     if (invalid)
-        fprintf(stderr, "%s: %zu invalid sample%s (NaN/Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1 or a negative "
-                        "absorption), the first on line %ld, "
-                        "written as %s\n",
-                name, invalid, invalid == 1 ? "" : "s", first_invalid, pdf ? "0" : "0,0,0");
+        fprintf(stderr, "%s: %zu invalid sample%s (NaN/Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1, v outside [0, 1] or "
+                        "a negative n or absorption), the first on line %ld, written as %s\n",
+                name, invalid, invalid == 1 ? "" : "s", first_invalid,
+                pdf ? "0" : kind == ROW_FIBRES || kind == ROW_FIBRES_VISIBLE ? "0,0,0,0,0,0" : "0,0,0");
     int read_failed = ferror(in);
     if (in != stdin)
         fclose(in);

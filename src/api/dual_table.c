@@ -1,0 +1,146 @@
+/* The dual-scattering table and radiance term (hb_dual_table_create, hb_dual_eval, hb_dual_radiance;
+ * docs/multiple-scattering.md): the terms of hb_dual_terms_grid kept in double and as the kernels'
+ * floats, the plan's ISA's kernel, and the double reference behind the argument checks. */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "checks.h"
+#include "dual/kernels.h"
+#include "kernel/isas.h"
+#include "math/valid.h"
+
+enum { THETAS_MAX = 4096 };
+
+static hb_status check_density(const char *call, double d_f, double d_b)
+{
+    if (!(d_f >= 0.0 && d_f <= 1.0))
+        return hb_fail(HB_ERR_PARAM, "%s: d_f = %g is outside [0, 1]", call, d_f);
+    if (!(d_b >= 0.0 && d_b <= 1.0))
+        return hb_fail(HB_ERR_PARAM, "%s: d_b = %g is outside [0, 1]", call, d_b);
+    return HB_OK;
+}
+
+/* The kernels' floats of node k: per channel the nine terms, then the padding. */
+static void node_floats(const hb_dual_terms *t, float *node)
+{
+    for (int k = 0; k < HB_DUAL_PER_NODE; k++)
+        node[k] = 0.0f;
+    for (int c = 0; c < 3; c++) {
+        float *m = node + c * HB_DUAL_PER_CHANNEL;
+        m[HB_DUAL_A_F] = (float)t->a_f[c], m[HB_DUAL_A_B] = (float)t->a_b[c];
+        m[HB_DUAL_ALPHA_F] = (float)t->alpha_f[c], m[HB_DUAL_BETA_F2] = (float)t->beta_f2[c];
+        m[HB_DUAL_ALPHA_B] = (float)t->alpha_b[c], m[HB_DUAL_BETA_B2] = (float)t->beta_b2[c];
+        m[HB_DUAL_A_BACK] = (float)t->A_b[c], m[HB_DUAL_DELTA_B] = (float)t->delta_b[c];
+        m[HB_DUAL_SIGMA_B2] = (float)t->sigma_b2[c];
+    }
+}
+
+void hb_dual_table_destroy(hb_dual_table *table)
+{
+    if (!table)
+        return;
+    free(table->terms);
+    free(table->nodes);
+    free(table);
+}
+
+hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_f, double d_b, hb_progress_fn progress,
+                               void *progress_context, hb_parallel_fn parallel, void *parallel_context,
+                               hb_dual_table **table)
+{
+    if (!plan || !table)
+        return hb_fail_null(__func__, !plan ? "plan" : "table");
+    *table = NULL;
+    if (thetas < 2 || thetas > THETAS_MAX)
+        return hb_fail(HB_ERR_PARAM, "%s: thetas = %d is outside [2, %d]", __func__, thetas, THETAS_MAX);
+    hb_status st = check_density(__func__, d_f, d_b);
+    if (st != HB_OK)
+        return st;
+    hb_dual_table *t = calloc(1, sizeof *t);
+    if (t) {
+        t->terms = calloc((size_t)thetas, sizeof *t->terms);
+        t->nodes = malloc((size_t)thetas * HB_DUAL_PER_NODE * sizeof *t->nodes);
+    }
+    if (!t || !t->terms || !t->nodes) {
+        hb_dual_table_destroy(t);
+        return hb_fail(HB_ERR_NOMEM, "%s: no memory for %d nodes", __func__, thetas);
+    }
+    HB_PER_ISA(hb_dual_kernels, dual_kernels, kernels_by_isa);
+    t->isa = kernels_by_isa[plan->isa] ? plan->isa : HB_ISA_SCALAR;
+    t->kernels = kernels_by_isa[t->isa];
+    t->thetas = thetas, t->d_f = d_f, t->d_b = d_b;
+    t->terms[0].struct_size = sizeof *t->terms;
+    st = hb_dual_terms_grid(plan, thetas, d_b, t->terms, progress, progress_context, parallel, parallel_context);
+    for (int k = 0; st == HB_OK && k < thetas; k++)
+        for (int c = 0; c < 3; c++)
+            if (!(t->terms[k].a_f[c] < 1.0)) {
+                st = hb_fail(HB_ERR_LIMIT,
+                             "%s: a_f = %.4f at theta %.4f (channel %d) is not below 1: the forward scatterings "
+                             "of eqs. 14-15 diverge",
+                             __func__, t->terms[k].a_f[c], -M_PI_2 + M_PI * (k + 0.5) / thetas, c);
+                break;
+            }
+    if (st != HB_OK) {
+        hb_dual_table_destroy(t);
+        return st;
+    }
+    for (int k = 0; k < thetas; k++)
+        node_floats(&t->terms[k], t->nodes + (size_t)k * HB_DUAL_PER_NODE);
+    *table = t;
+    return HB_OK;
+}
+
+hb_status hb_dual_table_terms(const hb_dual_table *table, double theta, hb_dual_terms *terms)
+{
+    if (!table || !terms)
+        return hb_fail_null(__func__, !table ? "table" : "terms");
+    if (terms->struct_size != sizeof *terms)
+        return hb_fail(HB_ERR_VERSION, "%s: terms->struct_size = %zu; this release's is %zu", __func__,
+                       terms->struct_size, sizeof *terms);
+    if (!hb_theta_valid(theta))
+        return hb_fail(HB_ERR_PARAM, "%s: theta = %g is outside [-pi/2, pi/2]", __func__, theta);
+    hb_dual_interpolate(table, theta, terms);
+    return HB_OK;
+}
+
+hb_status hb_dual_eval(const hb_dual_table *table, size_t n, hb_angles_soa in, const float *fibres,
+                       const float *direct, hb_rgb_soa out, hb_eval_report *report)
+{
+    if (!table)
+        return hb_fail_null(__func__, "table");
+    hb_status st = hb_api_rgb_present(__func__, n, "out", &out);
+    if (st == HB_OK)
+        st = hb_api_angles_present(__func__, n, &in);
+    if (st == HB_OK && n && !fibres)
+        st = hb_fail_null(__func__, "fibres");
+    if (st != HB_OK)
+        return st;
+    hb_dual_batch batch = { in, fibres, direct };
+    size_t invalid = 0;
+    table->kernels->eval(table, n, &batch, out, &invalid);
+    if (report)
+        report->invalid = invalid;
+    return HB_OK;
+}
+
+hb_status hb_dual_radiance(const hb_dual_terms *terms, double d_f, double d_b, double theta_i, double phi_i,
+                           double theta_o, double phi_o, double fibres, double direct, double f[3])
+{
+    if (!terms || !f)
+        return hb_fail_null(__func__, !terms ? "terms" : "f");
+    hb_status st = check_density(__func__, d_f, d_b);
+    if (st != HB_OK)
+        return st;
+    if (!(hb_theta_valid(theta_i) && hb_theta_valid(theta_o) && fabs(phi_i) <= HB_PHI_LIMIT &&
+          fabs(phi_o) <= HB_PHI_LIMIT))
+        return hb_fail(HB_ERR_PARAM, "%s: the direction (%g, %g) -> (%g, %g) is not a valid sample", __func__, theta_i,
+                       phi_i, theta_o, phi_o);
+    if (!(fibres >= 0.0 && fibres <= FLT_MAX))
+        return hb_fail(HB_ERR_PARAM, "%s: fibres = %g is not a count in [0, FLT_MAX]", __func__, fibres);
+    if (!(direct <= 1.0) || isnan(direct))
+        return hb_fail(HB_ERR_PARAM, "%s: direct = %g is above 1 (negative: the default)", __func__, direct);
+    hb_dual_radiance_reference(terms, d_f, d_b, theta_i, phi_i, theta_o, phi_o, fibres,
+                               direct >= 0.0 ? direct : fmax(0.0, 1.0 - fibres), f);
+    return HB_OK;
+}
