@@ -795,6 +795,18 @@ HB_API hb_status hb_assembly_trace(const hb_plan *plan, const hb_assembly *assem
                                    hb_progress_fn progress, void *progress_context, hb_parallel_fn parallel,
                                    void *parallel_context);
 
+/* What dual scattering predicts for hb_assembly_trace's radiance bins (the same assembly, fibres and
+ * bins; docs/multiple-scattering.md, "Dual scattering against the reference"), rendered as an engine
+ * renders hair: per bin `rays` view rays, each along a direction uniform in the bin's solid angle
+ * entering the slab's face at stratified x, shade the first fibre they meet with v f + f_DS (the
+ * plan's far field, hb_dual_eval of the table), n the fibres a ray from that point toward the light
+ * crosses (past its own fibre; v = 1 where it crosses none). radiance (2 x
+ * theta_bins x phi_bins x 3, as hb_assembly_result's) gets the prediction; radiance_se (may be NULL)
+ * the standard error of its mean over the rays; single (may be NULL) the part v f alone, single
+ * scattering at the fibres the view sees. Slabs only (else HB_ERR_UNSUPPORTED). */
+HB_API hb_status hb_assembly_dual(const hb_plan *plan, const hb_dual_table *table, const hb_assembly *assembly, int rays,
+                                  double *radiance, double *radiance_se, double *single);
+
 /* Instruction sets: names as used by --isa and the HB_ISA environment variable
  * ("scalar", "sse4.1", "avx2", "avx512", "neon"). */
 HB_API const char *hb_isa_name(hb_isa isa);

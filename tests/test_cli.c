@@ -521,6 +521,22 @@ static void test_eval_dual_columns(hb_test_ctx *t)
     hb_plan_destroy(plan);
 }
 
+/* hairbsdf assembly --dual prints dual scattering's prediction beside the trace, and refuses density
+ * factors outside [0, 1] and the bundle. */
+static void test_assembly_dual(hb_test_ctx *t)
+{
+    hb_tool_run r;
+    if (!run_tool(t, "assembly --eumelanin 0.3 --layers 2 --paths 2000 --bins 6,12 --dual 0.7,0.7 --radiance", "", &r))
+        return;
+    CHECK(t, r.status == 0 && strstr(r.out, "\ndual_reflected,") && strstr(r.out, "\nsingle_transmitted,") &&
+             strstr(r.out, ",dual_r,dual_g,dual_b,single_r,single_g,single_b\n"),
+          "--dual: %d %s", r.status, r.err);
+    run_tool(t, "assembly --paths 100 --dual 1.5,0.7", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--dual"), "d_f 1.5: %d %s", r.status, r.err);
+    run_tool(t, "assembly --paths 100 --shape bundle --dual 0.7,0.7", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "slab"), "a bundle: %d %s", r.status, r.err);
+}
+
 /* hairbsdf plan describes the plan of the same options eval would use; --tolerance and --budget-ns reach
  * the library through every command. */
 static void test_plan_commands(hb_test_ctx *t)
@@ -763,6 +779,7 @@ const hb_test hb_tests_cli[] = {
     { "cli_eval_matches_library", test_eval_matches_library, 0 },
     { "cli_eval_errors", test_eval_errors, 0 },
     { "cli_eval_dual_columns", test_eval_dual_columns, 0 },
+    { "cli_assembly_dual", test_assembly_dual, 0 },
     { "cli_input_edges", test_input_edges, 0 },
     { "cli_help", test_help, 0 },
     { "cli_hostile_inputs", test_hostile_inputs, 0 },

@@ -42,6 +42,10 @@ typedef struct hb_ray2 {
 int hb_fibres_hit(const hb_fibres *f, const hb_ray2 *ray, double skip_x, double skip_z, double *t, double *cx,
                   double *cz);
 
+/* HB_ERR_PARAM naming the first field of the assembly outside its range, HB_ERR_VERSION for its
+ * struct_size (src/assembly/trace.c). */
+hb_status hb_assembly_check(const char *call, const hb_assembly *a);
+
 /* Where a ray from inside leaves the assembly (the slab's faces, the bundle's circle), along it. */
 double hb_fibres_exit(const hb_fibres *f, const hb_ray2 *ray);
 

@@ -242,26 +242,11 @@ static void trace_task(void *context, int index)
     }
 }
 
-static hb_status check(const hb_plan *plan, const hb_assembly *a, hb_assembly_result *result)
+hb_status hb_assembly_check(const char *call, const hb_assembly *a)
 {
-    static const char call[] = "hb_assembly_trace";
-    if (!plan || !a || !result)
-        return hb_fail_null(call, !plan ? "plan" : !a ? "assembly" : "result");
     hb_status st = hb_api_struct_size(call, "assembly", a->struct_size, sizeof *a, sizeof *a);
-    if (st == HB_OK)
-        st = hb_api_struct_size(call, "result", result->struct_size, sizeof *result, sizeof *result);
     if (st != HB_OK)
         return st;
-    if (hb_plan_sample_dimensions(plan) <= 0)
-        return hb_api_unsupported(call, plan, "sampler, which the paths scatter by");
-    if (a->transport == HB_ASSEMBLY_LIGHT_TRANSPORT && hb_plan_pdf_is_estimate(plan))
-        return hb_fail(HB_ERR_UNSUPPORTED,
-                       "%s: the plan's pdf is a Monte-Carlo estimate, which the light's transport (f / pdf of another "
-                       "direction) cannot divide by without bias; HB_ASSEMBLY_SAMPLER_WEIGHTS uses the sampler's own weights",
-                       call);
-    if (plan->material.eccentricity != 0.0)
-        return hb_fail(HB_ERR_UNSUPPORTED, "%s: the plan's fibre is elliptical (eccentricity %g); the assembly's are circular",
-                       call, plan->material.eccentricity);
     const char *bad = NULL;
     if (a->shape != HB_ASSEMBLY_SLAB && a->shape != HB_ASSEMBLY_BUNDLE)
         bad = "shape is neither HB_ASSEMBLY_SLAB nor HB_ASSEMBLY_BUNDLE";
@@ -285,6 +270,29 @@ static hb_status check(const hb_plan *plan, const hb_assembly *a, hb_assembly_re
              a->depth_bins > 4096)
         bad = "a count of bins is outside [1, 4096]";
     return bad ? hb_fail(HB_ERR_PARAM, "%s: assembly.%s", call, bad) : HB_OK;
+}
+
+static hb_status check(const hb_plan *plan, const hb_assembly *a, hb_assembly_result *result)
+{
+    static const char call[] = "hb_assembly_trace";
+    if (!plan || !a || !result)
+        return hb_fail_null(call, !plan ? "plan" : !a ? "assembly" : "result");
+    hb_status st = hb_assembly_check(call, a);
+    if (st == HB_OK)
+        st = hb_api_struct_size(call, "result", result->struct_size, sizeof *result, sizeof *result);
+    if (st != HB_OK)
+        return st;
+    if (hb_plan_sample_dimensions(plan) <= 0)
+        return hb_api_unsupported(call, plan, "sampler, which the paths scatter by");
+    if (a->transport == HB_ASSEMBLY_LIGHT_TRANSPORT && hb_plan_pdf_is_estimate(plan))
+        return hb_fail(HB_ERR_UNSUPPORTED,
+                       "%s: the plan's pdf is a Monte-Carlo estimate, which the light's transport (f / pdf of another "
+                       "direction) cannot divide by without bias; HB_ASSEMBLY_SAMPLER_WEIGHTS uses the sampler's own weights",
+                       call);
+    if (plan->material.eccentricity != 0.0)
+        return hb_fail(HB_ERR_UNSUPPORTED, "%s: the plan's fibre is elliptical (eccentricity %g); the assembly's are circular",
+                       call, plan->material.eccentricity);
+    return HB_OK;
 }
 
 /* The mean over n paths of sums (sum, sum of squares), and its standard error. */
