@@ -406,6 +406,15 @@ HB_API hb_status hb_eval_vectors_absorption(const hb_plan *plan, size_t n, hb_ve
  * hb_material_absorption adds it to sigma_a. */
 HB_API void hb_melanin_absorption(double eumelanin, double pheomelanin, double sigma_a[3]);
 
+/* The same at one wavelength in [300, 1000] nm (docs/spectral.md): the concentrations times Donner
+ * and Jensen 2006's cross-sections, eumelanin's as lambda^-3.33 and pheomelanin's as lambda^-4.75,
+ * each scaled (its value at 550 nm per unit radius) so that a fibre's spectral transmittance
+ * reduced to sRGB (CIE 1931, D65, 41 bands from 380 to 780 nm) comes closest to dFH11's RGB
+ * cross-sections above; the RGB form stays the library's default. HB_ERR_PARAM outside the range or
+ * for a negative or non-finite concentration. */
+HB_API hb_status hb_melanin_absorption_spectral(double eumelanin, double pheomelanin, double wavelength,
+                                                double *sigma_a);
+
 /* Near-field evaluation (CBTB16, dFH11): each sample also gives h in [-1, 1], the signed offset
  * across the fibre's width at which w_o's ray meets it (docs/chiang.md: h's sign and pbrt's).
  * hb_eval_angles of the same plan is the far-field f, the mean over h (docs/deon.md for dFH11's
