@@ -703,6 +703,13 @@ HB_API hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_
                                       hb_dual_table **table);
 HB_API void hb_dual_table_destroy(hb_dual_table *table);
 
+/* The table's floats as the shaders read them (shaders/hairbsdf_dual.glsl, .hlsl): *thetas nodes at
+ * the midpoints -pi/2 + pi (k + 1/2) / thetas, HB_DUAL_NODE_FLOATS floats each, per channel r, g, b
+ * twelve: a_f, a_b, alpha_f, beta_f2, alpha_b, beta_b2, A_b, delta_b, sigma_b2 and three zeros.
+ * Valid while the table lives; NULL for a NULL table. */
+#define HB_DUAL_NODE_FLOATS 36
+HB_API const float *hb_dual_table_nodes(const hb_dual_table *table, int *thetas);
+
 /* The terms the table gives at theta (its interpolation, in double): what hb_dual_eval evaluates. */
 HB_API hb_status hb_dual_table_terms(const hb_dual_table *table, double theta, hb_dual_terms *terms);
 

@@ -74,10 +74,11 @@ static hb_gpu *open_kernels(hb_test_ctx *t, const char *glsl, const char *hlsl, 
     return gpu;
 }
 
-/* The largest |GPU - CPU| / peak of the CPU's f over a dispatch of both kernels, into worst[language]. */
+/* The largest |GPU - CPU| / peak of the CPU's f over a dispatch of both kernels, into worst[language];
+ * each within limit. */
 static void compare_kernels(hb_test_ctx *t, hb_gpu *gpu, uint32_t *const code[2], const size_t sizes[2], int buffers,
                             float *const *data, const size_t *counts, const float (*cpu_f)[DIRECTIONS], const char *what,
-                            double worst[2])
+                            double worst[2], double limit)
 {
     static float gpu_f[3 * DIRECTIONS];
     char why[256];
@@ -98,7 +99,7 @@ static void compare_kernels(hb_test_ctx *t, hb_gpu *gpu, uint32_t *const code[2]
         for (int c = 0; c < 3; c++)
             for (int k = 0; k < DIRECTIONS; k++)
                 err = fmax(err, fabs((double)gpu_f[c * DIRECTIONS + k] - cpu_f[c][k]) / peak);
-        CHECK(t, err <= 1e-4, "%s, %s: shader differs from the CPU by %.3g of the peak %.3g", lang ? "HLSL" : "GLSL",
+        CHECK(t, err <= limit, "%s, %s: shader differs from the CPU by %.3g of the peak %.3g", lang ? "HLSL" : "GLSL",
               what, err, peak);
         worst[lang] = fmax(worst[lang], err);
     }
@@ -178,7 +179,7 @@ static void test_shaders_match_cpu(hb_test_ctx *t)
             size_t counts[5] = { PARAMS, v.count, 4 * DIRECTIONS, 3 * DIRECTIONS, 3 * DIRECTIONS };
             char what[96];
             snprintf(what, sizeof what, "%s, %s", s->name, strands ? "strand colours" : "one colour");
-            compare_kernels(t, gpu, code, sizes, 5, data, counts, (const float(*)[DIRECTIONS])cpu_f, what, worst[strands]);
+            compare_kernels(t, gpu, code, sizes, 5, data, counts, (const float(*)[DIRECTIONS])cpu_f, what, worst[strands], 1e-4);
             hb_plan_destroy(plan);
         }
     hb_test_note(t, "%s: largest difference from the CPU table path, of each material's peak: own tables GLSL %.2g, "
@@ -234,7 +235,7 @@ static void test_huang_shader(hb_test_ctx *t)
             size_t counts[4] = { PARAMS, v.count, 4 * DIRECTIONS, 3 * DIRECTIONS };
             char what[96];
             snprintf(what, sizeof what, "%s, colour %d", materials[mi].name, ci);
-            compare_kernels(t, gpu, code, sizes, 4, data, counts, (const float(*)[DIRECTIONS])cpu_f, what, worst);
+            compare_kernels(t, gpu, code, sizes, 4, data, counts, (const float(*)[DIRECTIONS])cpu_f, what, worst, 1e-4);
             hb_plan_destroy(plan);
         }
     hb_test_note(t, "%s: HHH22 R + TT/TRT, largest difference from the CPU, of each material's peak: GLSL %.2g, HLSL %.2g",
@@ -244,8 +245,69 @@ static void test_huang_shader(hb_test_ctx *t)
     hb_gpu_close(gpu);
 }
 
+/* Dual scattering's f_DS from a plan's table: dFH11 and CBTB16, blond and brown, each direction with
+ * its own fibre count n in [0, 16] and the default visibility, against hb_dual_eval on the CPU. */
+static void test_dual_shader(hb_test_ctx *t)
+{
+    char name[256] = "";
+    size_t sizes[2] = { 0, 0 };
+    uint32_t *code[2];
+    hb_gpu *gpu = open_kernels(t, "tests/shaders/dual_eval.comp", "tests/shaders/dual_eval.hlsl", code, sizes, name,
+                               sizeof name);
+    if (!gpu)
+        return;
+    static const struct {
+        const char *name;
+        hb_model model;
+        double eumelanin, pheomelanin;
+    } materials[] = { { "dFH11 blond", HB_MODEL_DEON, 0.3, 0.0 }, { "dFH11 brown", HB_MODEL_DEON, 1.3, 0.0 },
+                      { "CBTB16 blond", HB_MODEL_CHIANG, 0.3, 0.0 }, { "CBTB16 red", HB_MODEL_CHIANG, 0.0, 2.0 } };
+    static float angles[4 * DIRECTIONS], cpu_f[3][DIRECTIONS], params[4], fibres[DIRECTIONS];
+    shader_directions(t, angles);
+    for (int k = 0; k < DIRECTIONS; k++)
+        fibres[k] = k % 5 == 0 ? 0.0f : (float)hb_test_range(t, 0.0, 16.0);
+    double worst[2] = { 0.0, 0.0 };
+    for (size_t mi = 0; code[0] && code[1] && mi < sizeof materials / sizeof materials[0]; mi++) {
+        hb_material m;
+        hb_options o;
+        hb_material_default(&m);
+        hb_options_default(&o);
+        m.eumelanin = materials[mi].eumelanin, m.pheomelanin = materials[mi].pheomelanin;
+        o.model = materials[mi].model;
+        hb_plan *plan = NULL;
+        hb_dual_table *table = NULL;
+        hb_error error;
+        if (hb_plan_create(&m, &o, &plan, &error) != HB_OK ||
+            hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL, &table) != HB_OK) {
+            CHECK(t, 0, "%s: %s", materials[mi].name, hb_last_error()->message);
+            hb_plan_destroy(plan);
+            continue;
+        }
+        int thetas;
+        const float *nodes = hb_dual_table_nodes(table, &thetas);
+        params[0] = (float)thetas, params[1] = (float)HB_DUAL_DENSITY, params[2] = (float)HB_DUAL_DENSITY;
+        params[3] = (float)DIRECTIONS;
+        hb_dual_eval(table, DIRECTIONS,
+                     (hb_angles_soa){ angles, angles + DIRECTIONS, angles + 2 * DIRECTIONS, angles + 3 * DIRECTIONS }, fibres,
+                     NULL, (hb_rgb_soa){ cpu_f[0], cpu_f[1], cpu_f[2] }, NULL);
+        float *data[5] = { params, (float *)nodes, angles, NULL, fibres };
+        size_t counts[5] = { 4, (size_t)thetas * HB_DUAL_NODE_FLOATS, 4 * DIRECTIONS, 3 * DIRECTIONS, DIRECTIONS };
+        compare_kernels(t, gpu, code, sizes, 5, data, counts, (const float(*)[DIRECTIONS])cpu_f, materials[mi].name,
+                        worst, 1e-5);
+        hb_dual_table_destroy(table);
+        hb_plan_destroy(plan);
+    }
+    hb_test_note(t, "%s: dual scattering's f_DS, largest difference from hb_dual_eval, of each material's peak: GLSL %.2g, "
+                    "HLSL %.2g",
+                 name, worst[0], worst[1]);
+    free(code[0]);
+    free(code[1]);
+    hb_gpu_close(gpu);
+}
+
 const hb_test hb_tests_shaders[] = {
     { "shaders_match_cpu_table_path", test_shaders_match_cpu, 0 },
     { "shaders_huang_match_cpu", test_huang_shader, 0 },
+    { "shaders_dual_match_cpu", test_dual_shader, 0 },
     { NULL, NULL, 0 },
 };

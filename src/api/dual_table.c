@@ -91,6 +91,13 @@ hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_f, doub
     return HB_OK;
 }
 
+const float *hb_dual_table_nodes(const hb_dual_table *table, int *thetas)
+{
+    if (thetas)
+        *thetas = table ? table->thetas : 0;
+    return table ? table->nodes : NULL;
+}
+
 hb_status hb_dual_table_terms(const hb_dual_table *table, double theta, hb_dual_terms *terms)
 {
     if (!table || !terms)

@@ -14,6 +14,7 @@ enum {
     HB_DUAL_PER_CHANNEL = 12,
     HB_DUAL_PER_NODE = 3 * HB_DUAL_PER_CHANNEL
 };
+_Static_assert(HB_DUAL_PER_NODE == HB_DUAL_NODE_FLOATS, "the shaders' layout is the kernels'");
 
 struct hb_dual_kernels;
 
