@@ -703,6 +703,14 @@ HB_API hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_
                                       hb_dual_table **table);
 HB_API void hb_dual_table_destroy(hb_dual_table *table);
 
+/* A table as a file (docs/multiple-scattering.md, "Table files"), for an engine to bake once and load:
+ * hb_dual_table_save writes it into bytes (*size gets its length; bytes NULL: the length alone;
+ * HB_ERR_BUFFER when capacity is smaller), hb_dual_table_load builds the table from it for a plan of
+ * the material and options it was built for (its model and every field its terms depend on, else
+ * HB_ERR_FILE naming the first that differs), in that plan's ISA, without the quadrature. */
+HB_API hb_status hb_dual_table_save(const hb_dual_table *table, void *bytes, size_t capacity, size_t *size);
+HB_API hb_status hb_dual_table_load(const hb_plan *plan, const void *bytes, size_t size, hb_dual_table **table);
+
 /* The table's floats as the shaders read them (shaders/hairbsdf_dual.glsl, .hlsl): *thetas nodes at
  * the midpoints -pi/2 + pi (k + 1/2) / thetas, HB_DUAL_NODE_FLOATS floats each, per channel r, g, b
  * twelve: a_f, a_b, alpha_f, beta_f2, alpha_b, beta_b2, A_b, delta_b, sigma_b2 and three zeros.

@@ -3,12 +3,15 @@
  * floats, the plan's ISA's kernel, and the double reference behind the argument checks. */
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "checks.h"
 #include "dual/kernels.h"
 #include "kernel/isas.h"
 #include "math/valid.h"
+#include "models/file/dual_file.h"
 
 enum { THETAS_MAX = 4096 };
 
@@ -42,7 +45,52 @@ void hb_dual_table_destroy(hb_dual_table *table)
         return;
     free(table->terms);
     free(table->nodes);
+    free(table->fields);
     free(table);
+}
+
+/* A table of `thetas` nodes for the plan's ISA and model, its terms still to be filled. */
+static hb_status table_alloc(const char *call, const hb_plan *plan, int thetas, double d_f, double d_b,
+                             hb_dual_table **table)
+{
+    hb_dual_table *t = calloc(1, sizeof *t);
+    if (t) {
+        t->terms = calloc((size_t)thetas, sizeof *t->terms);
+        t->nodes = malloc((size_t)thetas * HB_DUAL_PER_NODE * sizeof *t->nodes);
+        t->fields_size = hb_table_file_fields_write(plan, NULL);
+        t->fields = malloc(t->fields_size);
+    }
+    if (!t || !t->terms || !t->nodes || !t->fields) {
+        hb_dual_table_destroy(t);
+        return hb_fail(HB_ERR_NOMEM, "%s: no memory for %d nodes", call, thetas);
+    }
+    hb_table_file_fields_write(plan, t->fields);
+    HB_PER_ISA(hb_dual_kernels, dual_kernels, kernels_by_isa);
+    t->isa = kernels_by_isa[plan->isa] ? plan->isa : HB_ISA_SCALAR;
+    t->kernels = kernels_by_isa[t->isa];
+    t->thetas = thetas, t->d_f = d_f, t->d_b = d_b, t->model = plan->options.model;
+    for (int k = 0; k < thetas; k++)
+        t->terms[k].struct_size = sizeof *t->terms;
+    *table = t;
+    return HB_OK;
+}
+
+/* The kernels' floats from the terms, once no node's a_f reaches 1; frees the table on a refusal. */
+static hb_status table_finish(const char *call, hb_dual_table *t)
+{
+    for (int k = 0; k < t->thetas; k++)
+        for (int c = 0; c < 3; c++)
+            if (!(t->terms[k].a_f[c] < 1.0)) {
+                hb_status st = hb_fail(HB_ERR_LIMIT,
+                                       "%s: a_f = %.4f at theta %.4f (channel %d) is not below 1: the forward scatterings "
+                                       "of eqs. 14-15 diverge",
+                                       call, t->terms[k].a_f[c], -M_PI_2 + M_PI * (k + 0.5) / t->thetas, c);
+                hb_dual_table_destroy(t);
+                return st;
+            }
+    for (int k = 0; k < t->thetas; k++)
+        node_floats(&t->terms[k], t->nodes + (size_t)k * HB_DUAL_PER_NODE);
+    return HB_OK;
 }
 
 hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_f, double d_b, hb_progress_fn progress,
@@ -55,40 +103,69 @@ hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_f, doub
     if (thetas < 2 || thetas > THETAS_MAX)
         return hb_fail(HB_ERR_PARAM, "%s: thetas = %d is outside [2, %d]", __func__, thetas, THETAS_MAX);
     hb_status st = check_density(__func__, d_f, d_b);
+    hb_dual_table *t = NULL;
+    if (st == HB_OK)
+        st = table_alloc(__func__, plan, thetas, d_f, d_b, &t);
     if (st != HB_OK)
         return st;
-    hb_dual_table *t = calloc(1, sizeof *t);
-    if (t) {
-        t->terms = calloc((size_t)thetas, sizeof *t->terms);
-        t->nodes = malloc((size_t)thetas * HB_DUAL_PER_NODE * sizeof *t->nodes);
-    }
-    if (!t || !t->terms || !t->nodes) {
-        hb_dual_table_destroy(t);
-        return hb_fail(HB_ERR_NOMEM, "%s: no memory for %d nodes", __func__, thetas);
-    }
-    HB_PER_ISA(hb_dual_kernels, dual_kernels, kernels_by_isa);
-    t->isa = kernels_by_isa[plan->isa] ? plan->isa : HB_ISA_SCALAR;
-    t->kernels = kernels_by_isa[t->isa];
-    t->thetas = thetas, t->d_f = d_f, t->d_b = d_b;
-    t->terms[0].struct_size = sizeof *t->terms;
     st = hb_dual_terms_grid(plan, thetas, d_b, t->terms, progress, progress_context, parallel, parallel_context);
-    for (int k = 0; st == HB_OK && k < thetas; k++)
-        for (int c = 0; c < 3; c++)
-            if (!(t->terms[k].a_f[c] < 1.0)) {
-                st = hb_fail(HB_ERR_LIMIT,
-                             "%s: a_f = %.4f at theta %.4f (channel %d) is not below 1: the forward scatterings "
-                             "of eqs. 14-15 diverge",
-                             __func__, t->terms[k].a_f[c], -M_PI_2 + M_PI * (k + 0.5) / thetas, c);
-                break;
-            }
     if (st != HB_OK) {
         hb_dual_table_destroy(t);
         return st;
     }
-    for (int k = 0; k < thetas; k++)
-        node_floats(&t->terms[k], t->nodes + (size_t)k * HB_DUAL_PER_NODE);
-    *table = t;
+    st = table_finish(__func__, t);
+    if (st == HB_OK)
+        *table = t;
+    return st;
+}
+
+/* A node's terms as the file stores them: the nine per-channel arrays in the struct's order. */
+static double *term_doubles(hb_dual_terms *t) { return (double *)((char *)t + offsetof(hb_dual_terms, a_f)); }
+
+hb_status hb_dual_table_save(const hb_dual_table *table, void *bytes, size_t capacity, size_t *size)
+{
+    if (!table || !size)
+        return hb_fail_null(__func__, !table ? "table" : "size");
+    size_t count = (size_t)table->thetas * HB_DUAL_FILE_TERMS;
+    *size = hb_dual_file_write(table->model, table->thetas, table->d_f, table->d_b, table->fields, table->fields_size, NULL,
+                               NULL);
+    if (!bytes)
+        return HB_OK;
+    if (capacity < *size)
+        return hb_fail(HB_ERR_BUFFER, "%s: the table file takes %zu bytes, capacity is %zu (*size has the length)",
+                       __func__, *size, capacity);
+    double *values = malloc(count * sizeof *values);
+    if (!values)
+        return hb_fail(HB_ERR_NOMEM, "%s: no memory for %zu values", __func__, count);
+    for (int k = 0; k < table->thetas; k++)
+        memcpy(values + (size_t)k * HB_DUAL_FILE_TERMS, term_doubles(&table->terms[k]), HB_DUAL_FILE_TERMS * sizeof(double));
+    hb_dual_file_write(table->model, table->thetas, table->d_f, table->d_b, table->fields, table->fields_size, values, bytes);
+    free(values);
     return HB_OK;
+}
+
+hb_status hb_dual_table_load(const hb_plan *plan, const void *bytes, size_t size, hb_dual_table **table)
+{
+    if (!plan || !bytes || !table)
+        return hb_fail_null(__func__, !plan ? "plan" : !bytes ? "bytes" : "table");
+    *table = NULL;
+    int thetas;
+    double d_f, d_b;
+    const unsigned char *values;
+    hb_error error;
+    if (hb_dual_file_read(plan, bytes, size, &thetas, &d_f, &d_b, &values, &error) != HB_OK)
+        return hb_fail(error.status, "%s: %s", __func__, error.message);
+    hb_dual_table *t;
+    hb_status st = table_alloc(__func__, plan, thetas, d_f, d_b, &t);
+    if (st != HB_OK)
+        return st;
+    for (int k = 0; k < thetas; k++)
+        for (int j = 0; j < HB_DUAL_FILE_TERMS; j++)
+            term_doubles(&t->terms[k])[j] = hb_dual_file_value(values, (size_t)k * HB_DUAL_FILE_TERMS + (size_t)j);
+    st = table_finish(__func__, t);
+    if (st == HB_OK)
+        *table = t;
+    return st;
 }
 
 const float *hb_dual_table_nodes(const hb_dual_table *table, int *thetas)

@@ -25,6 +25,9 @@ struct hb_dual_table {
     double d_f, d_b;
     hb_dual_terms *terms; /* thetas of them, at the midpoints -pi/2 + pi (k + 1/2) / thetas */
     float *nodes;         /* thetas x HB_DUAL_PER_NODE */
+    hb_model model;       /* the plan's, and the fields section of its table files: what a saved */
+    unsigned char *fields; /* table is checked against when it is loaded */
+    size_t fields_size;
 };
 
 /* The table's terms at theta, the kernels' linear interpolation in double (src/dual/reference.c). */

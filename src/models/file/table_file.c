@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "bytes.h"
 #include "math/hash.h"
 #include "models/interface/model.h"
 #include "table_file.h"
@@ -87,123 +88,51 @@ static int plan_fields(const hb_plan *plan, field *f)
     return add_optional(f, k, "pole_floor", o->pole_floor == HB_POLE_FLOOR_PAPER);
 }
 
-/* A writer that counts when out is NULL. */
-typedef struct writer {
-    unsigned char *out;
-    size_t at;
-} writer;
-
-static void put(writer *w, const void *bytes, size_t n)
-{
-    if (w->out)
-        memcpy(w->out + w->at, bytes, n);
-    w->at += n;
-}
-
-static void put_uint(writer *w, unsigned long long v, int n)
-{
-    unsigned char b[8];
-    for (int k = 0; k < n; k++)
-        b[k] = (unsigned char)(v >> (8 * k));
-    put(w, b, (size_t)n);
-}
-
-static void put_f64(writer *w, double x)
-{
-    unsigned long long bits;
-    memcpy(&bits, &x, 8);
-    put_uint(w, bits, 8);
-}
-
-static void put_text(writer *w, const char *text, size_t n)
-{
-    char padded[AXIS_BYTES] = { 0 };
-    snprintf(padded, n, "%s", text ? text : "");
-    put(w, padded, n);
-}
-
-size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *v, int channels, unsigned char *out)
+size_t hb_table_file_fields_write(const hb_plan *plan, unsigned char *out)
 {
     field fields[MAX_FIELDS];
     int n_own = plan_fields(plan, fields), n_fields = 0;
     for (int k = 0; k < n_own; k++)
         if (written(&fields[k]))
             fields[n_fields++] = fields[k];
-    writer w = { out, 0 };
-    put(&w, "HBTABLE" HB_TABLE_FILE_FORMAT_DIGIT, 8);
-    size_t length = 8 + 8 + 2 * TEXT_BYTES + 20 + (size_t)v->axes * (4 + 16 + AXIS_BYTES) + (size_t)v->slots * 4 + 8 + 4 +
-                    (size_t)n_fields * (NAME_BYTES + 8) + 8 + v->count * 4 + 8;
-    put_uint(&w, length, 8);
-    put_text(&w, HB_VERSION_STRING, TEXT_BYTES);
-    put_text(&w, hb_isa_name(plan->isa), TEXT_BYTES);
-    put_uint(&w, (unsigned)v->model, 4), put_uint(&w, (unsigned)hb_model_ops_of(v->model)->table_version, 4);
-    put_uint(&w, (unsigned)v->axes, 4), put_uint(&w, (unsigned)v->slots, 4);
-    put_uint(&w, (unsigned)channels, 4);
-    for (int k = 0; k < v->axes; k++) {
-        put_uint(&w, (unsigned)v->size[k], 4);
-        put_f64(&w, v->lo[k]), put_f64(&w, v->hi[k]);
-        put_text(&w, v->axis[k], AXIS_BYTES);
-    }
-    for (int s = 0; s < v->slots; s++)
-        put_uint(&w, v->slot_lobes[s], 4);
-    put_f64(&w, v->error);
-    put_uint(&w, (unsigned)n_fields, 4);
+    hb_writer w = { out, 0 };
+    hb_put_uint(&w, (unsigned)n_fields, 4);
     for (int k = 0; k < n_fields; k++) {
-        put(&w, fields[k].name, NAME_BYTES);
-        put_f64(&w, fields[k].value);
+        hb_put(&w, fields[k].name, NAME_BYTES);
+        hb_put_f64(&w, fields[k].value);
     }
-    put_uint(&w, v->count, 8);
-    for (size_t k = 0; k < v->count; k++) {
-        unsigned bits;
-        memcpy(&bits, &v->values[k], 4);
-        put_uint(&w, bits, 4);
-    }
-    put_uint(&w, out ? hb_xxh64(out, w.at) : 0, 8);
     return w.at;
 }
 
-/* A reader that refuses to pass the end. */
-typedef struct reader {
-    const unsigned char *at, *end;
-} reader;
-
-static int take(reader *r, void *out, size_t n)
+size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *v, int channels, unsigned char *out)
 {
-    if ((size_t)(r->end - r->at) < n)
-        return 0;
-    if (out)
-        memcpy(out, r->at, n);
-    r->at += n;
-    return 1;
-}
-
-static int take_uint(reader *r, unsigned long long *v, int n)
-{
-    unsigned char b[8];
-    if (!take(r, b, (size_t)n))
-        return 0;
-    *v = 0;
-    for (int k = n - 1; k >= 0; k--)
-        *v = *v << 8 | b[k];
-    return 1;
-}
-
-static int take_u32(reader *r, int *v, unsigned limit)
-{
-    unsigned long long x;
-    if (!take_uint(r, &x, 4) || x > limit)
-        return 0;
-    *v = (int)x;
-    return 1;
-}
-
-static int take_f64(reader *r, double *x)
-{
-    unsigned long long bits;
-    if (!take_uint(r, &bits, 8))
-        return 0;
-    memcpy(x, &bits, 8);
-    return 1;
+    hb_writer w = { out, 0 };
+    hb_put(&w, "HBTABLE" HB_TABLE_FILE_FORMAT_DIGIT, 8);
+    size_t length = 8 + 8 + 2 * TEXT_BYTES + 20 + (size_t)v->axes * (4 + 16 + AXIS_BYTES) + (size_t)v->slots * 4 + 8 +
+                    hb_table_file_fields_write(plan, NULL) + 8 + v->count * 4 + 8;
+    hb_put_uint(&w, length, 8);
+    hb_put_text(&w, HB_VERSION_STRING, TEXT_BYTES);
+    hb_put_text(&w, hb_isa_name(plan->isa), TEXT_BYTES);
+    hb_put_uint(&w, (unsigned)v->model, 4), hb_put_uint(&w, (unsigned)hb_model_ops_of(v->model)->table_version, 4);
+    hb_put_uint(&w, (unsigned)v->axes, 4), hb_put_uint(&w, (unsigned)v->slots, 4);
+    hb_put_uint(&w, (unsigned)channels, 4);
+    for (int k = 0; k < v->axes; k++) {
+        hb_put_uint(&w, (unsigned)v->size[k], 4);
+        hb_put_f64(&w, v->lo[k]), hb_put_f64(&w, v->hi[k]);
+        hb_put_text(&w, v->axis[k], AXIS_BYTES);
+    }
+    for (int s = 0; s < v->slots; s++)
+        hb_put_uint(&w, v->slot_lobes[s], 4);
+    hb_put_f64(&w, v->error);
+    w.at += hb_table_file_fields_write(plan, out ? out + w.at : NULL);
+    hb_put_uint(&w, v->count, 8);
+    for (size_t k = 0; k < v->count; k++) {
+        unsigned bits;
+        memcpy(&bits, &v->values[k], 4);
+        hb_put_uint(&w, bits, 4);
+    }
+    hb_put_uint(&w, out ? hb_xxh64(out, w.at) : 0, 8);
+    return w.at;
 }
 
 static hb_status refuse(hb_error *error, const char *why)
@@ -211,25 +140,16 @@ static hb_status refuse(hb_error *error, const char *why)
     return hb_plan_fail(error, HB_ERR_FILE, "table file: %s", why);
 }
 
-/* The header's text field (NUL-padded), terminated. */
-static int take_text(reader *r, char *text, size_t n)
-{
-    if (!take(r, text, n))
-        return 0;
-    text[n - 1] = '\0';
-    return 1;
-}
-
-static hb_status read_fields(reader *r, const hb_plan *plan, hb_error *error)
+hb_status hb_table_file_fields_read(hb_reader *r, const hb_plan *plan, hb_error *error)
 {
     field own[MAX_FIELDS];
     int n_own = plan_fields(plan, own), n_file, seen[MAX_FIELDS] = { 0 };
-    if (!take_u32(r, &n_file, MAX_FIELDS))
+    if (!hb_take_u32(r, &n_file, MAX_FIELDS))
         return refuse(error, "its field count is damaged");
     for (int k = 0; k < n_file; k++) {
         char name[NAME_BYTES];
         double value;
-        if (!take_text(r, name, sizeof name) || !take_f64(r, &value))
+        if (!hb_take_text(r, name, sizeof name) || !hb_take_f64(r, &value))
             return refuse(error, "it ends inside its fields");
         int j = 0;
         while (j < n_own && strcmp(own[j].name, name) != 0)
@@ -257,9 +177,9 @@ hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error 
 {
     const unsigned char *bytes = plan->options.table_file;
     size_t size = plan->options.table_file_size;
-    reader r = { bytes, bytes + size };
+    hb_reader r = { bytes, bytes + size };
     char magic[9] = { 0 }, version[TEXT_BYTES], isa[TEXT_BYTES];
-    if (!take(&r, magic, 8) || memcmp(magic, "HBTABLE", 7) != 0)
+    if (!hb_take(&r, magic, 8) || memcmp(magic, "HBTABLE", 7) != 0)
         return refuse(error, "it does not start with HBTABLE: not a hairbsdf table");
     if (magic[7] != '0' + HB_TABLE_FILE_FORMAT)
         return hb_plan_fail(error, HB_ERR_FILE, "table file: format '%c', this library reads format %d: bake it again",
@@ -267,22 +187,22 @@ hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error 
     unsigned long long length;
     if (size < 16 + 8)
         return hb_plan_fail(error, HB_ERR_FILE, "table file: %zu bytes, shorter than any table file", size);
-    if (!take_uint(&r, &length, 8) || length != size)
+    if (!hb_take_uint(&r, &length, 8) || length != size)
         return hb_plan_fail(error, HB_ERR_FILE, "table file: %zu bytes where its header says %llu: truncated or padded",
                             size, length);
     unsigned long long sum = 0;
-    reader tail = { bytes + size - 8, bytes + size };
-    if (!take_uint(&tail, &sum, 8) || sum != hb_xxh64(bytes, size - 8))
+    hb_reader tail = { bytes + size - 8, bytes + size };
+    if (!hb_take_uint(&tail, &sum, 8) || sum != hb_xxh64(bytes, size - 8))
         return refuse(error, "its checksum does not match its bytes: the file is damaged");
     r.end = bytes + size - 8;
-    if (!take_text(&r, version, sizeof version) || !take_text(&r, isa, sizeof isa))
+    if (!hb_take_text(&r, version, sizeof version) || !hb_take_text(&r, isa, sizeof isa))
         return refuse(error, "it ends inside its header");
     hb_table_view *v = &file->layout;
     *v = (hb_table_view){ 0 };
     int model, table_version;
-    if (!take_u32(&r, &model, 3) || !take_u32(&r, &table_version, 0x7fffffffu) ||
-        !take_u32(&r, &v->axes, HB_TABLE_MAX_AXES) ||
-        !take_u32(&r, &v->slots, HB_MAX_LOBES + 1) || !take_u32(&r, &file->channels, 3) ||
+    if (!hb_take_u32(&r, &model, 3) || !hb_take_u32(&r, &table_version, 0x7fffffffu) ||
+        !hb_take_u32(&r, &v->axes, HB_TABLE_MAX_AXES) ||
+        !hb_take_u32(&r, &v->slots, HB_MAX_LOBES + 1) || !hb_take_u32(&r, &file->channels, 3) ||
         (file->channels != 3 && file->channels != 1) || v->axes < 1)
         return refuse(error, "its model, axes, slots or channels are out of range");
     v->model = (hb_model)model;
@@ -297,22 +217,22 @@ hb_status hb_table_file_read(const hb_plan *plan, hb_table_file *file, hb_error 
                             "table file: %s tables of version %d (baked by hairbsdf %.15s), this library's are version %d: "
                             "bake it again with this library", model_names[model], table_version, version, own_version);
     for (int k = 0; k < v->axes; k++)
-        if (!take_u32(&r, &v->size[k], 1u << 20) || !take_f64(&r, &v->lo[k]) || !take_f64(&r, &v->hi[k]) ||
-            !take(&r, NULL, AXIS_BYTES))
+        if (!hb_take_u32(&r, &v->size[k], 1u << 20) || !hb_take_f64(&r, &v->lo[k]) || !hb_take_f64(&r, &v->hi[k]) ||
+            !hb_take(&r, NULL, AXIS_BYTES))
             return refuse(error, "it ends inside its axes");
     for (int s = 0; s < v->slots; s++) {
         int lobes;
-        if (!take_u32(&r, &lobes, (2u << HB_LOBE_RESIDUAL) - 1))
+        if (!hb_take_u32(&r, &lobes, (2u << HB_LOBE_RESIDUAL) - 1))
             return refuse(error, "a slot's lobe mask is damaged");
         v->slot_lobes[s] = (unsigned)lobes;
     }
-    if (!take_f64(&r, &v->error))
+    if (!hb_take_f64(&r, &v->error))
         return refuse(error, "it ends inside its header");
-    hb_status st = read_fields(&r, plan, error);
+    hb_status st = hb_table_file_fields_read(&r, plan, error);
     if (st != HB_OK)
         return st;
     unsigned long long count;
-    if (!take_uint(&r, &count, 8) || count != (unsigned long long)(r.end - r.at) / 4 || (r.end - r.at) % 4)
+    if (!hb_take_uint(&r, &count, 8) || count != (unsigned long long)(r.end - r.at) / 4 || (r.end - r.at) % 4)
         return refuse(error, "its value count does not match its length");
     v->count = (size_t)count;
     file->values = r.at;

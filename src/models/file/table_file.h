@@ -4,6 +4,7 @@
 #ifndef HB_MODELS_TABLE_FILE_H
 #define HB_MODELS_TABLE_FILE_H
 
+#include "bytes.h"
 #include "models/interface/plan.h"
 
 #define HB_TABLE_FILE_FORMAT 3 /* the digit after "HBTABLE" */
@@ -25,6 +26,14 @@ static inline size_t hb_table_count(const hb_table_view *v, int channels)
         count *= (size_t)v->size[k];
     return count;
 }
+
+/* The fields section of a file baked for the plan (u32 count, then per field char[24] name and f64
+ * value: every material and option field its tables depend on); its length when out is NULL. */
+size_t hb_table_file_fields_write(const hb_plan *plan, unsigned char *out);
+
+/* Reads a fields section and checks it against the plan's own: each field once, every one the plan
+ * writes present, every value equal (HB_ERR_FILE naming the first that is not, as "table file: ..."). */
+hb_status hb_table_file_fields_read(hb_reader *r, const hb_plan *plan, hb_error *error);
 
 /* The file's length for the plan's table view (hb_table_file_write with out NULL), or writes it. */
 size_t hb_table_file_write(const hb_plan *plan, const hb_table_view *view, int channels, unsigned char *out);
