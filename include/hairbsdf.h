@@ -389,10 +389,11 @@ HB_API hb_status hb_eval_vectors(const hb_plan *plan, size_t n, hb_vectors_soa i
  * k by sigma_a.r[k], .g[k], .b[k] per unit radius (hb_melanin_absorption turns concentrations into
  * it); roughness, eta, tilt, lobes and quality stay the plan's, and so does the fixed work per
  * sample. A sample is also invalid when an absorption is NaN, negative or infinite. For dFH11
- * quadrature and colour-table plans and MJC03 (HB_TERM_FULL); HB_ERR_UNSUPPORTED for the others: a
- * material's own N_p table (HB_AZIMUTHAL_TABLE) holds the plan's own absorption, HHH22's R lobe does not depend on it (hb_eval_angles) and its
- * TT and TRT have no per-sample path, CBTB16 has none yet, and reference plans have none (compare
- * with a reference plan per material). A tolerance or budget plan chose its lobes for its own
+ * quadrature and colour-table plans, MJC03 (HB_TERM_FULL) and CBTB16 (its far field here, its near
+ * field in hb_eval_near_absorption); HB_ERR_UNSUPPORTED for the others: a material's own N_p table
+ * (HB_AZIMUTHAL_TABLE) holds the plan's own absorption, HHH22's R lobe does not depend on it
+ * (hb_eval_angles) and its TT and TRT have no per-sample path, and reference plans have none
+ * (compare with a reference plan per material). A tolerance or budget plan chose its lobes for its own
  * material. */
 typedef struct hb_absorption_soa {
     const float *r, *g, *b;

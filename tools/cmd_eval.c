@@ -109,7 +109,7 @@ static void eval_usage(FILE *to, int pdf)
                 "field at h) or, without a header, for chiang unless --far (its mean over h); writes %s\n"
                 "per line to OUTPUT or stdout. eval also takes each row's absorption where the header names it:\n"
                 "theta_i,phi_i,theta_o,phi_o,eumelanin,pheomelanin or ...,sigma_a_r,sigma_a_g,sigma_a_b (deon with\n"
-                "the quadrature, marschner). With a header theta_i,phi_i,theta_o,phi_o,n (the fibres between the point\n"
+                "the quadrature, marschner, chiang). With a header theta_i,phi_i,theta_o,phi_o,n (the fibres between the point\n"
                 "and the light) or ...,n,v (and the light's direct visibility in [0, 1]) eval writes the far field\n"
                 "f_r,f_g,f_b and after it the dual-scattering term f_ds_r,f_ds_g,f_ds_b (hb_dual_eval, a 64-node table,\n"
                 "density factors 0.7). An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1,\n"
