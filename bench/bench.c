@@ -40,11 +40,19 @@ enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
  * (hb_eval_pdf_angles; its error is f's), or a path tracer's step at one hit from vectors
  * (hb_hit_sample, then hb_hit_eval_pdf of the light's direction; far field, or near at h; its error
  * is the light direction's f), or the dual-scattering term f_DS from the plan's 64-node table
- * (hb_dual_eval at each sample's fibre count; its error against hb_dual_radiance of the same table). */
+ * (hb_dual_eval at each sample's fibre count; its error against hb_dual_radiance of the same table), or
+ * the near field at pbrt-v4's four wavelengths, 450, 550, 650 and 700 nm, each at the material's
+ * melanin absorption there (hb_eval_near_spectral; its error over the four planes). */
 typedef enum bench_op {
     OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR, OP_EVAL_PDF, OP_EVAL_ABSORPTION, OP_HIT, OP_HIT_NEAR,
-    OP_DUAL
+    OP_DUAL, OP_SPECTRAL_NEAR
 } bench_op;
+
+enum { WAVELENGTHS = 4 };
+static const double wavelengths[WAVELENGTHS] = { 450.0, 550.0, 650.0, 700.0 };
+
+/* The planes a row's result has: four wavelengths, or RGB. */
+static int planes_of(bench_op op) { return op == OP_SPECTRAL_NEAR ? WAVELENGTHS : 3; }
 
 static int op_is(bench_op op, bench_op far) { return op == far || op == far + OP_EVAL_NEAR; }
 
@@ -63,7 +71,8 @@ static int compare_double(const void *a, const void *b)
 }
 
 static float theta_i[BATCH], phi_i[BATCH], theta_o[BATCH], phi_o[BATCH], offset_h[BATCH];
-static float out[3][BATCH], ref[3][BATCH];
+static float out[WAVELENGTHS][BATCH], ref[WAVELENGTHS][BATCH];
+static float spectral_absorption[WAVELENGTHS][BATCH]; /* per sample and wavelength (OP_SPECTRAL_NEAR) */
 static float absorption[3][BATCH]; /* per sample (OP_EVAL_ABSORPTION): the blond material's sigma_a */
 static float uniforms[HB_SAMPLE_DIMENSIONS][BATCH], sampled_theta[BATCH], sampled_phi[BATCH], sampled_pdf[BATCH];
 static float w_i[BATCH][3], w_o[BATCH][3]; /* the directions as fibre-frame vectors (OP_HIT) */
@@ -101,6 +110,12 @@ static void run_part(const hb_plan *plan, bench_op op, size_t first, size_t n)
         hb_eval_angles(plan, n, in, f, NULL);
     } else if (op == OP_EVAL_NEAR) {
         hb_eval_near(plan, n, near, f, NULL);
+    } else if (op == OP_SPECTRAL_NEAR) {
+        const float *sigma_a[WAVELENGTHS];
+        float *f_planes[WAVELENGTHS];
+        for (int j = 0; j < WAVELENGTHS; j++)
+            sigma_a[j] = spectral_absorption[j] + k, f_planes[j] = out[j] + k;
+        hb_eval_near_spectral(plan, n, near, (hb_spectral_absorption){ WAVELENGTHS, sigma_a }, f_planes, NULL);
     } else if (op == OP_DUAL) {
         hb_dual_eval(dual_table, n, in, fibres + k, NULL, f, NULL);
     } else if (op == OP_EVAL_PDF) {
@@ -143,6 +158,12 @@ static void make_inputs(const hb_material *m)
     for (int c = 0; c < 3; c++)
         for (int k = 0; k < BATCH; k++)
             absorption[c][k] = (float)sigma_a[c];
+    for (int j = 0; j < WAVELENGTHS; j++) {
+        double s;
+        hb_melanin_absorption_spectral(m->eumelanin, m->pheomelanin, wavelengths[j], &s);
+        for (int k = 0; k < BATCH; k++)
+            spectral_absorption[j][k] = (float)s;
+    }
     srand(12345);
     for (int k = 0; k < BATCH; k++) {
         double u = rand() / (double)RAND_MAX, w = rand() / (double)RAND_MAX;
@@ -221,10 +242,10 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int
     r->ghz = fmax(ghz_before, hb_cpu_clock_ghz()); /* the faster clock: the one the minimum ran at */
     r->isa = hb_plan_isa(plan);
     double peak = 0.0, worst = 0.0; /* docs/conventions.md, over the samples with a reference */
-    for (int c = 0; c < 3; c++)
+    for (int c = 0; c < planes_of(op); c++)
         for (int k = 0; k < NREF; k++)
             peak = fmax(peak, ref[c][k]);
-    for (int c = 0; c < 3; c++)
+    for (int c = 0; c < planes_of(op); c++)
         for (int k = 0; k < NREF; k++)
             worst = fmax(worst, fabs((double)out[c][k] - ref[c][k]) / fmax(ref[c][k], 1e-3 * peak));
     r->max_rel_err = traced ? NAN : worst;
@@ -390,6 +411,9 @@ static const config configs[] = {
     { "chiang", "near", "high", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_HIGH, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "CBTB16 near field at h, high (double M_p)", 0 },
+    { "chiang", "near-spectral4", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SPECTRAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "CBTB16 near field at h at pbrt-v4's 4 wavelengths, balanced", 0 },
     { "chiang", "sample-near", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "CBTB16 sampling at h (direction, pdf and f / pdf), balanced", 0 },
@@ -440,6 +464,9 @@ static const config configs[] = {
     { "chiang", "per-hit", "near-balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "per hit: CBTB16 near field at h, balanced", 1 },
+    { "chiang", "per-hit", "near-spectral4", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SPECTRAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "per hit: CBTB16 near field at h at pbrt-v4's 4 wavelengths, balanced", 1 },
     /* a path tracer's step at one hit, from vectors (examples/path_tracer.c): sample, then f and pdf */
     { "deon", "per-hit", "path-step", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_HIT, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
@@ -579,6 +606,11 @@ static void reference_of(const hb_material *m, const config *c)
         hb_eval_angles(plan, NREF, in, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
     } else if (c->op == OP_EVAL_NEAR || c->op == OP_HIT_NEAR) {
         hb_eval_near(plan, NREF, near, (hb_rgb_soa){ ref[0], ref[1], ref[2] }, NULL);
+    } else if (c->op == OP_SPECTRAL_NEAR) {
+        const float *sigma_a[WAVELENGTHS] = { spectral_absorption[0], spectral_absorption[1], spectral_absorption[2],
+                                              spectral_absorption[3] };
+        hb_eval_near_spectral(plan, NREF, near, (hb_spectral_absorption){ WAVELENGTHS, sigma_a },
+                              (float *const[]){ ref[0], ref[1], ref[2], ref[3] }, NULL);
     }
     hb_plan_destroy(plan);
 }
@@ -728,6 +760,8 @@ static void write_effects(const char *path, const row *rows, int nrows)
         { "HHH22 R, balanced: the elliptical fibre (e 0.5)", "huang/effects/G-balanced-elliptical", "huang/R/G-balanced" },
         { "HHH22 R, balanced: the tilt", "huang/R/G-balanced", "huang/effects/G-balanced-untilted" },
         { "CBTB16 near field, balanced: TT, TRT and the residual (R alone)", "chiang/near/balanced", "chiang/effects/R" },
+        { "CBTB16 near field, balanced: pbrt-v4's 4 wavelengths (RGB)", "chiang/near-spectral4/balanced", "chiang/near/balanced" },
+        { "CBTB16 per hit: pbrt-v4's 4 wavelengths (RGB)", "chiang/per-hit/near-spectral4", "chiang/per-hit/near-balanced" },
     };
     region r;
     if (!region_open(&r))

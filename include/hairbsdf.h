@@ -547,6 +547,50 @@ HB_API hb_status hb_eval_pdf_near_vectors(const hb_plan *plan, size_t n, hb_near
 HB_API hb_status hb_sample_near_vectors(const hb_plan *plan, size_t n, const hb_sample_near_vectors_in *in,
                                         const hb_sample_vectors_out *out, hb_eval_report *report);
 
+/* Spectral evaluation (docs/spectral.md): k wavelengths per sample, 1 <= k <= HB_WAVELENGTHS_MAX,
+ * each with its own absorption per unit radius, sigma_a[j][s] for wavelength j of sample s (a
+ * renderer's sigma_a spectrum samples as they are, or hb_melanin_absorption_spectral's); f comes back
+ * as k planes f[j][s]. Roughness, eta, tilt, lobes and quality are the plan's: the directions,
+ * Fresnel, M_p and N_p are computed once per sample for its k wavelengths, only the attenuations per
+ * wavelength. A sample is invalid as in the RGB calls, or when one of its absorptions is NaN, negative
+ * or infinite: it gets 0 in every plane (pdf and direction too) and is counted. CBTB16 plans: the far
+ * field (hb_eval_angles_spectral), the near field at h, its sampler and its pdf, by the plan's kernels
+ * or, for a reference plan, in double. The sampler chooses the lobe by A_p's mean over the sample's k
+ * wavelengths, as pbrt-v4's HairBxDF::Sample_f does, so the pdf depends on the absorptions; weight[j]
+ * is f / pdf at wavelength j. HB_ERR_UNSUPPORTED for the other models. */
+#define HB_WAVELENGTHS_MAX 8
+typedef struct hb_spectral_absorption {
+    int wavelengths;             /* k */
+    const float *const *sigma_a; /* k planes of n values */
+} hb_spectral_absorption;
+typedef struct hb_sample_spectral_out {
+    float *theta_i, *phi_i;
+    float *pdf;
+    float *const *weight; /* k planes: f / pdf per wavelength */
+} hb_sample_spectral_out;
+HB_API hb_status hb_eval_angles_spectral(const hb_plan *plan, size_t n, hb_angles_soa in, hb_spectral_absorption sigma_a,
+                                         float *const *f, hb_eval_report *report);
+HB_API hb_status hb_eval_near_spectral(const hb_plan *plan, size_t n, hb_near_soa in, hb_spectral_absorption sigma_a,
+                                       float *const *f, hb_eval_report *report);
+HB_API hb_status hb_pdf_near_spectral(const hb_plan *plan, size_t n, hb_near_soa in, hb_spectral_absorption sigma_a,
+                                      float *pdf, hb_eval_report *report);
+HB_API hb_status hb_sample_near_spectral(const hb_plan *plan, size_t n, const hb_sample_near_in *in,
+                                         hb_spectral_absorption sigma_a, const hb_sample_spectral_out *out,
+                                         hb_eval_report *report);
+
+/* pbrt-v4's HairBxDF at one hit, in pbrt's own terms (docs/spectral.md), for a CBTB16 plan of pbrt's
+ * beta_m, beta_n, eta and alpha (the plan's own absorption is not used): w_o and w_i in pbrt's hair
+ * frame (the tangent on x), pbrt's offset h, and sigma_a[0..k) at its k sampled wavelengths (its
+ * SampledSpectrum of sigma_a). hb_pbrt_f writes f[0..k) as HairBxDF::f returns it (the sum over p
+ * divided by |w_i.z|) and the pdf as HairBxDF::PDF; hb_pbrt_sample_f draws w_i from u[0..3] (the
+ * near-field sampler's four numbers: pbrt's Sample_f reads three, reusing uc) and writes w_i, f and
+ * the pdf as pbrt's BSDFSample holds them, so that f |w_i.z| / pdf is the weight per wavelength. An
+ * invalid hit gets zeros; the statuses are the spectral calls'. */
+HB_API hb_status hb_pbrt_f(const hb_plan *plan, const float wo[3], const float wi[3], float h, int wavelengths,
+                           const float *sigma_a, float *f, float *pdf);
+HB_API hb_status hb_pbrt_sample_f(const hb_plan *plan, const float wo[3], float h, const float u[4], int wavelengths,
+                                  const float *sigma_a, float wi[3], float *f, float *pdf);
+
 /* One hit at a time, with plain arrays, for renderers that shade one hit per call: the vector calls
  * above at n = 1. w_o and w_i are fibre-frame unit vectors (toward the viewer and the light); h
  * points to the hit's offset for the near field (CBTB16, dFH11), or is NULL for the far field.

@@ -138,6 +138,7 @@ extern const hb_test hb_tests_assembly[];
 extern const hb_test hb_tests_dual_eval[];
 extern const hb_test hb_tests_assembly_dual[];
 extern const hb_test hb_tests_spectral[];
+extern const hb_test hb_tests_spectral_eval[];
 extern const hb_test hb_tests_convert[];
 extern const hb_test hb_tests_near_vectors[];
 

@@ -139,6 +139,24 @@ static hb_status call_near(const hb_plan *p)
     return e != HB_OK ? e : d != HB_OK ? d : q != HB_OK ? q : v != HB_OK ? v : h;
 }
 
+/* Four wavelengths: the far field, the near field, its sampler and pdf, and pbrt-v4's per-hit call. */
+static hb_status call_spectral(const hb_plan *p)
+{
+    one_sample s = sample_of();
+    float f[4], ti, pi, w[3] = { 0.6f, 0.0f, 0.8f }, wi[3];
+    const float *sigma[4] = { &s.sigma[0], &s.sigma[1], &s.sigma[2], &s.sigma[0] };
+    float *out[4] = { &f[0], &f[1], &f[2], &f[3] };
+    hb_spectral_absorption a = { 4, sigma };
+    hb_near_soa near = { &s.ti, &s.pi, &s.to, &s.po, &s.h };
+    hb_status e = hb_eval_angles_spectral(p, 1, (hb_angles_soa){ &s.ti, &s.pi, &s.to, &s.po }, a, out, NULL);
+    hb_status n = hb_eval_near_spectral(p, 1, near, a, out, NULL);
+    hb_status q = hb_pdf_near_spectral(p, 1, near, a, &s.pdf, NULL);
+    hb_sample_near_in in = { &s.to, &s.po, &s.h, (const float *const[]){ &s.u[0], &s.u[1], &s.u[2], &s.u[3] } };
+    hb_status d = hb_sample_near_spectral(p, 1, &in, a, &(hb_sample_spectral_out){ &ti, &pi, &s.pdf, out }, NULL);
+    hb_status b = hb_pbrt_sample_f(p, w, s.h, s.u, 4, s.sigma, wi, f, &s.pdf);
+    return e != HB_OK ? e : n != HB_OK ? n : q != HB_OK ? q : d != HB_OK ? d : b;
+}
+
 static hb_status call_sample(const hb_plan *p)
 {
     one_sample s = sample_of();
@@ -204,6 +222,8 @@ static const struct row {
     { "`hb_eval_angles_absorption`", NULL, call_absorption },
     { "`hb_eval_near`", NULL, call_near },
     { "`hb_eval_near_absorption`", NULL, call_near_absorption },
+    { "`hb_eval_near_spectral`", NULL, call_spectral },
+    { "`HB_QUALITY_REFERENCE`: spectral", reference_plan, call_spectral },
     { "`hb_sample_angles`", NULL, call_sample },
     { "`hb_eval_pdf_angles`", NULL, call_eval_pdf },
     { "`hb_plan_table`", table_plan, call_table },

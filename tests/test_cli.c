@@ -521,6 +521,49 @@ static void test_eval_dual_columns(hb_test_ctx *t)
     hb_plan_destroy(plan);
 }
 
+/* eval --wavelengths prints f at each wavelength as hb_eval_near_spectral gives it at the material's
+ * melanin absorption there (the far field without h), and refuses sigma_a, models without spectral
+ * calls and a malformed list. */
+static void test_eval_wavelengths(hb_test_ctx *t)
+{
+    hb_tool_run r;
+    if (!run_tool(t, "eval --model chiang --eumelanin 1.3 --pheomelanin 0.2 --wavelengths 450,550,650,700",
+                  "0.3,0,-0.35,2.9,0.2\n0.1,0.5,0.2,-1,2\n", &r))
+        return;
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    o.model = HB_MODEL_CHIANG;
+    m.eumelanin = 1.3, m.pheomelanin = 0.2;
+    hb_plan *plan = NULL;
+    hb_plan_create(&m, &o, &plan, NULL);
+    static const double lambda[4] = { 450.0, 550.0, 650.0, 700.0 };
+    float sigma[4][2], f[4][2], ti[2] = { 0.3f, 0.1f }, pi[2] = { 0.0f, 0.5f }, to[2] = { -0.35f, 0.2f },
+          po[2] = { 2.9f, -1.0f }, h[2] = { 0.2f, 2.0f };
+    for (int j = 0; j < 4; j++) {
+        double s;
+        hb_melanin_absorption_spectral(1.3, 0.2, lambda[j], &s);
+        sigma[j][0] = sigma[j][1] = (float)s;
+    }
+    hb_eval_near_spectral(plan, 2, (hb_near_soa){ ti, pi, to, po, h },
+                          (hb_spectral_absorption){ 4, (const float *const[]){ sigma[0], sigma[1], sigma[2], sigma[3] } },
+                          (float *const[]){ f[0], f[1], f[2], f[3] }, NULL);
+    char want[256];
+    snprintf(want, sizeof want, "%.9g,%.9g,%.9g,%.9g\n0,0,0,0\n", f[0][0], f[1][0], f[2][0], f[3][0]);
+    CHECK(t, r.status == 0 && strcmp(r.out, want) == 0 && strstr(r.err, "1 invalid sample") && f[0][0] > 0.0f,
+          "eval --wavelengths:\n%s%s, the library:\n%s", r.out, r.err, want);
+    hb_plan_destroy(plan);
+    run_tool(t, "eval --model chiang --sigma-a 0.1,0.2,0.3 --wavelengths 500", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "no spectrum"), "sigma_a: %d %s", r.status, r.err);
+    run_tool(t, "eval --model deon --wavelengths 500", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "spectral"), "deon: %d %s", r.status, r.err);
+    run_tool(t, "eval --model chiang --wavelengths 500,x", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--wavelengths"), "a malformed list: %d %s", r.status, r.err);
+    run_tool(t, "eval --model chiang --wavelengths 1200", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--wavelengths"), "1200 nm: %d %s", r.status, r.err);
+}
+
 /* hairbsdf assembly --dual prints dual scattering's prediction beside the trace, and refuses density
  * factors outside [0, 1] and the bundle. */
 static void test_assembly_dual(hb_test_ctx *t)
@@ -779,6 +822,7 @@ const hb_test hb_tests_cli[] = {
     { "cli_eval_matches_library", test_eval_matches_library, 0 },
     { "cli_eval_errors", test_eval_errors, 0 },
     { "cli_eval_dual_columns", test_eval_dual_columns, 0 },
+    { "cli_eval_wavelengths", test_eval_wavelengths, 0 },
     { "cli_assembly_dual", test_assembly_dual, 0 },
     { "cli_input_edges", test_input_edges, 0 },
     { "cli_help", test_help, 0 },

@@ -1,6 +1,7 @@
 /* hairbsdf eval: CSV rows theta_i,phi_i,theta_o,phi_o (near-field models: and h; per-sample absorption:
  * and eumelanin,pheomelanin or sigma_a_r,sigma_a_g,sigma_a_b; dual scattering: and n, or n,v) from a
- * file or stdin, f_r,f_g,f_b (and the dual-scattering term after them) to a file or stdout
+ * file or stdin, f_r,f_g,f_b (and the dual-scattering term after them; with --wavelengths, f at each
+ * wavelength instead) to a file or stdout
  * hairbsdf pdf: the same rows, the sampling pdf of w_i given w_o (docs/sampling.md). */
 #include <errno.h>
 #include <math.h>
@@ -32,6 +33,9 @@ typedef struct eval_batch {
     float out[6][BATCH]; /* f, then f_DS */
     size_t count;
     hb_dual_table *dual; /* for the rows with n: the plan's dual-scattering table */
+    /* --wavelengths: their count, the material's absorption at each (every row alike) and f per wavelength */
+    int wavelengths;
+    float sigma_a[HB_WAVELENGTHS_MAX][BATCH], spectral[HB_WAVELENGTHS_MAX][BATCH];
 } eval_batch;
 
 /* Whether a row is a valid sample as hb_eval_angles (hb_dual_eval) defines it (hairbsdf.h): finite
@@ -74,6 +78,20 @@ static size_t flush(const hb_plan *plan, int pdf, row_kind kind, eval_batch *b, 
     hb_rgb_soa rgb = { b->out[0], b->out[1], b->out[2] };
     hb_eval_report report = { 0 };
     int near = kind == ROW_NEAR;
+    if (b->wavelengths) {
+        const float *planes[HB_WAVELENGTHS_MAX];
+        float *f[HB_WAVELENGTHS_MAX];
+        for (int j = 0; j < b->wavelengths; j++)
+            planes[j] = b->sigma_a[j], f[j] = b->spectral[j];
+        hb_spectral_absorption a = { b->wavelengths, planes };
+        near ? hb_eval_near_spectral(plan, b->count, in_near, a, f, &report)
+             : hb_eval_angles_spectral(plan, b->count, in, a, f, &report);
+        for (size_t k = 0; k < b->count; k++)
+            for (int j = 0; j < b->wavelengths; j++)
+                fprintf(out, j + 1 < b->wavelengths ? "%.9g," : "%.9g\n", b->spectral[j][k]);
+        b->count = 0;
+        return report.invalid;
+    }
     if (pdf)
         near ? hb_pdf_near(plan, b->count, in_near, b->out[0], &report) : hb_pdf_angles(plan, b->count, in, b->out[0], &report);
     else if (kind >= ROW_MELANIN)
@@ -103,7 +121,7 @@ static size_t flush(const hb_plan *plan, int pdf, row_kind kind, eval_batch *b, 
 
 static void eval_usage(FILE *to, int pdf)
 {
-    fprintf(to, "usage: hairbsdf %s [options] [--strict] [--far] [-o OUTPUT] [INPUT.csv]\n"
+    fprintf(to, "usage: hairbsdf %s [options] [--strict] [--far]%s [-o OUTPUT] [INPUT.csv]\n"
                 "Reads theta_i,phi_i,theta_o,phi_o (radians) per line from INPUT.csv or stdin, and h (the offset in\n"
                 "[-1, 1]) after them where a header theta_i,phi_i,theta_o,phi_o,h names it (deon, chiang: the near\n"
                 "field at h) or, without a header, for chiang unless --far (its mean over h); writes %s\n"
@@ -113,16 +131,67 @@ static void eval_usage(FILE *to, int pdf)
                 "and the light) or ...,n,v (and the light's direct visibility in [0, 1]) eval writes the far field\n"
                 "f_r,f_g,f_b and after it the dual-scattering term f_ds_r,f_ds_g,f_ds_b (hb_dual_eval, a 64-node table,\n"
                 "density factors 0.7). An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1,\n"
-                "a negative absorption) gives %s and is reported with its line; with --strict it is an error.\n%s",
-            pdf ? "pdf" : "eval",
+                "a negative absorption) gives %s and is reported with its line; with --strict it is an error.\n%s%s",
+            pdf ? "pdf" : "eval", pdf ? "" : " [--wavelengths L1,L2,...]",
             pdf ? "the solid-angle pdf with which 'hairbsdf sample' draws w_i given w_o" : "f_r,f_g,f_b",
-            pdf ? "0" : "0,0,0", cli_model_options_help);
+            pdf ? "0" : "0,0,0",
+            pdf ? "" : "With --wavelengths L1,L2,... (nm, at most 8, in [300, 1000]; chiang) eval writes f at each\n"
+                       "wavelength per line instead, at the absorption the material's eumelanin and pheomelanin give\n"
+                       "there (hb_melanin_absorption_spectral); the rows are the angles, or the angles and h.\n",
+            cli_model_options_help);
+}
+
+/* --wavelengths: the list into batch->wavelengths and the material's absorption at each; 0, or 2 after
+ * saying what is wrong. */
+static int spectral_setup(const char *name, const char *list, const cli_model_args *args, const hb_plan *plan,
+                          eval_batch *batch)
+{
+    double lambda[HB_WAVELENGTHS_MAX];
+    int k = 0;
+    for (const char *p = list; *p; k++) {
+        char *end;
+        double value = strtod(p, &end);
+        if (end == p || k == HB_WAVELENGTHS_MAX || (*end && *end != ',')) {
+            fprintf(stderr, "%s: --wavelengths '%s': want at most %d numbers in nm, comma-separated\n", name, list,
+                    HB_WAVELENGTHS_MAX);
+            return 2;
+        }
+        lambda[k] = value;
+        p = *end ? end + 1 : end;
+    }
+    hb_material m;
+    hb_error error;
+    if (k == 0 || cli_material(args, &m, &error) != HB_OK) {
+        fprintf(stderr, "%s: --wavelengths: %s\n", name, k ? error.message : "no wavelength given");
+        return 2;
+    }
+    if (m.sigma_a[0] != 0.0 || m.sigma_a[1] != 0.0 || m.sigma_a[2] != 0.0) {
+        fprintf(stderr, "%s: --wavelengths takes the absorption from eumelanin and pheomelanin: sigma_a is RGB, "
+                        "with no spectrum\n", name);
+        return 2;
+    }
+    const float *none[HB_WAVELENGTHS_MAX] = { NULL };
+    if (hb_eval_near_spectral(plan, 0, (hb_near_soa){ 0 }, (hb_spectral_absorption){ k, none }, NULL, NULL) != HB_OK) {
+        fprintf(stderr, "%s: --wavelengths: %s\n", name, hb_last_error()->message);
+        return 2;
+    }
+    for (int j = 0; j < k; j++) {
+        double sigma_a;
+        if (hb_melanin_absorption_spectral(m.eumelanin, m.pheomelanin, lambda[j], &sigma_a) != HB_OK) {
+            fprintf(stderr, "%s: --wavelengths: %s\n", name, hb_last_error()->message);
+            return 2;
+        }
+        for (size_t s = 0; s < BATCH; s++)
+            batch->sigma_a[j][s] = (float)sigma_a;
+    }
+    batch->wavelengths = k;
+    return 0;
 }
 
 int cmd_eval(int argc, char **argv, int pdf)
 {
     const char *name = pdf ? "hairbsdf pdf" : "hairbsdf eval";
-    const char *input_path = NULL, *output_path = NULL;
+    const char *input_path = NULL, *output_path = NULL, *wavelengths_arg = NULL;
     int strict = 0, far = 0;
     cli_model_args args;
     cli_model_args_default(&args);
@@ -138,6 +207,10 @@ int cmd_eval(int argc, char **argv, int pdf)
         }
         if (strcmp(argv[i], "--far") == 0) {
             far = 1;
+            continue;
+        }
+        if (strcmp(argv[i], "--wavelengths") == 0 && i + 1 < argc && !pdf) {
+            wavelengths_arg = argv[++i];
             continue;
         }
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
@@ -175,6 +248,11 @@ int cmd_eval(int argc, char **argv, int pdf)
     int absorbing = !pdf && hb_eval_angles_absorption(plan, 0, (hb_angles_soa){ 0 }, (hb_absorption_soa){ 0 },
                                                       (hb_rgb_soa){ 0 }, NULL) == HB_OK;
     row_kind kind = near_field && args.options.model == HB_MODEL_CHIANG ? ROW_NEAR : ROW_ANGLES;
+    static eval_batch batch;
+    if (wavelengths_arg && spectral_setup(name, wavelengths_arg, &args, plan, &batch) != 0) {
+        hb_plan_destroy(plan);
+        return 2;
+    }
     FILE *in = input_path ? fopen(input_path, "r") : stdin;
     FILE *out = output_path ? fopen(output_path, "w") : stdout;
     if (!in || !out) {
@@ -185,7 +263,6 @@ int cmd_eval(int argc, char **argv, int pdf)
         return 1;
     }
 
-    static eval_batch batch;
     char *line = NULL;
     size_t cap = 0, invalid = 0;
     long lineno = 0, first_invalid = 0;
@@ -220,6 +297,11 @@ int cmd_eval(int argc, char **argv, int pdf)
                     status = 2;
                     break;
                 }
+            }
+            if (header > ROW_NEAR && batch.wavelengths) {
+                fprintf(stderr, "%s: --wavelengths takes the angles, or the angles and h\n", name);
+                status = 2;
+                break;
             }
             if (header >= ROW_MELANIN && !absorbing) {
                 fprintf(stderr, "%s: absorption columns need eval with deon (quadrature), marschner or chiang\n", name);

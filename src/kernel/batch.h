@@ -184,15 +184,15 @@ HB_INLINE vm load_sample(const hb_sample_batch *b, int dims, size_t i, size_t la
 /* h in [-1, 1]; false for NaN. */
 HB_INLINE vm offset_valid(vf h) { return vf_le(vf_abs(h), vf_set1(1.0f)); }
 
-/* Three absorption streams into a[0..2] = sigma_a log2(e) per channel, each rounded from its product
- * in double and capped at 1e30 as a plan's constant is (src/models/build/derive.h), so that a sample's
- * absorption gives what a plan of that material gives; valid less the lanes whose absorption is NaN,
- * negative or infinite. */
-HB_INLINE vm load_absorption(const float *const sigma_a[3], size_t i, size_t lanes, vm valid, vf a[3])
+/* `channels` absorption streams (3, or a spectral call's wavelengths) into a[0..channels) = sigma_a
+ * log2(e) per channel, each rounded from its product in double and capped at 1e30 as a plan's constant
+ * is (src/models/build/derive.h), so that a sample's absorption gives what a plan of that material
+ * gives; valid less the lanes whose absorption is NaN, negative or infinite. */
+HB_INLINE vm load_absorption(const float *const *sigma_a, int channels, size_t i, size_t lanes, vm valid, vf *a)
 {
-    load_block(sigma_a, 3, i, lanes, 0.0f, a);
+    load_block(sigma_a, channels, i, lanes, 0.0f, a);
     HB_UNROLL
-    for (int c = 0; c < 3; c++) {
+    for (int c = 0; c < channels; c++) {
         valid = vm_and(valid, vm_and(vf_ge(a[c], vf_set1(0.0f)), vf_le(a[c], vf_set1(FLT_MAX))));
         a[c] = vdw_to_vf(vdw_min(vdw_mul(vdw_from_vf(a[c]), vdw_set1(1.4426950408889634)), vdw_set1(1e30)));
     }
@@ -202,7 +202,7 @@ HB_INLINE vm load_absorption(const float *const sigma_a[3], size_t i, size_t lan
 /* Direction pairs and three absorption streams (a[4..6], load_absorption); invalid lanes get zeros. */
 HB_INLINE vm load_absorbing(const hb_absorbing_batch *b, size_t i, size_t lanes, vf a[7])
 {
-    vm valid = load_absorption(b->sigma_a, i, lanes, load_pairs(&b->pairs, i, lanes, a), a + 4);
+    vm valid = load_absorption(b->sigma_a, 3, i, lanes, load_pairs(&b->pairs, i, lanes, a), a + 4);
     HB_UNROLL
     for (int k = 0; k < 7; k++)
         a[k] = vf_keep(valid, a[k]);
@@ -227,9 +227,23 @@ HB_INLINE vm load_near(hb_near_soa in, size_t i, size_t lanes, vf a[5])
 /* The near field's five streams and three absorption streams (a[5..7], load_absorption). */
 HB_INLINE vm load_near_absorbing(const hb_absorbing_near *b, size_t i, size_t lanes, vf a[8])
 {
-    vm valid = load_absorption(b->sigma_a, i, lanes, load_near(b->near, i, lanes, a), a + 5);
+    vm valid = load_absorption(b->sigma_a, 3, i, lanes, load_near(b->near, i, lanes, a), a + 5);
     HB_UNROLL
     for (int k = 0; k < 8; k++)
+        a[k] = vf_keep(valid, a[k]);
+    return valid;
+}
+
+/* A spectral batch's lane block: the angles a[0..3], h a[4] (0 for the far field) and the wavelengths'
+ * absorptions a[5..5 + wavelengths) (load_absorption); invalid lanes get zeros. */
+HB_INLINE vm load_spectral(const hb_spectral_batch *b, size_t i, size_t lanes, vf *a)
+{
+    hb_angles_soa angles = { b->near.theta_i, b->near.phi_i, b->near.theta_o, b->near.phi_o };
+    vm valid = b->near.h ? load_near(b->near, i, lanes, a) : load_angles(angles, i, lanes, a);
+    if (!b->near.h)
+        a[4] = vf_set1(0.0f);
+    valid = load_absorption(b->sigma_a, b->wavelengths, i, lanes, valid, a + 5);
+    for (int k = 0; k < 5 + b->wavelengths; k++)
         a[k] = vf_keep(valid, a[k]);
     return valid;
 }
@@ -259,6 +273,13 @@ HB_INLINE vm load_sample_near(hb_sample_streams in, int dims, size_t i, size_t l
     return vm_and(valid, h_valid);
 }
 
+/* `planes` planes of a spectral result; invalid lanes get 0. */
+HB_INLINE void store_planes(float *const *out, int planes, size_t i, size_t lanes, vm valid, const vf *f)
+{
+    for (int c = 0; c < planes; c++)
+        store_block(out[c], i, lanes, vf_keep(valid, f[c]));
+}
+
 /* Invalid lanes get 0 in every plane. */
 HB_INLINE void store_rgb(hb_rgb_soa out, size_t i, size_t lanes, vm valid, const vf f[3])
 {
@@ -276,6 +297,16 @@ HB_INLINE void store_sample(hb_sample_out out, size_t i, size_t lanes, vm valid,
     store_block(out.phi_i, i, lanes, vf_keep(valid, phi_i));
     store_block(out.pdf, i, lanes, vf_keep(valid, pdf));
     store_rgb(out.weight, i, lanes, valid, weight);
+}
+
+/* A sampled direction, its pdf and `planes` weights of a spectral sampler; invalid lanes get 0. */
+HB_INLINE void store_sample_spectral(const hb_sample_spectral_out *out, int planes, size_t i, size_t lanes, vm valid,
+                                     vf theta_i, vf phi_i, vf pdf, const vf *weight)
+{
+    store_block(out->theta_i, i, lanes, vf_keep(valid, theta_i));
+    store_block(out->phi_i, i, lanes, vf_keep(valid, phi_i));
+    store_block(out->pdf, i, lanes, vf_keep(valid, pdf));
+    store_planes(out->weight, planes, i, lanes, valid, weight);
 }
 
 /* The same into a sampling batch, w_i as a unit vector where the batch asks for one. */

@@ -43,6 +43,13 @@ typedef struct hb_reference_ops {
     void (*sample_near)(const hb_plan *plan, double theta_o, double phi_o, double h, const double *u,
                         double *theta_i, double *phi_i);
     double (*pdf_near)(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h);
+    /* k wavelengths at absorptions sigma_a[0..k) per unit radius (hb_*_spectral): f and the pdf (pdf may
+     * be NULL) near-field at h, or the far field where h is NaN; the near-field sampler at h, its lobe
+     * chosen by the wavelengths' mean attenuations. */
+    void (*spectral)(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                     int k, const double *sigma_a, double *f, double *pdf);
+    void (*sample_spectral)(const hb_plan *plan, double theta_o, double phi_o, double h, const double *u, int k,
+                            const double *sigma_a, double *theta_i, double *phi_i);
     /* The white furnace by scattering order, from a random walk through a circular fibre (hb_furnace_orders). */
     void (*orders)(const hb_plan *plan, double theta, long paths, unsigned long long seed,
                    double energy[HB_ORDER_GROUPS][3], double standard_error[HB_ORDER_GROUPS]);

@@ -8,11 +8,15 @@
 #include "models/common/longitudinal.h"
 #include "models/common/fresnel.h"
 
-/* What the attenuations give at one offset h for w_o: A_p per channel (dFH11 eqs. 13, 14 at w_o's
- * side, as CBTB16 takes them, and its residual lobe), the sampler's lobe probabilities P_p (A_p's channel mean over the plan's
- * lobes, normalised; with_pdf only) and the exit azimuths Phi(p, h) of the explicit orders. */
+/* The most channels the kernels carry per sample: RGB's three, or a spectral call's wavelengths. */
+#define HB_CHIANG_CHANNELS HB_WAVELENGTHS_MAX
+
+/* What the attenuations give at one offset h for w_o, beside A_p per channel (chiang_offset_at): the
+ * sampler's lobe probabilities P_p (A_p's mean over the channels and the plan's lobes, normalised, as
+ * pbrt-v4's ApPDF averages its wavelengths; with_pdf only) and the exit azimuths Phi(p, h) of the
+ * explicit orders. */
 typedef struct chiang_offset {
-    vf A[HB_CHIANG_TERMS][3], P[HB_CHIANG_TERMS], Phi[HB_CHIANG_ORDERS];
+    vf P[HB_CHIANG_TERMS], Phi[HB_CHIANG_ORDERS];
 } chiang_offset;
 
 /* The plan's absorption per unit radius times log2(e), per channel, as chiang_offset_at takes it (a
@@ -23,13 +27,15 @@ HB_INLINE void chiang_plan_absorption(const hb_chiang *c, vf absorption[3])
         absorption[ch] = vf_set1(c->sigma_a_log2e[ch]);
 }
 
-/* cos theta_o and sin theta_o carry w_o; h in [-1, 1]; absorption: sigma_a log2(e) per channel. With eta' cos theta_o = sqrt(eta^2 - sin^2
+/* A[ch][p] for `channels` channels at absorption[ch] = sigma_a log2(e): dFH11 eqs. 13, 14 at w_o's
+ * side, as CBTB16 takes them, and its residual lobe; and o's terms. cos theta_o and sin theta_o carry
+ * w_o; h in [-1, 1]. With eta' cos theta_o = sqrt(eta^2 - sin^2
  * theta_o) = sqrt(eta^2 - 1 + cos^2 theta_o) (Bravais' index), sin gamma_t = h / eta'
  * and the path 2 cos gamma_t / cos theta_t (the absorption of HHH22 sec. 3.1.2) need no division by cos theta_o, so w_o at a pole
  * (cos theta_o = 0: gamma_t = 0) is finite. cos gamma_t = sqrt(eta^2 - 1 + cos^2 theta_o cos^2 gamma_o) / (eta' cos theta_o),
  * a sum of two non-negative terms: 1 - sin^2 gamma_t would cancel to 0 as eta -> 1 and |h| -> 1, losing the path inside. */
-HB_INLINE void chiang_offset_at(const hb_chiang *c, const vf absorption[3], vf cos_theta_o, vf h, int with_pdf,
-                                chiang_offset *o)
+HB_INLINE void chiang_offset_at(const hb_chiang *c, int channels, const vf *absorption, vf cos_theta_o, vf h,
+                                int with_pdf, vf A[][HB_CHIANG_TERMS], chiang_offset *o)
 {
     vf cos_o = vf_abs(cos_theta_o); /* |cos theta_o|, as pbrt takes it: the float pi/2 lies beyond the pole */
     vf cos_gamma_o = vf_sqrt(vf_max(vf_mul(vf_sub(vf_set1(1.0f), h), vf_add(vf_set1(1.0f), h)), vf_set1(0.0f)));
@@ -43,34 +49,45 @@ HB_INLINE void chiang_offset_at(const hb_chiang *c, const vf absorption[3], vf c
     vf path = vf_mul(vf_mul(vf_set1(2.0f * c->ior.eta), cos_gamma_t), inv_eta_cos_t); /* 2 cos gamma_t / cos theta_t */
     vf one_minus_F = fresnel_dielectric_complement(cos_o_cos_gamma_o, &c->ior); /* exact to 0 at grazing */
     vf mean[HB_CHIANG_TERMS] = { vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f), vf_set1(0.0f) };
-    vf TF[3], den[3], residual_den = vf_set1(1.0f);
-    for (int ch = 0; ch < 3; ch++) {
+    /* the residual's denominators, multiplied per three channels for one division per three (each is in
+     * [1e-12, 1], so a product of three stays normal); a last group's missing channels count as 1. The
+     * loops run to the most channels, each guarded by the count: straight code at a constant count. */
+    enum { SLOTS = (HB_CHIANG_CHANNELS + 2) / 3 * 3 };
+    vf TF[SLOTS], den[SLOTS], inv_group_den[SLOTS / 3];
+    HB_UNROLL
+    for (int ch = 0; ch < SLOTS; ch++) {
+        TF[ch] = vf_set1(0.0f);
+        den[ch] = vf_set1(1.0f);
+        if (ch >= channels)
+            continue;
         vf t = vf_mul(absorption[ch], path);
         vf T = vf_min(vf_exp2_neg(t), vf_set1(1.0f)); /* T = e^(-sigma_a path); 2^-0 rounds above 1 */
         TF[ch] = vf_mul(T, F);
-        o->A[0][ch] = F;                                          /* dFH11 eq. 13: p = 0 */
-        o->A[1][ch] = vf_mul(vf_mul(one_minus_F, one_minus_F), T); /* p = 1: (1 - F)^2 T */
-        o->A[2][ch] = vf_mul(o->A[1][ch], TF[ch]);                 /* p = 2: (1 - F)^2 T^2 F */
+        A[ch][0] = F;                                        /* dFH11 eq. 13: p = 0 */
+        A[ch][1] = vf_mul(vf_mul(one_minus_F, one_minus_F), T); /* p = 1: (1 - F)^2 T */
+        A[ch][2] = vf_mul(A[ch][1], TF[ch]);                 /* p = 2: (1 - F)^2 T^2 F */
         /* 1 - T F = (1 - F) + F (1 - T), both terms >= 0 and 1 - T without cancellation, so that
          * (1 - F)^2 / (1 - T F) <= 1 - F however close T F is to 1 (a lossless fibre at grazing
          * incidence); floored where both vanish, and then A_2 = 0 */
         vf one_minus_TF = vf_fma(F, vf_one_minus_exp2_neg(t, T), one_minus_F);
         den[ch] = vf_max(one_minus_TF, vf_set1(1e-12f));
-        residual_den = vf_mul(residual_den, den[ch]);
     }
-    /* CBTB16's residual: the orders above TRT summed, A_2 T F / (1 - T F); one division for the three
-     * channels (each denominator is in [1e-12, 1], so their product stays normal) */
-    vf inv_residual_den = vf_div(vf_set1(1.0f), residual_den);
-    for (int ch = 0; ch < 3; ch++) {
-        vf others = vf_set1(1.0f);
-        for (int k = 0; k < 3; k++)
-            if (k != ch)
-                others = vf_mul(others, den[k]);
-        o->A[3][ch] = vf_mul(vf_mul(o->A[2][ch], TF[ch]), vf_mul(others, inv_residual_den));
+    HB_UNROLL
+    for (int g = 0; g < SLOTS / 3; g++)
+        inv_group_den[g] = vf_div(vf_set1(1.0f), vf_mul(vf_mul(den[3 * g], den[3 * g + 1]), den[3 * g + 2]));
+    /* CBTB16's residual: the orders above TRT summed, A_2 T F / (1 - T F) */
+    HB_UNROLL
+    for (int ch = 0; ch < SLOTS; ch++) {
+        if (ch >= channels)
+            continue;
+        int first = ch - ch % 3;
+        vf others = vf_mul(den[ch == first ? first + 1 : first], den[ch == first + 2 ? first + 1 : first + 2]);
+        A[ch][3] = vf_mul(vf_mul(A[ch][2], TF[ch]), vf_mul(others, inv_group_den[ch / 3]));
+        HB_UNROLL
         for (int p = 0; p < HB_CHIANG_TERMS; p++) {
             if (!hb_chiang_term_on(c, p))
-                o->A[p][ch] = vf_set1(0.0f);
-            mean[p] = vf_add(mean[p], o->A[p][ch]);
+                A[ch][p] = vf_set1(0.0f);
+            mean[p] = vf_add(mean[p], A[ch][p]);
         }
     }
     if (with_pdf) {
@@ -131,10 +148,10 @@ HB_INLINE void chiang_longitudinal_vectors(const hb_chiang *c, const vf wi[3], c
 
 #define HB_INV_TWO_PI_F 0.159154943f
 
-/* Adds weight * sum_p M_p A_p N_p to f and weight * sum_p M_p P_p N_p to pdf, at phi = phi_o - phi_i;
- * with `mirrored`, N_p is taken at phi and -phi (the offsets h and -h of the far field). */
-HB_INLINE void chiang_accumulate(const hb_chiang *c, const chiang_offset *o, const vf M[HB_CHIANG_TERMS], vf phi,
-                                 int mirrored, vf weight, vf f[3], vf *pdf)
+/* Adds weight * sum_p M_p A_p N_p to f (`channels` channels) and weight * sum_p M_p P_p N_p to pdf, at
+ * phi = phi_o - phi_i; with `mirrored`, N_p is taken at phi and -phi (the offsets h and -h of the far field). */
+HB_INLINE void chiang_accumulate(const hb_chiang *c, int channels, const vf A[][HB_CHIANG_TERMS], const chiang_offset *o,
+                                 const vf M[HB_CHIANG_TERMS], vf phi, int mirrored, vf weight, vf *f, vf *pdf)
 {
     vf MN[HB_CHIANG_TERMS], N[HB_CHIANG_ORDERS], N_mirror[HB_CHIANG_ORDERS];
     chiang_logistics(c, phi, o->Phi, N);
@@ -147,24 +164,28 @@ HB_INLINE void chiang_accumulate(const hb_chiang *c, const chiang_offset *o, con
     for (int p = 0; p < HB_CHIANG_TERMS; p++) {
         if (!hb_chiang_term_on(c, p))
             continue;
-        for (int ch = 0; ch < 3; ch++)
-            f[ch] = vf_fma(MN[p], o->A[p][ch], f[ch]);
+        HB_UNROLL
+        for (int ch = 0; ch < HB_CHIANG_CHANNELS; ch++)
+            if (ch < channels)
+                f[ch] = vf_fma(MN[p], A[ch][p], f[ch]);
         if (pdf)
             *pdf = vf_fma(MN[p], o->P[p], *pdf);
     }
 }
 
-/* The near field at h: f, and the sampler's pdf when pdf is not NULL; absorption per channel as
- * chiang_offset_at takes it. */
-HB_INLINE void chiang_near(const hb_chiang *c, const vf absorption[3], const vf M[HB_CHIANG_TERMS], vf cos_theta_o,
-                           vf phi, vf h, vf f[3], vf *pdf)
+/* The near field at h: f in `channels` channels at their absorption (as chiang_offset_at takes it),
+ * and the sampler's pdf when pdf is not NULL. */
+HB_INLINE void chiang_near(const hb_chiang *c, int channels, const vf *absorption, const vf M[HB_CHIANG_TERMS],
+                           vf cos_theta_o, vf phi, vf h, vf *f, vf *pdf)
 {
+    vf A[HB_CHIANG_CHANNELS][HB_CHIANG_TERMS];
     chiang_offset o;
-    chiang_offset_at(c, absorption, cos_theta_o, h, pdf != NULL, &o);
-    f[0] = f[1] = f[2] = vf_set1(0.0f);
+    chiang_offset_at(c, channels, absorption, cos_theta_o, h, pdf != NULL, A, &o);
+    for (int ch = 0; ch < channels; ch++)
+        f[ch] = vf_set1(0.0f);
     if (pdf)
         *pdf = vf_set1(0.0f);
-    chiang_accumulate(c, &o, M, phi, 0, vf_set1(1.0f), f, pdf);
+    chiang_accumulate(c, channels, A, &o, M, phi, 0, vf_set1(1.0f), f, pdf);
 }
 
 /* The near field at h of one sample whose values fill every lane, its four terms across the lanes
@@ -176,11 +197,11 @@ HB_INLINE void chiang_near(const hb_chiang *c, const vf absorption[3], const vf 
 HB_INLINE void chiang_near_lanes(const hb_chiang *c, const mp_inclinations *in, vf cos_theta_o, vf phi, vf h,
                                  vf f[3])
 {
+    vf absorption[3], terms[3][HB_CHIANG_TERMS];
     chiang_offset o;
-    vf absorption[3];
     chiang_plan_absorption(c, absorption);
-    chiang_offset_at(c, absorption, cos_theta_o, h, 0, &o);
-    vf order = vf_lane_index(), Phi = o.Phi[0], A[3] = { o.A[0][0], o.A[0][1], o.A[0][2] };
+    chiang_offset_at(c, 3, absorption, cos_theta_o, h, 0, terms, &o);
+    vf order = vf_lane_index(), Phi = o.Phi[0], A[3] = { terms[0][0], terms[1][0], terms[2][0] };
     vm at;
     HB_UNROLL
     for (int p = 1; p < HB_CHIANG_TERMS; p++) {
@@ -188,7 +209,7 @@ HB_INLINE void chiang_near_lanes(const hb_chiang *c, const mp_inclinations *in, 
         Phi = p < HB_CHIANG_ORDERS ? vf_select(at, o.Phi[p], Phi) : Phi;
         HB_UNROLL
         for (int ch = 0; ch < 3; ch++)
-            A[ch] = vf_select(at, o.A[p][ch], A[ch]);
+            A[ch] = vf_select(at, terms[ch][p], A[ch]);
     }
     vf e = vf_exp2_neg(vf_mul(vf_abs(wrap_angle(vf_sub(phi, Phi))), vf_set1(c->inv_s_log2e)));
     vf one_plus_e = vf_add(vf_set1(1.0f), e);
@@ -199,18 +220,20 @@ HB_INLINE void chiang_near_lanes(const hb_chiang *c, const mp_inclinations *in, 
         f[ch] = vf_set1(vf_sum_first(vf_mul(MN, A[ch]), HB_CHIANG_TERMS < HB_W ? HB_CHIANG_TERMS : HB_W));
 }
 
-/* The far field: the mean over h in [-1, 1] by the plan's nodes, each pairing h and -h; absorption as
- * chiang_near's. */
-HB_INLINE void chiang_far(const hb_chiang *c, const vf absorption[3], const vf M[HB_CHIANG_TERMS], vf cos_theta_o,
-                          vf phi, vf f[3], vf *pdf)
+/* The far field: the mean over h in [-1, 1] by the plan's nodes, each pairing h and -h; channels and
+ * absorption as chiang_near's. */
+HB_INLINE void chiang_far(const hb_chiang *c, int channels, const vf *absorption, const vf M[HB_CHIANG_TERMS],
+                          vf cos_theta_o, vf phi, vf *f, vf *pdf)
 {
-    f[0] = f[1] = f[2] = vf_set1(0.0f);
+    for (int ch = 0; ch < channels; ch++)
+        f[ch] = vf_set1(0.0f);
     if (pdf)
         *pdf = vf_set1(0.0f);
     for (int j = 0; j < c->nodes; j++) {
+        vf A[HB_CHIANG_CHANNELS][HB_CHIANG_TERMS];
         chiang_offset o;
-        chiang_offset_at(c, absorption, cos_theta_o, vf_set1(c->h[j]), pdf != NULL, &o);
-        chiang_accumulate(c, &o, M, phi, 1, vf_set1(c->weight[j]), f, pdf);
+        chiang_offset_at(c, channels, absorption, cos_theta_o, vf_set1(c->h[j]), pdf != NULL, A, &o);
+        chiang_accumulate(c, channels, A, &o, M, phi, 1, vf_set1(c->weight[j]), f, pdf);
     }
 }
 

@@ -22,7 +22,7 @@ static void angles_kernel(const hb_chiang *c, size_t n, hb_angles_soa in, hb_rgb
     chiang_plan_absorption(c, absorption);
     HB_BATCH(load_angles, 4, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_far(c, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, NULL),
+              chiang_far(c, 3, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, NULL),
               store_rgb(out, i, lanes, valid, f)));
 }
 
@@ -33,7 +33,7 @@ static void absorbing_kernel(const hb_chiang *c, size_t n, const hb_absorbing_ba
     vf M[HB_CHIANG_TERMS], f[3];
     HB_BATCH(load_absorbing, 7, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_far(c, a + 4, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, NULL),
+              chiang_far(c, 3, a + 4, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, NULL),
               store_rgb(out, i, lanes, valid, f)));
 }
 
@@ -44,7 +44,7 @@ static void near_absorbing_kernel(const hb_chiang *c, size_t n, const hb_absorbi
     vf M[HB_CHIANG_TERMS], f[3];
     HB_BATCH(load_near_absorbing, 8, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_near(c, a + 5, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, NULL),
+              chiang_near(c, 3, a + 5, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, NULL),
               store_rgb(out, i, lanes, valid, f)));
 }
 
@@ -57,7 +57,7 @@ HB_INLINE void chiang_vectors_far(const hb_chiang *c, const vf wi[3], const vf w
     inclination(wo[0], wo[1], wo[2], &sin_o, &cos_o);
     vf phi = azimuth_difference(wi, wo);
     chiang_plan_absorption(c, absorption);
-    chiang_far(c, absorption, M, cos_o, phi, f, NULL);
+    chiang_far(c, 3, absorption, M, cos_o, phi, f, NULL);
 }
 
 static void vectors_kernel(const hb_chiang *c, size_t n, hb_vectors_soa in, hb_rgb_soa out, size_t *invalid)
@@ -82,7 +82,7 @@ static void f_pdf_kernel(const hb_chiang *c, size_t n, const hb_pair_batch *in, 
     chiang_plan_absorption(c, absorption);
     HB_BATCH(load_pairs, 4, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_far(c, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, &p),
+              chiang_far(c, 3, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, &p),
               store_block(pdf, i, lanes, vf_keep(valid, p)), out ? store_rgb(*out, i, lanes, valid, f) : (void)0));
 }
 
@@ -92,7 +92,7 @@ static void near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa
     chiang_plan_absorption(c, absorption);
     HB_BATCH(load_near, 5, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_near(c, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, NULL),
+              chiang_near(c, 3, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, NULL),
               store_rgb(out, i, lanes, valid, f)));
 }
 
@@ -112,10 +112,11 @@ static void near_few_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb
 static void sample_near_kernel(const hb_chiang *c, size_t n, hb_sample_streams in, hb_sample_out out,
                                size_t *invalid)
 {
-    vf theta_i, phi_i, pdf, weight[3];
+    vf theta_i, phi_i, pdf, weight[3], absorption[3];
+    chiang_plan_absorption(c, absorption);
     HB_BATCH(load_chiang_sample_near, 3 + HB_CHIANG_NEAR_DIMENSIONS, in, n, invalid,
-             (chiang_sample_near(c, a[0], a[1], a[2 + HB_CHIANG_NEAR_DIMENSIONS], a + 2, &theta_i, &phi_i, &pdf,
-                                 weight),
+             (chiang_sample_near(c, 3, absorption, a[0], a[1], a[2 + HB_CHIANG_NEAR_DIMENSIONS], a + 2, &theta_i,
+                                 &phi_i, &pdf, weight),
               store_sample(out, i, lanes, valid, theta_i, phi_i, pdf, weight)));
 }
 
@@ -125,8 +126,59 @@ static void pdf_near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, float 
     chiang_plan_absorption(c, absorption);
     HB_BATCH(load_near, 5, in, n, invalid,
              (chiang_longitudinal_angles(c, a[0], a[2], M),
-              chiang_near(c, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, &p),
+              chiang_near(c, 3, absorption, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, &p),
               store_block(pdf, i, lanes, vf_keep(valid, p))));
+}
+
+/* k wavelengths at each sample's absorptions a[5..5 + k) (load_spectral): f and the pdf where the batch
+ * asks, near-field at h (a[4]) or the far field; M_p, Fresnel, the paths and N_p once for the k. */
+HB_INLINE void spectral_blocks(const hb_chiang *c, int k, size_t n, const hb_spectral_batch *b, size_t *invalid)
+{
+    vf M[HB_CHIANG_TERMS], f[HB_CHIANG_CHANNELS], p, *pdf = b->pdf ? &p : NULL;
+    HB_BATCH(load_spectral, 5 + HB_CHIANG_CHANNELS, b, n, invalid,
+             (chiang_longitudinal_angles(c, a[0], a[2], M),
+              b->near.h ? chiang_near(c, k, a + 5, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f, pdf)
+                        : chiang_far(c, k, a + 5, M, cos_theta_of(a[2]), vf_sub(a[3], a[1]), f, pdf),
+              b->f ? store_planes(b->f, k, i, lanes, valid, f) : (void)0,
+              pdf ? store_block(b->pdf, i, lanes, vf_keep(valid, p)) : (void)0));
+}
+
+/* pbrt-v4's four wavelengths with their channel loops unrolled, any other count as it comes. */
+static void spectral_kernel(const hb_chiang *c, size_t n, const hb_spectral_batch *b, size_t *invalid)
+{
+    if (b->wavelengths == 4)
+        spectral_blocks(c, 4, n, b, invalid);
+    else
+        spectral_blocks(c, b->wavelengths, n, b, invalid);
+}
+
+/* A near-field sampling batch (load_chiang_sample_near) and its wavelengths' absorptions after h. */
+HB_INLINE vm load_spectral_sample(const hb_spectral_sample_batch *b, size_t i, size_t lanes, vf *a)
+{
+    vm valid = load_chiang_sample_near(b->in, i, lanes, a);
+    vf *absorption = a + 3 + HB_CHIANG_NEAR_DIMENSIONS;
+    valid = load_absorption(b->sigma_a, b->wavelengths, i, lanes, valid, absorption);
+    for (int k = 0; k < b->wavelengths; k++)
+        absorption[k] = vf_keep(valid, absorption[k]);
+    return valid;
+}
+
+HB_INLINE void spectral_sample_blocks(const hb_chiang *c, int k, size_t n, const hb_spectral_sample_batch *b,
+                                      size_t *invalid)
+{
+    vf theta_i, phi_i, pdf, weight[HB_CHIANG_CHANNELS];
+    HB_BATCH(load_spectral_sample, 3 + HB_CHIANG_NEAR_DIMENSIONS + HB_CHIANG_CHANNELS, b, n, invalid,
+             (chiang_sample_near(c, k, a + 3 + HB_CHIANG_NEAR_DIMENSIONS, a[0], a[1], a[2 + HB_CHIANG_NEAR_DIMENSIONS],
+                                 a + 2, &theta_i, &phi_i, &pdf, weight),
+              store_sample_spectral(&b->out, k, i, lanes, valid, theta_i, phi_i, pdf, weight)));
+}
+
+static void sample_spectral_kernel(const hb_chiang *c, size_t n, const hb_spectral_sample_batch *b, size_t *invalid)
+{
+    if (b->wavelengths == 4)
+        spectral_sample_blocks(c, 4, n, b, invalid);
+    else
+        spectral_sample_blocks(c, b->wavelengths, n, b, invalid);
 }
 
 const hb_chiang_kernels HB_ISA_SYMBOL(chiang_kernels) = {
@@ -141,4 +193,6 @@ const hb_chiang_kernels HB_ISA_SYMBOL(chiang_kernels) = {
     .near_few_max = HB_W > 1,
     .sample_near = sample_near_kernel,
     .pdf_near = pdf_near_kernel,
+    .spectral = spectral_kernel,
+    .sample_spectral = sample_spectral_kernel,
 };

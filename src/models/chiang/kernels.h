@@ -26,6 +26,9 @@ typedef struct hb_chiang_kernels {
     int near_few_max;
     void (*sample_near)(const hb_chiang *c, size_t n, hb_sample_streams in, hb_sample_out out, size_t *invalid);
     void (*pdf_near)(const hb_chiang *c, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
+    /* k wavelengths per sample: f and the pdf near-field or far, the near-field sampler */
+    void (*spectral)(const hb_chiang *c, size_t n, const hb_spectral_batch *b, size_t *invalid);
+    void (*sample_spectral)(const hb_chiang *c, size_t n, const hb_spectral_sample_batch *b, size_t *invalid);
 } hb_chiang_kernels;
 
 #endif

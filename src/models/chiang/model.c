@@ -76,6 +76,15 @@ static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, 
     kernels_of(plan, n)->pdf_near(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
 }
 
+static void spectral(const hb_plan *plan, size_t n, const hb_spectral_batch *b, size_t *invalid)
+{
+    kernels_of(plan, n)->spectral(&hb_chiang_of(plan)->kernel, n, b, invalid);
+}
+static void sample_spectral(const hb_plan *plan, size_t n, const hb_spectral_sample_batch *b, size_t *invalid)
+{
+    kernels_of(plan, n)->sample_spectral(&hb_chiang_of(plan)->kernel, n, b, invalid);
+}
+
 static hb_status table(const hb_plan *plan, hb_table_view *view, int *channels)
 {
     (void)plan, (void)view, (void)channels;
@@ -153,6 +162,8 @@ const hb_model_ops hb_chiang_model = {
     .eval_absorption = eval_absorption,
     .eval_near_absorption = eval_near_absorption,
     .pdf_near = pdf_near,
+    .spectral = spectral,
+    .sample_spectral = sample_spectral,
     .look = hb_chiang_look,
     .set_look = hb_chiang_set_look,
     .describe = describe,

@@ -18,15 +18,15 @@ HB_INLINE vf chiang_logistic_deviate(const hb_chiang *c, vf u)
     return vf_clamp(x, -HB_PI_F, HB_PI_F);
 }
 
-/* One near-field sample at h from u[0..3]: theta_i, phi_i, the pdf and f / pdf. */
-HB_INLINE void chiang_sample_near(const hb_chiang *c, vf theta_o, vf phi_o, vf h, const vf u[4], vf *theta_i,
-                                  vf *phi_i, vf *pdf, vf weight[3])
+/* One near-field sample at h from u[0..3]: theta_i, phi_i, the pdf and f / pdf in `channels` channels at
+ * their absorption (chiang_offset_at), the lobe chosen by the channels' mean attenuations. */
+HB_INLINE void chiang_sample_near(const hb_chiang *c, int channels, const vf *absorption, vf theta_o, vf phi_o, vf h,
+                                  const vf u[4], vf *theta_i, vf *phi_i, vf *pdf, vf *weight)
 {
     vf cos_theta_o = cos_near_pole(theta_o, vf_set1(HB_PIO2_LO));
+    vf A[HB_CHIANG_CHANNELS][HB_CHIANG_TERMS];
     chiang_offset o;
-    vf absorption[3];
-    chiang_plan_absorption(c, absorption);
-    chiang_offset_at(c, absorption, cos_theta_o, h, 1, &o);
+    chiang_offset_at(c, channels, absorption, cos_theta_o, h, 1, A, &o);
     /* the lobe: the first p whose cumulative probability passes u[0] */
     vf cumulative = vf_set1(0.0f), Phi = cumulative, cos_shift = vf_set1(1.0f), sin_shift = cumulative;
     vf v = vf_set1(c->v[0]), e2 = vf_set1(c->exp_minus_two_inv_v[0]); /* R's, where no lobe has any mass */
@@ -50,13 +50,16 @@ HB_INLINE void chiang_sample_near(const hb_chiang *c, vf theta_o, vf phi_o, vf h
                        vf_add(Phi, chiang_logistic_deviate(c, u[3])));
     phi = wrap_angle(phi);
     *phi_i = wrap_angle(vf_sub(phi_o, phi));
-    vf M[HB_CHIANG_TERMS], f[3];
+    vf M[HB_CHIANG_TERMS], f[HB_CHIANG_CHANNELS];
     chiang_longitudinal_angles(c, *theta_i, theta_o, M);
     vf zero = vf_set1(0.0f);
-    f[0] = f[1] = f[2] = *pdf = zero;
-    chiang_accumulate(c, &o, M, vf_sub(phi_o, *phi_i), 0, vf_set1(1.0f), f, pdf);
+    for (int ch = 0; ch < channels; ch++)
+        f[ch] = zero;
+    *pdf = zero;
+    chiang_accumulate(c, channels, (const vf(*)[HB_CHIANG_TERMS])A, &o, M, vf_sub(phi_o, *phi_i), 0, vf_set1(1.0f), f,
+                      pdf);
     vm some = vf_gt(*pdf, zero);
-    for (int ch = 0; ch < 3; ch++)
+    for (int ch = 0; ch < channels; ch++)
         weight[ch] = vf_keep(some, vf_div(f[ch], vf_select(some, *pdf, vf_set1(1.0f))));
 }
 
@@ -65,13 +68,12 @@ HB_INLINE void chiang_sample_near(const hb_chiang *c, vf theta_o, vf phi_o, vf h
 HB_INLINE void chiang_sample_far(const hb_chiang *c, vf theta_o, vf phi_o, const vf u[5], vf *theta_i, vf *phi_i,
                                  vf *pdf, vf weight[3])
 {
-    vf h = vf_fma(u[4], vf_set1(2.0f), vf_set1(-1.0f)), near_weight[3];
-    chiang_sample_near(c, theta_o, phi_o, h, u, theta_i, phi_i, pdf, near_weight);
+    vf h = vf_fma(u[4], vf_set1(2.0f), vf_set1(-1.0f)), near_weight[3], absorption[3];
+    chiang_plan_absorption(c, absorption);
+    chiang_sample_near(c, 3, absorption, theta_o, phi_o, h, u, theta_i, phi_i, pdf, near_weight);
     vf M[HB_CHIANG_TERMS], f[3];
     chiang_longitudinal_angles(c, *theta_i, theta_o, M);
-    vf absorption[3];
-    chiang_plan_absorption(c, absorption);
-    chiang_far(c, absorption, M, cos_near_pole(theta_o, vf_set1(HB_PIO2_LO)), vf_sub(phi_o, *phi_i), f, pdf);
+    chiang_far(c, 3, absorption, M, cos_near_pole(theta_o, vf_set1(HB_PIO2_LO)), vf_sub(phi_o, *phi_i), f, pdf);
     vf zero = vf_set1(0.0f);
     vm some = vf_gt(*pdf, zero);
     for (int ch = 0; ch < 3; ch++)

@@ -1,0 +1,325 @@
+/* Spectral evaluation (docs/spectral.md): CBTB16 at k wavelengths per sample against the RGB
+ * kernels at the same absorptions (bit for bit), against the double reference at 16 wavelengths on
+ * every ISA, its sampler's pdf, weights and unbiasedness, and the calls' refusals and invalid samples. */
+#include <string.h>
+
+#include "sampling.h"
+
+enum { N = 512, K = HB_WAVELENGTHS_MAX };
+
+static float ti[N], pi[N], to[N], po[N], h[N], sigma[2 * K][N], f[K][N], g[K][N], pdf[N], pdf2[N];
+
+/* A CBTB16 plan of the melanin (or, with eumelanin 0, of a grey sigma_a grey). */
+static hb_plan *absorbing_plan(hb_test_ctx *t, double eumelanin, double grey, double beta_n, hb_quality quality,
+                               hb_isa isa)
+{
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    o.model = HB_MODEL_CHIANG;
+    o.quality = quality;
+    o.isa = isa;
+    m.beta_m = 0.3;
+    m.beta_n = beta_n;
+    m.alpha = 0.035;
+    m.eumelanin = eumelanin;
+    m.sigma_a[0] = m.sigma_a[1] = m.sigma_a[2] = grey;
+    hb_plan *plan = NULL;
+    hb_error err;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "plan: %s", err.message);
+    return plan;
+}
+
+static hb_plan *spectral_plan(hb_test_ctx *t, double eumelanin, double beta_n, hb_quality quality, hb_isa isa)
+{
+    return absorbing_plan(t, eumelanin, 0.0, beta_n, quality, isa);
+}
+
+static void random_directions(hb_test_ctx *t)
+{
+    for (int k = 0; k < N; k++) {
+        ti[k] = (float)hb_test_range(t, -1.5707, 1.5707), to[k] = (float)hb_test_range(t, -1.5707, 1.5707);
+        pi[k] = (float)hb_test_range(t, -M_PI, M_PI), po[k] = (float)hb_test_range(t, -M_PI, M_PI);
+        h[k] = (float)hb_test_range(t, -1.0, 1.0);
+        if (k % 16 == 0) /* the poles and the fibre's edges */
+            ti[k] = 1.5707964f, to[k] = -1.5707964f, h[k] = k % 32 ? 1.0f : -1.0f;
+    }
+}
+
+/* The largest |f - ref| / max(|ref|, 1e-3 peak) over k planes of n samples (docs/conventions.md). */
+static double planes_error(float (*got)[N], float (*want)[N], int k, int n)
+{
+    double peak = 0.0, worst = 0.0;
+    for (int j = 0; j < k; j++)
+        for (int s = 0; s < n; s++)
+            peak = fmax(peak, fabs(want[j][s]));
+    for (int j = 0; j < k; j++)
+        for (int s = 0; s < n; s++)
+            worst = fmax(worst, fabs(got[j][s] - want[j][s]) / fmax(fabs(want[j][s]), 1e-3 * peak));
+    return worst;
+}
+
+static float *const *planes(float (*p)[N], float **out, int k)
+{
+    for (int j = 0; j < k; j++)
+        out[j] = p[j];
+    return out;
+}
+
+/* Three wavelengths at the plan's own RGB absorptions (floats exactly) give what the RGB calls give, bit for bit, and
+ * six (RGB twice) give it twice: the residual's shared division runs per three channels. */
+static void test_spectral_rgb_bits(hb_test_ctx *t)
+{
+    static const double rgb[3] = { 0.375, 0.75, 1.5 }; /* floats exactly, as a plan's sigma_a is double */
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    o.model = HB_MODEL_CHIANG, o.isa = t->isa;
+    m.eumelanin = 0.0;
+    memcpy(m.sigma_a, rgb, sizeof rgb);
+    hb_plan *plan = NULL;
+    hb_error err;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "%s", err.message);
+    if (!plan)
+        return;
+    random_directions(t);
+    for (int j = 0; j < 6; j++)
+        for (int s = 0; s < N; s++)
+            sigma[j][s] = (float)rgb[j % 3];
+    float *fp[K], *sp[2 * K];
+    hb_spectral_absorption six = { 6, (const float *const *)planes(sigma, sp, 6) };
+    hb_spectral_absorption three = { 3, six.sigma_a };
+    hb_near_soa near = { ti, pi, to, po, h };
+    hb_angles_soa angles = { ti, pi, to, po };
+    hb_rgb_soa out = { g[0], g[1], g[2] };
+    int mismatched = 0;
+    for (int pass = 0; pass < 2; pass++) { /* near field, far field */
+        if (pass == 0) {
+            hb_eval_near(plan, N, near, out, NULL);
+            CHECK(t, hb_eval_near_spectral(plan, N, near, six, planes(f, fp, 6), NULL) == HB_OK, "%s",
+                  hb_last_error()->message);
+        } else {
+            hb_eval_angles(plan, N, angles, out, NULL);
+            CHECK(t, hb_eval_angles_spectral(plan, N, angles, six, planes(f, fp, 6), NULL) == HB_OK, "%s",
+                  hb_last_error()->message);
+        }
+        for (int j = 0; j < 6; j++)
+            mismatched += memcmp(f[j], g[j % 3], sizeof f[j]) != 0;
+    }
+    hb_pdf_near(plan, N, near, pdf, NULL);
+    hb_pdf_near_spectral(plan, N, near, three, pdf2, NULL);
+    mismatched += memcmp(pdf, pdf2, sizeof pdf) != 0;
+    CHECK(t, mismatched == 0, "%d planes differ from the RGB calls' bits", mismatched);
+    hb_plan_destroy(plan);
+}
+
+/* 16 wavelengths from 380 to 780 nm (two calls of 8) of a blond and a brown fibre at melanin's
+ * spectral absorption: the kernels against the reference plan's double path, near field and pdf within
+ * 1e-5 of the peak (measured: 5e-6, float M_p and the float azimuth's rounding, as for RGB), and far
+ * field within the quality's target; 4 and 1 wavelengths agree with 8. */
+static void test_spectral_reference(hb_test_ctx *t)
+{
+    static const double eumelanin[] = { 0.3, 1.3 };
+    int n = t->quick ? N / 4 : N, n_far = t->quick ? 64 : N;
+    for (int mc = 0; mc < 2; mc++) {
+        hb_plan *plan = spectral_plan(t, eumelanin[mc], 0.3, HB_QUALITY_BALANCED, t->isa);
+        hb_plan *reference = spectral_plan(t, eumelanin[mc], 0.3, HB_QUALITY_REFERENCE, HB_ISA_AUTO);
+        if (!plan || !reference)
+            return;
+        random_directions(t);
+        double near = 0.0, far = 0.0, pdf_error = 0.0, narrow = 0.0;
+        for (int half = 0; half < 2; half++) {
+            for (int j = 0; j < K; j++) {
+                double lambda = 380.0 + 400.0 * (half * K + j) / 15.0, s;
+                hb_melanin_absorption_spectral(eumelanin[mc], 0.0, lambda, &s);
+                for (int k = 0; k < N; k++)
+                    sigma[j][k] = (float)(s * (1.0 + 0.2 * (k % 5))); /* per-strand variation */
+            }
+            float *fp[K], *gp[K], *sp[K];
+            hb_spectral_absorption a = { K, (const float *const *)planes(sigma, sp, K) };
+            hb_near_soa in = { ti, pi, to, po, h };
+            hb_eval_report report;
+            CHECK(t, hb_eval_near_spectral(plan, (size_t)n, in, a, planes(f, fp, K), &report) == HB_OK && !report.invalid,
+                  "near: %s", hb_last_error()->message);
+            CHECK(t, hb_eval_near_spectral(reference, (size_t)n, in, a, planes(g, gp, K), NULL) == HB_OK, "%s",
+                  hb_last_error()->message);
+            near = fmax(near, planes_error(f, g, K, n));
+            hb_pdf_near_spectral(plan, (size_t)n, in, a, pdf, NULL);
+            hb_pdf_near_spectral(reference, (size_t)n, in, a, pdf2, NULL);
+            pdf_error = fmax(pdf_error, planes_error(&pdf, &pdf2, 1, n));
+            /* fewer wavelengths: the unrolled four and one alone, against the first planes of eight */
+            static float f4[K][N];
+            hb_eval_near_spectral(plan, (size_t)n, in, (hb_spectral_absorption){ 4, a.sigma_a }, planes(f4, fp, 4), NULL);
+            narrow = fmax(narrow, planes_error(f4, f, 4, n));
+            hb_eval_near_spectral(plan, (size_t)n, in, (hb_spectral_absorption){ 1, a.sigma_a + 5 }, planes(f4, fp, 1), NULL);
+            narrow = fmax(narrow, planes_error(f4, f + 5, 1, n));
+            hb_angles_soa angles = { ti, pi, to, po };
+            hb_eval_angles_spectral(plan, (size_t)n_far, angles, a, planes(f, fp, K), NULL);
+            hb_eval_angles_spectral(reference, (size_t)n_far, angles, a, planes(g, gp, K), NULL);
+            far = fmax(far, planes_error(f, g, K, n_far));
+        }
+        hb_test_note(t, "eumelanin %.1f, 16 wavelengths: near field %.2e, its pdf %.2e, far field %.2e of the peak; "
+                        "4 and 1 wavelengths against 8: %.2e", eumelanin[mc], near, pdf_error, far, narrow);
+        CHECK(t, near <= 1e-5, "near field off the reference by %.3g", near);
+        CHECK(t, pdf_error <= 1e-5, "pdf off the reference by %.3g", pdf_error);
+        CHECK(t, far <= 1e-3, "far field off the reference by %.3g (balanced: 1e-3)", far);
+        CHECK(t, narrow <= 1e-6, "fewer wavelengths differ by %.3g", narrow);
+        hb_plan_destroy(plan);
+        hb_plan_destroy(reference);
+    }
+}
+
+/* The sampler at 4 wavelengths: the sampled pdf is hb_pdf_near_spectral's at the sampled direction
+ * bit for bit, the weights are f / pdf; with grey absorption the pdf is the RGB sampler's; and each
+ * wavelength's mean weight (the fibre's albedo at w_o and h) equals the RGB sampler's for a plan of
+ * that absorption within 4 standard errors of the difference. */
+static void test_spectral_sampling(hb_test_ctx *t)
+{
+    enum { S = 4096, M = 40000 };
+    int m_samples = t->quick ? M / 4 : M;
+    static float so[S], sph[S], sh[S], u[HB_SAMPLE_DIMENSIONS][S], sti[S], spi[S], sw[K][S], sf[K][S], p2[S];
+    hb_plan *plan = spectral_plan(t, 0.3, 0.3, HB_QUALITY_BALANCED, t->isa);
+    if (!plan)
+        return;
+    float *streams[HB_SAMPLE_DIMENSIONS];
+    for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
+        streams[d] = u[d];
+    hb_uniforms(hb_test_next_seed(t), 0, S, 4, streams);
+    static const double lambda[4] = { 450.0, 550.0, 650.0, 700.0 };
+    static float sa[4][S];
+    for (int j = 0; j < 4; j++) {
+        double s;
+        hb_melanin_absorption_spectral(0.3, 0.0, lambda[j], &s);
+        for (int k = 0; k < S; k++)
+            sa[j][k] = (float)s;
+    }
+    for (int k = 0; k < S; k++) {
+        so[k] = (float)hb_test_range(t, -1.5707, 1.5707), sph[k] = (float)hb_test_range(t, -M_PI, M_PI);
+        sh[k] = (float)hb_test_range(t, -1.0, 1.0);
+    }
+    hb_spectral_absorption a = { 4, (const float *const[]){ sa[0], sa[1], sa[2], sa[3] } };
+    hb_sample_near_in in = { so, sph, sh, (const float *const[]){ u[0], u[1], u[2], u[3] } };
+    hb_sample_spectral_out out = { sti, spi, p2, (float *const[]){ sw[0], sw[1], sw[2], sw[3] } };
+    hb_eval_report report;
+    CHECK(t, hb_sample_near_spectral(plan, S, &in, a, &out, &report) == HB_OK && !report.invalid, "%s",
+          hb_last_error()->message);
+    hb_near_soa at = { sti, spi, so, sph, sh };
+    static float pdf_at[S];
+    hb_pdf_near_spectral(plan, S, at, a, pdf_at, NULL);
+    hb_eval_near_spectral(plan, S, at, a, (float *const[]){ sf[0], sf[1], sf[2], sf[3] }, NULL);
+    int pdf_differs = 0, bad = 0;
+    double worst_weight = 0.0;
+    for (int k = 0; k < S; k++) {
+        pdf_differs += pdf_at[k] != p2[k];
+        for (int j = 0; j < 4; j++) {
+            bad += !(isfinite(sw[j][k]) && sw[j][k] >= 0.0f);
+            if (p2[k] > 0.0f)
+                worst_weight = fmax(worst_weight, fabs(sw[j][k] - sf[j][k] / p2[k]) / fmax(sw[j][k], 1e-30f));
+        }
+    }
+    CHECK(t, pdf_differs == 0 && bad == 0, "%d pdfs off hb_pdf_near_spectral, %d weights not finite", pdf_differs, bad);
+    CHECK(t, worst_weight <= 1e-5, "weights differ from f / pdf by %.3g", worst_weight);
+    /* grey absorption: the lobe probabilities are the RGB sampler's */
+    hb_plan *grey = absorbing_plan(t, 0.0, 0.4, 0.3, HB_QUALITY_BALANCED, t->isa);
+    if (!grey)
+        return;
+    for (int k = 0; k < S; k++)
+        sa[0][k] = sa[1][k] = sa[2][k] = sa[3][k] = 0.4f;
+    hb_pdf_near(grey, S, at, pdf_at, NULL);
+    hb_pdf_near_spectral(grey, S, at, a, p2, NULL);
+    double grey_pdf = 0.0;
+    for (int k = 0; k < S; k++)
+        grey_pdf = fmax(grey_pdf, fabs(p2[k] - pdf_at[k]) / fmax(pdf_at[k], 1e-30f));
+    CHECK(t, grey_pdf <= 1e-6, "grey absorption: pdf %.3g off the RGB sampler's", grey_pdf);
+    hb_plan_destroy(grey);
+    /* unbiasedness at one w_o and h, each wavelength against an RGB plan of its absorption */
+    static float mo[M], mp[M], mh[M], mu[4][M], mti[M], mpi[M], mpdf[M], mw[4][M], rw[3][M];
+    double s_of[4];
+    for (int j = 0; j < 4; j++)
+        hb_melanin_absorption_spectral(0.3, 0.0, lambda[j], &s_of[j]);
+    static float ma[4][M];
+    for (int k = 0; k < M; k++) {
+        mo[k] = 0.4f, mp[k] = 0.3f, mh[k] = 0.35f;
+        for (int j = 0; j < 4; j++)
+            ma[j][k] = (float)s_of[j];
+    }
+    float *mstreams[4] = { mu[0], mu[1], mu[2], mu[3] };
+    hb_uniforms(hb_test_next_seed(t), 0, (size_t)m_samples, 4, mstreams);
+    hb_sample_near_in min = { mo, mp, mh, (const float *const *)mstreams };
+    hb_sample_near_spectral(plan, (size_t)m_samples, &min, (hb_spectral_absorption){ 4, (const float *const[]){ ma[0], ma[1], ma[2], ma[3] } },
+                            &(hb_sample_spectral_out){ mti, mpi, mpdf, (float *const[]){ mw[0], mw[1], mw[2], mw[3] } },
+                            NULL);
+    double worst_z = 0.0;
+    for (int j = 0; j < 4; j++) {
+        hb_plan *rgb = absorbing_plan(t, 0.0, s_of[j], 0.3, HB_QUALITY_BALANCED, t->isa);
+        if (!rgb)
+            break;
+        float *rstreams[4] = { mu[0], mu[1], mu[2], mu[3] };
+        hb_uniforms(hb_test_next_seed(t), 0, (size_t)m_samples, 4, rstreams); /* independent numbers */
+        hb_sample_near(rgb, (size_t)m_samples, &(hb_sample_near_in){ mo, mp, mh, (const float *const *)rstreams },
+                       &(hb_sample_out){ mti, mpi, mpdf, { rw[0], rw[1], rw[2] } }, NULL);
+        double sum[2] = { 0.0 }, sum2[2] = { 0.0 };
+        for (int k = 0; k < m_samples; k++) {
+            sum[0] += mw[j][k], sum2[0] += (double)mw[j][k] * mw[j][k];
+            sum[1] += rw[0][k], sum2[1] += (double)rw[0][k] * rw[0][k];
+        }
+        double mean[2], var[2];
+        for (int e = 0; e < 2; e++)
+            mean[e] = sum[e] / m_samples, var[e] = (sum2[e] / m_samples - mean[e] * mean[e]) / (m_samples - 1);
+        double z = fabs(mean[0] - mean[1]) / sqrt(var[0] + var[1]);
+        worst_z = fmax(worst_z, z);
+        hb_test_note(t, "%.0f nm: spectral sampler's mean weight %.5f, RGB sampler's %.5f (z %.2f)", lambda[j],
+                     mean[0], mean[1], z);
+        hb_plan_destroy(rgb);
+    }
+    CHECK(t, worst_z <= 4.0, "a wavelength's mean weight is %.2f standard errors off", worst_z);
+    hb_plan_destroy(plan);
+}
+
+/* Refusals name the problem; an invalid absorption makes an invalid sample with zeros. */
+static void test_spectral_api(hb_test_ctx *t)
+{
+    hb_plan *plan = spectral_plan(t, 1.3, 0.3, HB_QUALITY_FAST, HB_ISA_AUTO);
+    if (!plan)
+        return;
+    float x[4] = { 0.3f, 0.2f, -0.1f, 0.5f }, hh[4] = { 0.1f, 0.2f, 0.3f, 0.4f };
+    float s0[4] = { 0.5f, NAN, -1.0f, INFINITY }, out0[4] = { 7.0f, 7.0f, 7.0f, 7.0f };
+    hb_near_soa in = { x, x, x, x, hh };
+    float *fo[1] = { out0 };
+    hb_eval_report report;
+    CHECK(t, hb_eval_near_spectral(plan, 4, in, (hb_spectral_absorption){ 1, (const float *const[]){ s0 } }, fo,
+                                   &report) == HB_OK && report.invalid == 3 && out0[0] > 0.0f && out0[1] == 0.0f &&
+                 out0[2] == 0.0f && out0[3] == 0.0f,
+          "invalid absorptions: %zu counted, f %g %g %g %g", report.invalid, out0[0], out0[1], out0[2], out0[3]);
+    CHECK(t, hb_eval_near_spectral(plan, 4, in, (hb_spectral_absorption){ 0, (const float *const[]){ s0 } }, fo,
+                                   NULL) == HB_ERR_PARAM && strstr(hb_last_error()->message, "wavelengths"),
+          "k = 0: %s", hb_last_error()->message);
+    CHECK(t, hb_eval_near_spectral(plan, 4, in, (hb_spectral_absorption){ 9, (const float *const[]){ s0 } }, fo,
+                                   NULL) == HB_ERR_PARAM,
+          "k = 9: %s", hb_last_error()->message);
+    CHECK(t, hb_eval_near_spectral(plan, 4, in, (hb_spectral_absorption){ 2, (const float *const[]){ s0, NULL } },
+                                   (float *const[]){ out0, out0 }, NULL) == HB_ERR_NULL &&
+                 strstr(hb_last_error()->message, "sigma_a[1]"),
+          "a NULL plane: %s", hb_last_error()->message);
+    hb_plan_destroy(plan);
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    hb_error err;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "%s", err.message);
+    CHECK(t, hb_eval_near_spectral(plan, 4, in, (hb_spectral_absorption){ 1, (const float *const[]){ s0 } }, fo,
+                                   NULL) == HB_ERR_UNSUPPORTED && strstr(hb_last_error()->message, "spectral"),
+          "dFH11: %s", hb_last_error()->message);
+    hb_plan_destroy(plan);
+}
+
+const hb_test hb_tests_spectral_eval[] = {
+    { "spectral_rgb_bits", test_spectral_rgb_bits, 1 },
+    { "spectral_reference", test_spectral_reference, 1 },
+    { "spectral_sampling", test_spectral_sampling, 1 },
+    { "spectral_api", test_spectral_api, 0 },
+    { NULL, NULL, 0 },
+};
