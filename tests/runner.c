@@ -232,11 +232,13 @@ int main(int argc, char **argv)
     const char *env = getenv("HB_TEST_ISAS");
     if (!env || !*env)
         env = getenv("HB_ISA");
+    int isa_named = env && *env;
     for (int i = HB_ISA_SCALAR; i < HB_ISA_COUNT; i++)
         if (hb_isa_available((hb_isa)i) && (!env || !*env || isa_listed(env, (hb_isa)i)))
             isas[nisa++] = (hb_isa)i;
     printf("%s tier, seed %llu (rerun with --seed %llu)%s; ISAs:", long_tier ? "long" : "quick",
-           (unsigned long long)seed, (unsigned long long)seed, emulated ? ", emulated" : "");
+           (unsigned long long)seed, (unsigned long long)seed,
+           !emulated ? "" : long_tier || isa_named ? ", emulated" : ", emulated (per-ISA tests on the vector ISAs)");
     for (int i = 0; i < nisa; i++)
         printf(" %s", hb_isa_name(isas[i]));
     printf("\n");
@@ -256,11 +258,14 @@ int main(int argc, char **argv)
                 continue;
             }
             int runs = test->per_isa ? nisa : 1;
+            /* emulated quick tier: the per-ISA tests on the vector ISAs, the scalar one being the native
+             * runs' source (the vector plans still reach it for their calls of one sample) */
+            int first = emulated && !long_tier && test->per_isa && !isa_named && nisa > 1 && isas[0] == HB_ISA_SCALAR;
             char failing[64] = "";
             int skipped_runs = 0;
             char skip_reason[160] = "";
             double t0 = seconds_now();
-            for (int r = 0; r < runs; r++) {
+            for (int r = first; r < runs; r++) {
                 hb_test_ctx t = { test->name, test->per_isa ? isas[r] : HB_ISA_AUTO, NULL,
                                   seed ^ name_hash(test->name), 0, !long_tier, emulated, 0, "" };
                 t.hooks = test->per_isa ? hb_kernel_hooks_for(t.isa) : NULL;
@@ -284,7 +289,7 @@ int main(int argc, char **argv)
             double ms = (seconds_now() - t0) * 1e3;
             if (*failing)
                 printf("FAIL %s [%s ] %.0f ms\n", test->name, failing, ms);
-            else if (skipped_runs == runs)
+            else if (skipped_runs == runs - first)
                 printf("skip %s: %s\n", test->name, skip_reason);
             else
                 printf("ok   %s%s %.0f ms\n", test->name, test->per_isa ? " [every ISA]" : "", ms);
