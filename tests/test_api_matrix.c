@@ -139,22 +139,55 @@ static hb_status call_near(const hb_plan *p)
     return e != HB_OK ? e : d != HB_OK ? d : q != HB_OK ? q : v != HB_OK ? v : h;
 }
 
-/* Four wavelengths: the far field, the near field, its sampler and pdf, and pbrt-v4's per-hit call. */
-static hb_status call_spectral(const hb_plan *p)
+/* Four wavelengths' absorptions and f, for the spectral calls. */
+typedef struct four_wavelengths {
+    float f[4];
+    const float *sigma[4];
+    float *out[4];
+} four_wavelengths;
+
+static hb_spectral_absorption four_of(one_sample *s, four_wavelengths *w)
+{
+    for (int j = 0; j < 4; j++)
+        w->sigma[j] = &s->sigma[j % 3], w->out[j] = &w->f[j];
+    return (hb_spectral_absorption){ 4, w->sigma };
+}
+
+static hb_status call_spectral_far(const hb_plan *p)
 {
     one_sample s = sample_of();
-    float f[4], ti, pi, w[3] = { 0.6f, 0.0f, 0.8f }, wi[3];
-    const float *sigma[4] = { &s.sigma[0], &s.sigma[1], &s.sigma[2], &s.sigma[0] };
-    float *out[4] = { &f[0], &f[1], &f[2], &f[3] };
-    hb_spectral_absorption a = { 4, sigma };
-    hb_near_soa near = { &s.ti, &s.pi, &s.to, &s.po, &s.h };
-    hb_status e = hb_eval_angles_spectral(p, 1, (hb_angles_soa){ &s.ti, &s.pi, &s.to, &s.po }, a, out, NULL);
-    hb_status n = hb_eval_near_spectral(p, 1, near, a, out, NULL);
-    hb_status q = hb_pdf_near_spectral(p, 1, near, a, &s.pdf, NULL);
+    four_wavelengths w;
+    hb_spectral_absorption a = four_of(&s, &w);
+    return hb_eval_angles_spectral(p, 1, (hb_angles_soa){ &s.ti, &s.pi, &s.to, &s.po }, a, w.out, NULL);
+}
+
+static hb_status call_spectral_near(const hb_plan *p)
+{
+    one_sample s = sample_of();
+    four_wavelengths w;
+    hb_spectral_absorption a = four_of(&s, &w);
+    return hb_eval_near_spectral(p, 1, (hb_near_soa){ &s.ti, &s.pi, &s.to, &s.po, &s.h }, a, w.out, NULL);
+}
+
+/* The sampler and pdf at four wavelengths, and pbrt-v4's per-hit call. */
+static hb_status call_spectral_sampling(const hb_plan *p)
+{
+    one_sample s = sample_of();
+    four_wavelengths w;
+    hb_spectral_absorption a = four_of(&s, &w);
+    float ti, pi, wo[3] = { 0.6f, 0.0f, 0.8f }, wi[3];
+    hb_status q = hb_pdf_near_spectral(p, 1, (hb_near_soa){ &s.ti, &s.pi, &s.to, &s.po, &s.h }, a, &s.pdf, NULL);
     hb_sample_near_in in = { &s.to, &s.po, &s.h, (const float *const[]){ &s.u[0], &s.u[1], &s.u[2], &s.u[3] } };
-    hb_status d = hb_sample_near_spectral(p, 1, &in, a, &(hb_sample_spectral_out){ &ti, &pi, &s.pdf, out }, NULL);
-    hb_status b = hb_pbrt_sample_f(p, w, s.h, s.u, 4, s.sigma, wi, f, &s.pdf);
-    return e != HB_OK ? e : n != HB_OK ? n : q != HB_OK ? q : d != HB_OK ? d : b;
+    hb_status d = hb_sample_near_spectral(p, 1, &in, a, &(hb_sample_spectral_out){ &ti, &pi, &s.pdf, w.out }, NULL);
+    hb_status b = hb_pbrt_sample_f(p, wo, s.h, s.u, 4, s.sigma, wi, w.f, &s.pdf);
+    return q != HB_OK ? q : d != HB_OK ? d : b;
+}
+
+/* Every spectral call (the reference plans' row). */
+static hb_status call_spectral(const hb_plan *p)
+{
+    hb_status e = call_spectral_far(p), n = call_spectral_near(p);
+    return e != HB_OK ? e : n != HB_OK ? n : call_spectral_sampling(p);
 }
 
 static hb_status call_sample(const hb_plan *p)
@@ -222,7 +255,9 @@ static const struct row {
     { "`hb_eval_angles_absorption`", NULL, call_absorption },
     { "`hb_eval_near`", NULL, call_near },
     { "`hb_eval_near_absorption`", NULL, call_near_absorption },
-    { "`hb_eval_near_spectral`", NULL, call_spectral },
+    { "`hb_eval_angles_spectral`", NULL, call_spectral_far },
+    { "`hb_eval_near_spectral`", NULL, call_spectral_near },
+    { "`hb_sample_near_spectral`", NULL, call_spectral_sampling },
     { "`HB_QUALITY_REFERENCE`: spectral", reference_plan, call_spectral },
     { "`hb_sample_angles`", NULL, call_sample },
     { "`hb_eval_pdf_angles`", NULL, call_eval_pdf },

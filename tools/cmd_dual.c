@@ -1,5 +1,5 @@
 /* hairbsdf dual: a fibre's dual-scattering terms against the light's inclination theta (Zinke et al.
- * 2008; docs/multiple-scattering.md), as CSV. */
+ * 2008; docs/multiple-scattering.md), as CSV, or its table as a file (--save). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,13 +12,16 @@
 static void dual_usage(FILE *to)
 {
     fprintf(to, "usage: hairbsdf dual [options] [--thetas N] [--density D] [--by-lobe] [--svg FILE [--plot TERMS]]\n"
+                "       hairbsdf dual [options] [--thetas N] [--density D] --save FILE.hbdt\n"
                 "Prints, per channel at N inclinations theta of the light (the midpoints of N equal parts\n"
                 "of (-pi/2, pi/2), default 64): the forward and backward energies a_f, a_b, their mean\n"
                 "theta_h alpha_f, alpha_b and variances beta_f2, beta_b2, and the multiple back-scattering\n"
                 "A_b, delta_b, sigma_b2 with the density factor D (default 0.7). With --by-lobe, each\n"
                 "lobe's part of a_f and a_b follows (hb_dual_lobe_energies). --svg FILE also plots the terms\n"
                 "TERMS (a comma list of the names above, default a_f,a_b) per channel against theta.\n"
-                "--threads N computes the rows on N threads (hb_dual_terms_grid), the same numbers.\n%s",
+                "--threads N computes the rows on N threads (hb_dual_terms_grid), the same numbers.\n"
+                "--save FILE writes the material's table at N nodes (hb_dual_table_save; default 64) for an\n"
+                "engine to load (hb_dual_table_load; hairbsdf eval --dual-table FILE) instead of the CSV.\n%s",
             cli_model_options_help);
 }
 
@@ -113,13 +116,41 @@ static int plot_columns(const char *terms, char *columns, size_t size, const cha
     return used ? 0 : -1;
 }
 
+/* --save: the plan's table at `thetas` nodes (at least 2) into a file; 0, or 1 (it cannot be written) or
+ * 2 (a refusal), said on stderr. */
+static int save_table(const hb_plan *plan, int thetas, double density, int *threads, const char *path)
+{
+    hb_dual_table *table = NULL;
+    size_t size = 0;
+    if (hb_dual_table_create(plan, thetas < 2 ? 2 : thetas, density, density, NULL, NULL, cli_parallel, threads,
+                             &table) != HB_OK ||
+        hb_dual_table_save(table, NULL, 0, &size) != HB_OK) {
+        fprintf(stderr, "hairbsdf dual: %s\n", hb_last_error()->message);
+        hb_dual_table_destroy(table);
+        return 2;
+    }
+    void *bytes = malloc(size);
+    int st = bytes && hb_dual_table_save(table, bytes, size, &size) == HB_OK ? 0 : 2;
+    hb_dual_table_destroy(table);
+    FILE *f = st ? NULL : fopen(path, "wb");
+    if (!st) {
+        int written = f && fwrite(bytes, 1, size, f) == size;
+        if ((f && fclose(f) != 0) || !written) {
+            fprintf(stderr, "hairbsdf dual: cannot write %s\n", path);
+            st = 1;
+        }
+    }
+    free(bytes);
+    return st;
+}
+
 int cmd_dual(int argc, char **argv)
 {
     cli_model_args args;
     cli_model_args_default(&args);
     int thetas = 64, by_lobe = 0;
     double density = HB_DUAL_DENSITY;
-    const char *svg = NULL, *terms = "a_f,a_b";
+    const char *svg = NULL, *terms = "a_f,a_b", *save = NULL;
     char err[256];
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
@@ -133,6 +164,10 @@ int cmd_dual(int argc, char **argv)
         }
         if (strcmp(argv[i], "--svg") == 0 && i + 1 < argc) {
             svg = argv[++i];
+            continue;
+        }
+        if (strcmp(argv[i], "--save") == 0 && i + 1 < argc) {
+            save = argv[++i];
             continue;
         }
         if (strcmp(argv[i], "--plot") == 0 && i + 1 < argc) {
@@ -177,7 +212,9 @@ int cmd_dual(int argc, char **argv)
     }
     dual_request q = { plan, thetas, density, by_lobe, &args.threads };
     int st;
-    if (!svg) {
+    if (save) {
+        st = save_table(plan, thetas, density, &args.threads, save);
+    } else if (!svg) {
         st = dual_table(stdout, &q);
     } else { /* the same table, printed and plotted */
         char title[200];

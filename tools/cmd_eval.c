@@ -130,15 +130,37 @@ static void eval_usage(FILE *to, int pdf)
                 "the quadrature, marschner, chiang). With a header theta_i,phi_i,theta_o,phi_o,n (the fibres between the point\n"
                 "and the light) or ...,n,v (and the light's direct visibility in [0, 1]) eval writes the far field\n"
                 "f_r,f_g,f_b and after it the dual-scattering term f_ds_r,f_ds_g,f_ds_b (hb_dual_eval, a 64-node table,\n"
-                "density factors 0.7). An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1,\n"
+                "density factors 0.7; --dual-table FILE loads a table 'hairbsdf dual --save' wrote). An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1,\n"
                 "a negative absorption) gives %s and is reported with its line; with --strict it is an error.\n%s%s",
             pdf ? "pdf" : "eval", pdf ? "" : " [--wavelengths L1,L2,...]",
             pdf ? "the solid-angle pdf with which 'hairbsdf sample' draws w_i given w_o" : "f_r,f_g,f_b",
             pdf ? "0" : "0,0,0",
-            pdf ? "" : "With --wavelengths L1,L2,... (nm, at most 8, in [300, 1000]; chiang) eval writes f at each\n"
+            pdf ? "" : "With --wavelengths L1,L2,... (nm, at most 8, in [300, 1000]; chiang, deon, marschner) eval writes f at each\n"
                        "wavelength per line instead, at the absorption the material's eumelanin and pheomelanin give\n"
                        "there (hb_melanin_absorption_spectral); the rows are the angles, or the angles and h.\n",
             cli_model_options_help);
+}
+
+/* The dual-scattering table of the rows with n: the file at path (hairbsdf dual --save), or the plan's
+ * own at 64 nodes with the density factors 0.7. */
+static hb_status dual_table_of(const hb_plan *plan, const char *path, hb_dual_table **table, char *why,
+                               size_t why_size)
+{
+    hb_status st;
+    FILE *f = path ? fopen(path, "rb") : NULL;
+    if (!path) {
+        st = hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL, table);
+    } else if (!f) {
+        snprintf(why, why_size, "--dual-table: cannot open %s: %s", path, strerror(errno));
+        return HB_ERR_FILE;
+    } else {
+        static unsigned char bytes[1 << 20]; /* a table of 4096 nodes is 0.9 MiB */
+        size_t size = fread(bytes, 1, sizeof bytes, f);
+        fclose(f);
+        st = hb_dual_table_load(plan, bytes, size, table);
+    }
+    snprintf(why, why_size, "%s", st == HB_OK ? "" : hb_last_error()->message);
+    return st;
 }
 
 /* --wavelengths: the list into batch->wavelengths and the material's absorption at each; 0, or 2 after
@@ -171,7 +193,8 @@ static int spectral_setup(const char *name, const char *list, const cli_model_ar
         return 2;
     }
     const float *none[HB_WAVELENGTHS_MAX] = { NULL };
-    if (hb_eval_near_spectral(plan, 0, (hb_near_soa){ 0 }, (hb_spectral_absorption){ k, none }, NULL, NULL) != HB_OK) {
+    if (hb_eval_angles_spectral(plan, 0, (hb_angles_soa){ 0 }, (hb_spectral_absorption){ k, none }, NULL, NULL) !=
+        HB_OK) {
         fprintf(stderr, "%s: --wavelengths: %s\n", name, hb_last_error()->message);
         return 2;
     }
@@ -191,7 +214,7 @@ static int spectral_setup(const char *name, const char *list, const cli_model_ar
 int cmd_eval(int argc, char **argv, int pdf)
 {
     const char *name = pdf ? "hairbsdf pdf" : "hairbsdf eval";
-    const char *input_path = NULL, *output_path = NULL, *wavelengths_arg = NULL;
+    const char *input_path = NULL, *output_path = NULL, *wavelengths_arg = NULL, *dual_path = NULL;
     int strict = 0, far = 0;
     cli_model_args args;
     cli_model_args_default(&args);
@@ -211,6 +234,10 @@ int cmd_eval(int argc, char **argv, int pdf)
         }
         if (strcmp(argv[i], "--wavelengths") == 0 && i + 1 < argc && !pdf) {
             wavelengths_arg = argv[++i];
+            continue;
+        }
+        if (strcmp(argv[i], "--dual-table") == 0 && i + 1 < argc && !pdf) {
+            dual_path = argv[++i];
             continue;
         }
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
@@ -288,12 +315,10 @@ int cmd_eval(int argc, char **argv, int pdf)
                 break;
             }
             if ((header == ROW_FIBRES || header == ROW_FIBRES_VISIBLE) && !batch.dual) {
-                hb_status st = pdf ? HB_ERR_UNSUPPORTED
-                                   : hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL,
-                                                          &batch.dual);
+                char why[300] = "pdf has no dual-scattering term (use eval)";
+                hb_status st = pdf ? HB_ERR_UNSUPPORTED : dual_table_of(plan, dual_path, &batch.dual, why, sizeof why);
                 if (st != HB_OK) {
-                    fprintf(stderr, "%s: the n column: %s\n", name,
-                            pdf ? "pdf has no dual-scattering term (use eval)" : hb_last_error()->message);
+                    fprintf(stderr, "%s: the n column: %s\n", name, why);
                     status = 2;
                     break;
                 }

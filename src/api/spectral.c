@@ -1,8 +1,10 @@
 /* Public spectral entry points (docs/spectral.md): k wavelengths per sample, each at its own
- * absorption. Argument checks, then the plan's kernels or, for a reference plan, the model's
- * double-precision procedure one sample at a time. No allocation. */
+ * absorption. Argument checks, then the plan's spectral kernels or, for a reference plan, the model's
+ * double-precision procedure one sample at a time; for the models without spectral kernels, f by
+ * their per-sample absorption calls, three wavelengths at a time. No allocation. */
 #include <float.h>
 #include <math.h>
+#include <string.h>
 
 #include "checks.h"
 #include "math/valid.h"
@@ -15,16 +17,24 @@ static void report_invalid(hb_eval_report *report, size_t invalid)
         report->invalid = invalid;
 }
 
-/* The plan takes spectral calls (its model has them, its term is the full f) and k is in range; the
- * absorption planes and `outputs` output planes (named `what`) are there. */
+/* Whether the plan's model evaluates f at k wavelengths by its own spectral kernels (1), or by its
+ * per-sample absorption calls three wavelengths at a time (0: f alone, kernel plans alone). */
+static int native_spectral(const hb_model_ops *ops)
+{
+    return ops->spectral && ops->reference->spectral;
+}
+
+/* The plan takes this spectral call (f_only: an evaluation of f, far field or near field by `near`) and
+ * k is in range; the absorption planes and `outputs` output planes (named `what`) are there. */
 static hb_status spectral_checks(const char *call, const hb_plan *plan, size_t n, hb_spectral_absorption sigma_a,
-                                 const char *what, int outputs, float *const *out)
+                                 int f_only, int near, const char *what, int outputs, float *const *out)
 {
     if (!plan)
         return hb_fail_null(call, "plan");
     const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
-    if (!ops->spectral || !ops->reference->spectral || plan->options.term != HB_TERM_FULL)
-        return hb_api_unsupported(call, plan, "spectral evaluation");
+    int by_channels = f_only && plan->kernels && (near ? ops->eval_near_absorption != NULL : ops->eval_absorption != NULL);
+    if (!(native_spectral(ops) || by_channels) || plan->options.term != HB_TERM_FULL)
+        return hb_api_unsupported(call, plan, f_only ? "spectral evaluation" : "spectral sampling");
     if (sigma_a.wavelengths < 1 || sigma_a.wavelengths > HB_WAVELENGTHS_MAX)
         return hb_fail(HB_ERR_PARAM, "%s: sigma_a.wavelengths is %d, not in [1, %d]", call, sigma_a.wavelengths,
                        HB_WAVELENGTHS_MAX);
@@ -80,10 +90,58 @@ static size_t spectral_ref(const hb_plan *plan, size_t n, const hb_spectral_batc
     return invalid;
 }
 
+/* f at k wavelengths by a model's per-sample absorption call, the wavelengths three at a time as
+ * the RGB channels (a last group of one or two repeats its last wavelength), in chunks of samples
+ * whose results pass through the stack; then every plane 0 at each invalid sample, counted once. */
+enum { CHUNK = 256 };
+static hb_status spectral_by_channels(const hb_plan *plan, size_t n, const hb_near_soa *in,
+                                      hb_spectral_absorption sigma_a, float *const *f, size_t *invalid)
+{
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    const int k = sigma_a.wavelengths;
+    for (size_t first = 0; first < n; first += CHUNK) {
+        size_t m = n - first < CHUNK ? n - first : CHUNK, bad;
+        hb_near_soa part = { in->theta_i + first, in->phi_i + first, in->theta_o + first, in->phi_o + first,
+                             in->h ? in->h + first : NULL };
+        for (int group = 0; group < k; group += 3) {
+            float out[3][CHUNK];
+            const float *s[3];
+            for (int c = 0; c < 3; c++)
+                s[c] = sigma_a.sigma_a[group + c < k ? group + c : k - 1] + first;
+            hb_rgb_soa rgb = { out[0], out[1], out[2] };
+            hb_status st;
+            if (in->h) {
+                hb_absorbing_near b = { part, { s[0], s[1], s[2] } };
+                st = ops->eval_near_absorption(plan, m, &b, rgb, &bad);
+            } else {
+                hb_absorbing_batch b = { { .angles = { part.theta_i, part.phi_i, part.theta_o, part.phi_o } },
+                                         { s[0], s[1], s[2] } };
+                st = ops->eval_absorption(plan, m, &b, rgb, &bad);
+            }
+            if (st != HB_OK)
+                return st;
+            for (int c = 0; c < 3 && group + c < k; c++)
+                memcpy(f[group + c] + first, out[c], m * sizeof(float));
+        }
+    }
+    *invalid = 0;
+    for (size_t s = 0; s < n; s++) {
+        double absorption[HB_WAVELENGTHS_MAX];
+        int ok = hb_theta_valid(in->theta_i[s]) && hb_theta_valid(in->theta_o[s]) && hb_phi_valid(in->phi_i[s]) &&
+                 hb_phi_valid(in->phi_o[s]) && (!in->h || hb_offset_valid(in->h[s]));
+        if (absorptions_at(sigma_a, s, absorption) && ok)
+            continue;
+        ++*invalid;
+        for (int j = 0; j < k; j++)
+            f[j][s] = 0.0f;
+    }
+    return HB_OK;
+}
+
 static hb_status spectral_batch(const char *call, const hb_plan *plan, size_t n, hb_near_soa in,
                                 hb_spectral_absorption sigma_a, float *const *f, float *pdf, hb_eval_report *report)
 {
-    hb_status st = spectral_checks(call, plan, n, sigma_a, "f", f != NULL || !pdf, f);
+    hb_status st = spectral_checks(call, plan, n, sigma_a, !pdf, in.h != NULL, "f", f != NULL || !pdf, f);
     if (st == HB_OK && in.h)
         st = hb_api_near_present(call, n, &in);
     if (st == HB_OK && !in.h) {
@@ -96,10 +154,16 @@ static hb_status spectral_batch(const char *call, const hb_plan *plan, size_t n,
         return st;
     hb_spectral_batch b = { in, sigma_a.wavelengths, sigma_a.sigma_a, f, pdf };
     size_t invalid = 0;
-    if (plan->kernels)
-        hb_model_ops_of(plan->options.model)->spectral(plan, n, &b, &invalid);
-    else
+    const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
+    if (!native_spectral(ops)) {
+        st = spectral_by_channels(plan, n, &in, sigma_a, f, &invalid);
+        if (st != HB_OK)
+            return hb_api_unsupported(call, plan, "spectral evaluation on this path");
+    } else if (plan->kernels) {
+        ops->spectral(plan, n, &b, &invalid);
+    } else {
         invalid = spectral_ref(plan, n, &b, sigma_a);
+    }
     report_invalid(report, invalid);
     return HB_OK;
 }
@@ -181,7 +245,7 @@ hb_status hb_sample_near_spectral(const hb_plan *plan, size_t n, const hb_sample
     int dims = ops->sample_spectral ? hb_plan_sample_dimensions(plan) - 1 : 0;
     if (dims <= 0)
         return hb_api_unsupported(__func__, plan, "spectral near-field sampler");
-    hb_status st = spectral_checks(__func__, plan, n, sigma_a, "out->weight", 1, out->weight);
+    hb_status st = spectral_checks(__func__, plan, n, sigma_a, 0, 1, "out->weight", 1, out->weight);
     if (st != HB_OK || !n)
         return st;
     const void *planes[] = { in->theta_o, in->phi_o, in->h, in->u, out->theta_i, out->phi_i, out->pdf };
