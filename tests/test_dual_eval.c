@@ -6,6 +6,7 @@
  * measured; hard cases stay finite and invalid ones are counted; refusals name what is wrong; a table
  * saved and loaded is the same table. */
 #include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -350,6 +351,45 @@ static void test_table_file(hb_test_ctx *t)
     hb_plan_destroy(plan);
 }
 
+/* hb_plan_describe says after how many fibres the global term falls below the plan's target: for a
+ * blond dFH11 fibre, ceil(log(1e-3 / d_f) / log(a_f)) per channel from hb_dual_terms_at at theta 0;
+ * black hair's is a few fibres; MJC03's lossless fibre, whose a_f exceeds 1, has none. */
+static void test_describe(hb_test_ctx *t)
+{
+    static const struct { hb_model model; double eumelanin; } cases[] = {
+        { HB_MODEL_DEON, 0.3 }, { HB_MODEL_DEON, 8.0 }, { HB_MODEL_MARSCHNER, 0.0 } };
+    for (int c = 0; c < 3; c++) {
+        hb_material m;
+        hb_options o;
+        hb_material_default(&m);
+        hb_options_default(&o);
+        o.model = cases[c].model;
+        m.eumelanin = cases[c].eumelanin;
+        hb_plan *plan = NULL;
+        hb_error err;
+        CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "%s", err.message);
+        if (!plan)
+            return;
+        char text[4096], want[160];
+        hb_plan_describe(plan, text, sizeof text);
+        hb_dual_terms d = { .struct_size = sizeof d };
+        hb_dual_terms_at(plan, 0.0, HB_DUAL_DENSITY, &d);
+        const char *line = strstr(text, "multiple scattering");
+        if (d.a_f[0] >= 1.0) {
+            CHECK(t, line && strstr(line, "diverge"), "MJC03 lossless: %s", text);
+        } else {
+            int n[3];
+            for (int ch = 0; ch < 3; ch++)
+                n[ch] = (int)ceil(log(1e-3 / HB_DUAL_DENSITY) / log(d.a_f[ch]));
+            snprintf(want, sizeof want, "below 1e-03 after n = %d %d %d fibres", n[0], n[1], n[2]);
+            CHECK(t, line && strstr(line, want), "eumelanin %g: want '%s' in: %s", m.eumelanin, want, text);
+            CHECK(t, cases[c].eumelanin < 8.0 || n[0] <= 3, "black hair: the term matters after %d fibres", n[0]);
+            hb_test_note(t, "eumelanin %g: %s", m.eumelanin, want);
+        }
+        hb_plan_destroy(plan);
+    }
+}
+
 const hb_test hb_tests_dual_eval[] = {
     { "dual_eval_energy", test_energy, 0 },
     { "dual_eval_isas", test_isas, 1 },
@@ -357,5 +397,6 @@ const hb_test hb_tests_dual_eval[] = {
     { "dual_eval_samples", test_samples, 1 },
     { "dual_eval_refusals", test_refusals, 0 },
     { "dual_eval_table_file", test_table_file, 1 },
+    { "dual_describe", test_describe, 0 },
     { NULL, NULL, 0 },
 };

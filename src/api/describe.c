@@ -1,5 +1,32 @@
 /* hb_plan_describe: what a plan simulates, what it skipped and why, and what it is expected to cost. */
+#include <math.h>
+
 #include "plan/creation.h"
+
+/* What dual scattering adds for this material (docs/multiple-scattering.md): the forward energy a_f
+ * at normal incidence (Zinke et al. eq. 6, hb_dual_terms_at) and the fibres n after which the global
+ * term's d_f a_f^n falls below the plan's target (its tolerance, or its quality's), where shading
+ * behind more fibres can drop the term. Not for a reference plan, whose terms take the double path. */
+static void describe_multiple_scattering(hb_text *t, const hb_plan *plan)
+{
+    hb_dual_terms d = { .struct_size = sizeof d };
+    if (!plan->kernels || plan->options.term != HB_TERM_FULL || hb_dual_terms_at(plan, 0.0, HB_DUAL_DENSITY, &d) != HB_OK)
+        return;
+    double target = plan->selection.active && plan->selection.tolerance > 0.0 ? plan->selection.tolerance
+                                                                              : hb_quality_target(plan->options.quality);
+    hb_say(t, "multiple scattering (hb_dual_eval): forward energy a_f at theta 0: %.3g %.3g %.3g", d.a_f[0], d.a_f[1],
+           d.a_f[2]);
+    if (fmax(d.a_f[0], fmax(d.a_f[1], d.a_f[2])) >= 1.0) {
+        hb_say(t, "; a_f >= 1, where eqs. 14-15 diverge: no dual scattering (hb_dual_table_create refuses the plan)\n");
+        return;
+    }
+    hb_say(t, "; d_f a_f^n below %.0e after n =", target);
+    for (int c = 0; c < 3; c++) {
+        double a = d.a_f[c], n = a <= 0.0 ? 0.0 : log(target / HB_DUAL_DENSITY) / log(a);
+        hb_say(t, " %.0f", ceil(fmax(n, 0.0)));
+    }
+    hb_say(t, " fibres (r, g, b)\n");
+}
 
 size_t hb_plan_describe(const hb_plan *plan, char *out, size_t size)
 {
@@ -12,6 +39,7 @@ size_t hb_plan_describe(const hb_plan *plan, char *out, size_t size)
     hb_say(&t, "evaluation: %s\n", plan->kernels ? hb_isa_name(plan->isa) : "double-precision reference (scalar)");
     if (plan->table_file_size)
         hb_say(&t, "table: loaded from a table file of %zu bytes, not built\n", plan->table_file_size);
+    describe_multiple_scattering(&t, plan);
     const hb_selection *s = &plan->selection;
     if (s->active) {
         if (s->tolerance > 0.0)
