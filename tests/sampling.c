@@ -82,8 +82,9 @@ static void gauss_rule(int gl, const double **x, const double **w)
  * up to the poles (in sin(theta), a lobe at a pole has a square-root edge), split into sub x sub
  * parts (twice as many each way in the two strips at each pole, where lobes crowd) with a gl x gl
  * rule. One strip of cells at a time through the buffers' scratch. */
-static double cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, double h, int nt, int np,
-                             int sub_default, int gl, double *prob)
+/* spectral: NULL, or the absorption of each wavelength (hb_pdf_near_spectral, the same at every node) */
+static double cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, double h,
+                             const hb_test_wavelengths *spectral, int nt, int np, int sub_default, int gl, double *prob)
 {
     hb_sample_buffers *b = &hb_samples;
     const double *x, *w;
@@ -110,7 +111,16 @@ static double cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, do
         hb_angles_soa far = { b->ti, b->pi, b->to, b->po };
         hb_near_soa near = { b->ti, b->pi, b->to, b->po, b->h };
         hb_rgb_soa f = { b->pdf2, b->f[1], b->f[2] };
-        if (of_pdf)
+        if (spectral) {
+            static float sigma[HB_WAVELENGTHS_MAX][HB_TEST_MAX_SAMPLES];
+            const float *planes[HB_WAVELENGTHS_MAX];
+            for (int j = 0; j < spectral->count; j++) {
+                for (size_t k = 0; k < n; k++)
+                    sigma[j][k] = spectral->sigma_a[j];
+                planes[j] = sigma[j];
+            }
+            hb_pdf_near_spectral(plan, n, near, (hb_spectral_absorption){ spectral->count, planes }, b->pdf2, NULL);
+        } else if (of_pdf)
             isnan(h) ? hb_pdf_angles(plan, n, far, b->pdf2, NULL) : hb_pdf_near(plan, n, near, b->pdf2, NULL);
         else
             isnan(h) ? hb_eval_angles(plan, n, far, f, NULL) : hb_eval_near(plan, n, near, f, NULL);
@@ -129,13 +139,19 @@ static double cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, do
 double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, int nt, int np,
                               int sub_default, int gl, double *prob)
 {
-    return cell_integrals(plan, of_pdf, theta_o, phi_o, NAN, nt, np, sub_default, gl, prob);
+    return cell_integrals(plan, of_pdf, theta_o, phi_o, NAN, NULL, nt, np, sub_default, gl, prob);
 }
 
 double hb_test_cell_integrals_near(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, double h, int nt,
                                    int np, int sub_default, int gl, double *prob)
 {
-    return cell_integrals(plan, of_pdf, theta_o, phi_o, h, nt, np, sub_default, gl, prob);
+    return cell_integrals(plan, of_pdf, theta_o, phi_o, h, NULL, nt, np, sub_default, gl, prob);
+}
+
+double hb_test_cell_integrals_spectral(const hb_plan *plan, const hb_test_wavelengths *spectral, double theta_o,
+                                       double phi_o, double h, int nt, int np, int sub_default, int gl, double *prob)
+{
+    return cell_integrals(plan, 1, theta_o, phi_o, h, spectral, nt, np, sub_default, gl, prob);
 }
 
 /* Upper tail of the chi-square distribution with k degrees of freedom (Wilson-Hilferty). */

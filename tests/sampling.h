@@ -37,6 +37,16 @@ double hb_test_cell_integrals(const hb_plan *plan, int of_pdf, double theta_o, d
 double hb_test_cell_integrals_near(const hb_plan *plan, int of_pdf, double theta_o, double phi_o, double h, int nt,
                                    int np, int sub, int gl, double *prob);
 
+/* The absorptions of a spectral sampler's wavelengths, the same for every sample. */
+typedef struct hb_test_wavelengths {
+    int count;
+    float sigma_a[HB_WAVELENGTHS_MAX];
+} hb_test_wavelengths;
+
+/* The same of hb_pdf_near_spectral at those absorptions, at offset h. */
+double hb_test_cell_integrals_spectral(const hb_plan *plan, const hb_test_wavelengths *spectral, double theta_o,
+                                       double phi_o, double h, int nt, int np, int sub_default, int gl, double *prob);
+
 /* For the batch's first n samples, with hb_pdf_angles at the sampled directions in pdf2 and f in f:
  * the pdf is the sampled one bit for bit, weights and pdfs are finite and >= 0, and the weights are
  * f / pdf (their largest relative difference raises *worst_weight). */

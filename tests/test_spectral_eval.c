@@ -285,6 +285,55 @@ static void test_spectral_sampling(hb_test_ctx *t)
     hb_plan_destroy(plan);
 }
 
+/* The sampler at 4 wavelengths (a blond fibre's melanin at 450, 550, 650 and 700 nm) by chi-square
+ * against hb_pdf_near_spectral's integrals over equal-area cells, which sum to 1 within 2e-3. */
+static void test_spectral_chi_square(hb_test_ctx *t)
+{
+    enum { NT = 24, NP = 48, GL = 6 };
+    static const struct { double theta_o, h; } cases[] = { { 0.5, 0.2 }, { -1.2, -0.9 }, { 0.1, 0.95 } };
+    static double prob[NT * NP];
+    static const double lambda[4] = { 450.0, 550.0, 650.0, 700.0 };
+    hb_test_wavelengths w = { 4, { 0 } };
+    for (int j = 0; j < 4; j++) {
+        double s;
+        hb_melanin_absorption_spectral(0.3, 0.1, lambda[j], &s);
+        w.sigma_a[j] = (float)s;
+    }
+    hb_plan *plan = spectral_plan(t, 0.3, 0.3, HB_QUALITY_BALANCED, HB_ISA_AUTO);
+    if (!plan)
+        return;
+    size_t n = t->quick ? 20000 : HB_TEST_MAX_SAMPLES;
+    hb_sample_buffers *b = &hb_samples;
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        if (t->quick && c == 2)
+            break;
+        double integral = hb_test_cell_integrals_spectral(plan, &w, cases[c].theta_o, 0.3, cases[c].h, NT, NP, 1, GL, prob);
+        unsigned long long seed = hb_test_next_seed(t);
+        float *u[4] = { b->u[0], b->u[1], b->u[2], b->u[3] };
+        hb_uniforms(seed, 0, n, 4, u);
+        static float sa[4][HB_TEST_MAX_SAMPLES], weight[4][HB_TEST_MAX_SAMPLES];
+        for (size_t k = 0; k < n; k++) {
+            b->to[k] = (float)cases[c].theta_o, b->po[k] = 0.3f, b->h[k] = (float)cases[c].h;
+            for (int j = 0; j < 4; j++)
+                sa[j][k] = w.sigma_a[j];
+        }
+        hb_eval_report report;
+        hb_sample_near_in in = { b->to, b->po, b->h, (const float *const *)u };
+        hb_spectral_absorption a = { 4, (const float *const[]){ sa[0], sa[1], sa[2], sa[3] } };
+        hb_sample_spectral_out out = { b->ti, b->pi, b->pdf, (float *const[]){ weight[0], weight[1], weight[2], weight[3] } };
+        CHECK(t, hb_sample_near_spectral(plan, n, &in, a, &out, &report) == HB_OK && !report.invalid, "%s",
+              hb_last_error()->message);
+        double chi2;
+        int cells;
+        double p_value = hb_test_chi_square(n, prob, integral, NT, NP, &chi2, &cells);
+        hb_test_note(t, "theta_o %g, h %g (seed %llu): integral of pdf %.6f, chi2 %.1f over %d cells, p = %.3f",
+                     cases[c].theta_o, cases[c].h, seed, integral, chi2, cells, p_value);
+        CHECK(t, fabs(integral - 1.0) <= 2e-3, "case %zu: pdf integrates to %.6f", c, integral);
+        CHECK(t, p_value >= 1e-3, "case %zu: chi-square p-value %.2e below the 1e-3 significance", c, p_value);
+    }
+    hb_plan_destroy(plan);
+}
+
 /* dFH11 (far and near field) and MJC03 (far field) without spectral kernels: f at 16 wavelengths
  * (k = 8, then 5 and 3, whose last groups are partial; the quick tier 5 and 3) against a reference plan of each wavelength's
  * absorption in every channel, within the balanced quality's target 1e-3 of the peak. */
@@ -383,6 +432,7 @@ const hb_test hb_tests_spectral_eval[] = {
     { "spectral_rgb_bits", test_spectral_rgb_bits, 1 },
     { "spectral_reference", test_spectral_reference, 1 },
     { "spectral_sampling", test_spectral_sampling, 1 },
+    { "spectral_chi_square", test_spectral_chi_square, 0 },
     { "spectral_by_channels", test_spectral_by_channels, 1 },
     { "spectral_api", test_spectral_api, 0 },
     { NULL, NULL, 0 },
