@@ -149,6 +149,15 @@ HB_API hb_status hb_absorption_from_colour(const double rgb[3], double beta_n, d
 HB_API hb_status hb_melanin_from_colour(const double rgb[3], double beta_n, double *eumelanin, double *pheomelanin,
                                         hb_error *error);
 
+/* The spectral mode of hb_melanin_from_colour (docs/spectral.md), for a spectral renderer: the
+ * concentrations whose colour as such a renderer shows it comes closest to rgb in log colour. That
+ * colour is CBTB16 eq. 9's colour at the melanins' absorption per wavelength
+ * (hb_melanin_absorption_spectral), reduced to linear sRGB under D65 (CIE 1931, 41 bands from 380 to
+ * 780 nm), each channel over white's; found by 40 damped Gauss-Newton steps from
+ * hb_melanin_from_colour's concentrations. The same ranges and refusals as hb_melanin_from_colour. */
+HB_API hb_status hb_melanin_from_colour_spectral(const double rgb[3], double beta_n, double *eumelanin,
+                                                 double *pheomelanin, hb_error *error);
+
 /* Speed/accuracy levels: error targets of about 1e-2, 1e-3 and 1e-4 relative to the
  * double reference for N_p (dFH11: the node count follows from beta_n). dFH11's M_p is
  * formed in float at FAST and BALANCED (relative error about 1e-6 on the lobe, 2e-5 far in

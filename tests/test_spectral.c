@@ -1,38 +1,27 @@
 /* hb_melanin_absorption_spectral (docs/spectral.md): Donner and Jensen 2006's power laws, scaled to
  * dFH11 sec. 6.1's units by the sRGB reduction of a fibre's spectral transmittance. The reduction:
  * the transmittance exp(-d sigma_a(lambda)) through a thickness d, times D65, against the CIE 1931
- * colour-matching functions over 41 bands (tests/cie_1931.h), to XYZ (Y = 1 for white) and to linear
+ * colour-matching functions over 41 bands (src/plan/cie_1931.c), to XYZ (Y = 1 for white) and to linear
  * sRGB (IEC 61966-2-1's matrix), each channel over its white; the RGB cross-section of a channel is
  * the least-squares slope of -log(channel) against d over 32 thicknesses up to where the first
  * channel falls to 5%. The library's scales are the ones whose RGB cross-sections come closest to
  * dFH11's in relative least squares, and the residual per channel is printed. */
 #include <string.h>
 
-#include "cie_1931.h"
+#include "plan/srgb.h"
 #include "test.h"
 
-/* Linear sRGB of the spectral transmittance of thickness d of a pigment, each channel over white. */
+/* Linear sRGB of the spectral transmittance of thickness d of a pigment, each channel over white
+ * (the library's reduction, src/plan/srgb.h). */
 static void reduce(double eumelanin, double pheomelanin, double d, double rgb[3])
 {
-    static const double to_srgb[3][3] = { { 3.2404542, -1.5371385, -0.4985314 },
-                                          { -0.9692660, 1.8760108, 0.0415560 },
-                                          { 0.0556434, -0.2040259, 1.0572252 } };
-    double xyz[2][3] = { { 0 } }, norm = 0.0;
-    for (int b = 0; b < CIE_BANDS; b++) {
-        const double *row = cie_1931_d65[b];
+    double t[HB_CIE_BANDS];
+    for (int b = 0; b < HB_CIE_BANDS; b++) {
         double sigma_a;
-        hb_melanin_absorption_spectral(eumelanin, pheomelanin, row[0], &sigma_a);
-        double t = exp(-d * sigma_a);
-        for (int k = 0; k < 3; k++)
-            xyz[0][k] += t * row[4] * row[1 + k], xyz[1][k] += row[4] * row[1 + k];
-        norm += row[4] * row[2];
+        hb_melanin_absorption_spectral(eumelanin, pheomelanin, hb_cie_band(b), &sigma_a);
+        t[b] = exp(-d * sigma_a);
     }
-    for (int c = 0; c < 3; c++) {
-        double lit = 0.0, white = 0.0;
-        for (int k = 0; k < 3; k++)
-            lit += to_srgb[c][k] * xyz[0][k] / norm, white += to_srgb[c][k] * xyz[1][k] / norm;
-        rgb[c] = lit / white;
-    }
+    hb_srgb_of_spectrum(t, rgb);
 }
 
 static double least_channel(double eumelanin, double pheomelanin, double d)
@@ -87,6 +76,88 @@ static void test_srgb_reduction(hb_test_ctx *t)
     }
 }
 
+/* The colour a spectral renderer shows for concentrations under CBTB16's roughness beta_n: eq. 9's
+ * exp(-d sqrt(sigma_a)) per band, d = 1 / sqrt(hb_absorption_from_colour's sigma_a for e^-1), reduced
+ * to linear sRGB. */
+static void spectral_colour(double eumelanin, double pheomelanin, double beta_n, double rgb[3])
+{
+    double e1[3] = { exp(-1.0), exp(-1.0), exp(-1.0) }, sigma[3], t[HB_CIE_BANDS];
+    hb_absorption_from_colour(e1, beta_n, sigma, NULL);
+    for (int b = 0; b < HB_CIE_BANDS; b++) {
+        double sigma_a;
+        hb_melanin_absorption_spectral(eumelanin, pheomelanin, hb_cie_band(b), &sigma_a);
+        t[b] = exp(-sqrt(sigma_a / sigma[0]));
+    }
+    hb_srgb_of_spectrum(t, rgb);
+}
+
+/* The same through dFH11's RGB cross-sections, as an RGB renderer shows it. */
+static void rgb_colour(double eumelanin, double pheomelanin, double beta_n, double rgb[3])
+{
+    double e1[3] = { exp(-1.0), exp(-1.0), exp(-1.0) }, sigma[3], s[3];
+    hb_absorption_from_colour(e1, beta_n, sigma, NULL);
+    hb_melanin_absorption(eumelanin, pheomelanin, s);
+    for (int c = 0; c < 3; c++)
+        rgb[c] = exp(-sqrt(s[c] / sigma[0]));
+}
+
+static double colour_error(const double got[3], const double want[3])
+{
+    double worst = 0.0;
+    for (int c = 0; c < 3; c++)
+        worst = fmax(worst, fabs(got[c] / want[c] - 1.0));
+    return worst;
+}
+
+/* The two colour modes (docs/spectral.md). Round trips: concentrations' spectral colour gives them back
+ * through hb_melanin_from_colour_spectral. Over 20 colours an RGB pipeline shows for melanins: each
+ * mode's concentrations as an RGB and as a spectral renderer shows them, against the asked colour; the
+ * spectral mode is never further than the RGB mode from it, as a spectral renderer shows it. */
+static void test_colour_modes(hb_test_ctx *t)
+{
+    /* blond to dark brown, red, and one pigment alone: colours whose channels are all positive (a darker
+     * eumelanin's blue falls below sRGB's gamut) */
+    static const double trips[][2] = { { 0.05, 0.0 }, { 0.2, 0.0 }, { 0.1, 0.1 }, { 0.02, 0.15 }, { 0.4, 0.05 },
+                                       { 0.6, 0.0 }, { 0.0, 0.3 } };
+    double worst_trip = 0.0;
+    for (size_t k = 0; k < sizeof trips / sizeof trips[0]; k++) {
+        double rgb[3], eu = -1.0, pheo = -1.0;
+        hb_error err;
+        spectral_colour(trips[k][0], trips[k][1], 0.3, rgb);
+        CHECK(t, hb_melanin_from_colour_spectral(rgb, 0.3, &eu, &pheo, &err) == HB_OK, "%s", err.message);
+        worst_trip = fmax(worst_trip, fmax(fabs(eu - trips[k][0]), fabs(pheo - trips[k][1])) / fmax(trips[k][0], 0.1));
+    }
+    hb_test_note(t, "round trips of 7 concentrations through their spectral colour: within %.1e", worst_trip);
+    CHECK(t, worst_trip <= 1e-6, "a round trip is off by %.3g", worst_trip);
+    /* 20 colours an RGB pipeline shows for melanins from light blond to near-black and red (eumelanin
+     * 0.01 to 0.8, pheomelanin 0 to 0.4) */
+    double sum[3] = { 0.0 }, worst[3] = { 0.0 };
+    int closer = 0;
+    for (int k = 0; k < 20; k++) {
+        double colour[3], eu, pheo, seu, spheo, shown[3][3];
+        rgb_colour(0.01 * pow(80.0, (k % 10) / 9.0), k < 10 ? 0.0 : 0.04 * (k - 9) * (k % 2 ? 0.5 : 1.0), 0.3, colour);
+        hb_melanin_from_colour(colour, 0.3, &eu, &pheo, NULL);
+        hb_melanin_from_colour_spectral(colour, 0.3, &seu, &spheo, NULL);
+        rgb_colour(eu, pheo, 0.3, shown[0]);       /* RGB mode, RGB renderer */
+        spectral_colour(eu, pheo, 0.3, shown[1]);  /* RGB mode, spectral renderer */
+        spectral_colour(seu, spheo, 0.3, shown[2]); /* spectral mode, spectral renderer */
+        double log_error[2] = { 0.0, 0.0 };
+        for (int c = 0; c < 3; c++) {
+            log_error[0] += pow(log(shown[1][c] / colour[c]), 2.0);
+            log_error[1] += pow(log(shown[2][c] / colour[c]), 2.0);
+        }
+        closer += log_error[1] <= log_error[0] + 1e-15;
+        for (int m = 0; m < 3; m++) {
+            double e = colour_error(shown[m], colour);
+            sum[m] += e / 20.0, worst[m] = fmax(worst[m], e);
+        }
+    }
+    hb_test_note(t, "20 melanin colours, the largest channel's relative error, mean / largest: RGB mode in an RGB "
+                    "renderer %.1e / %.1e, in a spectral renderer %.1f%% / %.1f%%; spectral mode in a spectral renderer "
+                    "%.1f%% / %.1f%%", sum[0], worst[0], 100 * sum[1], 100 * worst[1], 100 * sum[2], 100 * worst[2]);
+    CHECK(t, closer == 20, "the spectral mode is closer in log colour for %d of 20 colours", closer);
+}
+
 /* The power laws and the mix: sigma_a(450) / sigma_a(650) is (450 / 650)^-3.33 for eumelanin and
  * ^-4.75 for pheomelanin, concentrations add, and the refusals name what is wrong. */
 static void test_power_laws(hb_test_ctx *t)
@@ -107,6 +178,7 @@ static void test_power_laws(hb_test_ctx *t)
 }
 
 const hb_test hb_tests_spectral[] = {
+    { "spectral_colour_modes", test_colour_modes, 0 },
     { "spectral_srgb_reduction", test_srgb_reduction, 0 },
     { "spectral_power_laws", test_power_laws, 0 },
     { NULL, NULL, 0 },

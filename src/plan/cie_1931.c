@@ -1,13 +1,11 @@
 /* The CIE 1931 2-degree standard observer's colour-matching functions x, y, z and the CIE standard
  * illuminant D65's relative spectral power, every 10 nm from 380 to 780 nm: the CIE's tables (CIE
- * 015:2018) at those wavelengths. Test data: the sRGB reduction of docs/spectral.md. */
-#ifndef HB_TEST_CIE_1931_H
-#define HB_TEST_CIE_1931_H
-
-#define CIE_BANDS 41 /* 380, 390, ..., 780 nm */
+ * 015:2018) at those wavelengths; and the reduction of a spectrum to linear sRGB over them
+ * (srgb.h). */
+#include "srgb.h"
 
 /* lambda (nm), x, y, z, D65 */
-static const double cie_1931_d65[CIE_BANDS][5] = {
+static const double cie_1931_d65[HB_CIE_BANDS][5] = {
     { 380, 0.001368, 3.9e-05, 0.00645, 49.9755 },
     { 390, 0.004243, 0.00012, 0.02005001, 54.6482 },
     { 400, 0.01431, 0.000396, 0.06785001, 82.7549 },
@@ -51,4 +49,31 @@ static const double cie_1931_d65[CIE_BANDS][5] = {
     { 780, 4.150994e-05, 1.499e-05, 0, 63.3828 },
 };
 
-#endif
+
+double hb_cie_band(int band)
+{
+    return cie_1931_d65[band][0];
+}
+
+/* IEC 61966-2-1: XYZ (D65 white) to linear sRGB. */
+static const double xyz_to_srgb[3][3] = { { 3.2404542, -1.5371385, -0.4985314 },
+                                          { -0.9692660, 1.8760108, 0.0415560 },
+                                          { 0.0556434, -0.2040259, 1.0572252 } };
+
+void hb_srgb_of_spectrum(const double transmittance[HB_CIE_BANDS], double rgb[3])
+{
+    double xyz[2][3] = { { 0 } };
+    for (int b = 0; b < HB_CIE_BANDS; b++) {
+        const double *row = cie_1931_d65[b];
+        for (int k = 0; k < 3; k++) {
+            xyz[0][k] += transmittance[b] * row[4] * row[1 + k];
+            xyz[1][k] += row[4] * row[1 + k];
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        double lit = 0.0, white = 0.0; /* the common normalisation (Y = 1 for white) cancels */
+        for (int k = 0; k < 3; k++)
+            lit += xyz_to_srgb[c][k] * xyz[0][k], white += xyz_to_srgb[c][k] * xyz[1][k];
+        rgb[c] = lit / white;
+    }
+}
