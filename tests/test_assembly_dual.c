@@ -10,6 +10,7 @@
 
 #include "test.h"
 
+/* A plan of the default dFH11 material's look (hb_material_convert for another model). */
 static hb_plan *dual_plan(hb_test_ctx *t, hb_model model, double eumelanin, double pheomelanin)
 {
     hb_material m;
@@ -20,6 +21,8 @@ static hb_plan *dual_plan(hb_test_ctx *t, hb_model model, double eumelanin, doub
     o.model = model;
     hb_plan *plan = NULL;
     hb_error e;
+    if (model != HB_MODEL_DEON)
+        CHECK(t, hb_material_convert(&m, HB_MODEL_DEON, model, &m, &e) == HB_OK, "%s", e.message);
     CHECK(t, hb_plan_create(&m, &o, &plan, &e) == HB_OK, "%s", e.message);
     return plan;
 }
@@ -138,25 +141,31 @@ static void test_errors(hb_test_ctx *t)
     static const double packings[] = { 0.1, 0.3 }, thetas[] = { 0.0, 0.6 };
     long long paths = t->quick ? 20000 : 200000;
     int rays = t->quick ? 64 : 512;
-    hb_test_note(t, "dFH11, slab of 8 layers lit from above (phi 0), the reflected light (the backward hemisphere), green; "
-                    "%lld paths, %d view rays per bin; d_f = d_b = 0.7:", paths, rays);
-    hb_test_note(t, "fibre     packing theta  traced             single alone  dual scattering  median bin (dual)");
-    for (size_t m = t->quick ? 1 : 0; m < (t->quick ? 2 : sizeof fibres / sizeof fibres[0]); m++) {
-        hb_plan *plan = dual_plan(t, HB_MODEL_DEON, fibres[m].eumelanin, fibres[m].pheomelanin);
-        hb_dual_table *table = plan ? table_of(t, plan, HB_DUAL_DENSITY, HB_DUAL_DENSITY) : NULL;
-        for (size_t p = t->quick ? 1 : 0; table && p < 2; p++)
-            for (size_t l = 0; l < (t->quick ? 1u : 2u); l++) {
-                hb_assembly a;
-                hb_assembly_default(&a);
-                a.packing = packings[p], a.theta_light = thetas[l], a.paths = paths;
-                cell_result c;
-                compare(t, plan, table, &a, rays, &c);
-                hb_test_note(t, "%-9s %7.2f %5.1f  %.5f +- %.5f  %+6.1f%%       %+6.1f%%          %5.1f%%", fibres[m].name,
-                             a.packing, a.theta_light, c.traced, c.traced_se, percent(c.single, c.traced),
-                             percent(c.dual, c.traced), 100.0 * c.median_bin);
-            }
-        hb_dual_table_destroy(table);
-        hb_plan_destroy(plan);
+    static const hb_model models[] = { HB_MODEL_DEON, HB_MODEL_CHIANG };
+    static const char *const model_names[] = { "dFH11", "CBTB16" };
+    hb_test_note(t, "slab of 8 layers lit from above (phi 0), the reflected light (the backward hemisphere), green; "
+                    "%lld paths, %d view rays per bin; d_f = d_b = 0.7; CBTB16 of dFH11's look (hb_material_convert):",
+                 paths, rays);
+    hb_test_note(t, "model  fibre     packing theta  traced             single alone  dual scattering  median bin (dual)");
+    for (size_t mi = 0; mi < (t->quick ? 1u : 2u); mi++) {
+        for (size_t m = t->quick ? 1 : 0; m < (t->quick ? 2 : sizeof fibres / sizeof fibres[0]); m++) {
+            hb_plan *plan = dual_plan(t, models[mi], fibres[m].eumelanin, fibres[m].pheomelanin);
+            hb_dual_table *table = plan ? table_of(t, plan, HB_DUAL_DENSITY, HB_DUAL_DENSITY) : NULL;
+            for (size_t p = t->quick ? 1 : 0; table && p < 2; p++)
+                for (size_t l = 0; l < (t->quick ? 1u : 2u); l++) {
+                    hb_assembly a;
+                    hb_assembly_default(&a);
+                    a.packing = packings[p], a.theta_light = thetas[l], a.paths = paths;
+                    cell_result c;
+                    compare(t, plan, table, &a, rays, &c);
+                    hb_test_note(t, "%-6s %-9s %7.2f %5.1f  %.5f +- %.5f  %+6.1f%%       %+6.1f%%          %5.1f%%",
+                                 model_names[mi], fibres[m].name,
+                                 a.packing, a.theta_light, c.traced, c.traced_se, percent(c.single, c.traced),
+                                 percent(c.dual, c.traced), 100.0 * c.median_bin);
+                }
+            hb_dual_table_destroy(table);
+            hb_plan_destroy(plan);
+        }
     }
 }
 
