@@ -41,18 +41,19 @@ enum { BATCH = 4096, REPEATS = 200, NREF = 256 };
  * (hb_hit_sample, then hb_hit_eval_pdf of the light's direction; far field, or near at h; its error
  * is the light direction's f), or the dual-scattering term f_DS from the plan's 64-node table
  * (hb_dual_eval at each sample's fibre count; its error against hb_dual_radiance of the same table), or
- * the near field at pbrt-v4's four wavelengths, 450, 550, 650 and 700 nm, each at the material's
- * melanin absorption there (hb_eval_near_spectral; its error over the four planes). */
+ * the near field or the far field at pbrt-v4's four wavelengths, 450, 550, 650 and 700 nm, each at the
+ * material's melanin absorption there (hb_eval_near_spectral, hb_eval_angles_spectral; its error over
+ * the four planes, the far field's against a reference plan of each wavelength's absorption). */
 typedef enum bench_op {
     OP_EVAL, OP_SAMPLE, OP_PDF, OP_EVAL_NEAR, OP_SAMPLE_NEAR, OP_PDF_NEAR, OP_EVAL_PDF, OP_EVAL_ABSORPTION, OP_HIT, OP_HIT_NEAR,
-    OP_DUAL, OP_SPECTRAL_NEAR
+    OP_DUAL, OP_SPECTRAL_NEAR, OP_SPECTRAL
 } bench_op;
 
 enum { WAVELENGTHS = 4 };
 static const double wavelengths[WAVELENGTHS] = { 450.0, 550.0, 650.0, 700.0 };
 
 /* The planes a row's result has: four wavelengths, or RGB. */
-static int planes_of(bench_op op) { return op == OP_SPECTRAL_NEAR ? WAVELENGTHS : 3; }
+static int planes_of(bench_op op) { return op == OP_SPECTRAL_NEAR || op == OP_SPECTRAL ? WAVELENGTHS : 3; }
 
 static int op_is(bench_op op, bench_op far) { return op == far || op == far + OP_EVAL_NEAR; }
 
@@ -110,12 +111,16 @@ static void run_part(const hb_plan *plan, bench_op op, size_t first, size_t n)
         hb_eval_angles(plan, n, in, f, NULL);
     } else if (op == OP_EVAL_NEAR) {
         hb_eval_near(plan, n, near, f, NULL);
-    } else if (op == OP_SPECTRAL_NEAR) {
+    } else if (op == OP_SPECTRAL_NEAR || op == OP_SPECTRAL) {
         const float *sigma_a[WAVELENGTHS];
         float *f_planes[WAVELENGTHS];
         for (int j = 0; j < WAVELENGTHS; j++)
             sigma_a[j] = spectral_absorption[j] + k, f_planes[j] = out[j] + k;
-        hb_eval_near_spectral(plan, n, near, (hb_spectral_absorption){ WAVELENGTHS, sigma_a }, f_planes, NULL);
+        hb_spectral_absorption a = { WAVELENGTHS, sigma_a };
+        if (op == OP_SPECTRAL)
+            hb_eval_angles_spectral(plan, n, in, a, f_planes, NULL);
+        else
+            hb_eval_near_spectral(plan, n, near, a, f_planes, NULL);
     } else if (op == OP_DUAL) {
         hb_dual_eval(dual_table, n, in, fibres + k, NULL, f, NULL);
     } else if (op == OP_EVAL_PDF) {
@@ -414,6 +419,9 @@ static const config configs[] = {
     { "chiang", "near-spectral4", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SPECTRAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "CBTB16 near field at h at pbrt-v4's 4 wavelengths, balanced", 0 },
+    { "deon", "full-spectral4", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SPECTRAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 full at pbrt-v4's 4 wavelengths (three a call), balanced", 0 },
     { "chiang", "sample-near", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "CBTB16 sampling at h (direction, pdf and f / pdf), balanced", 0 },
@@ -611,6 +619,17 @@ static void reference_of(const hb_material *m, const config *c)
                                               spectral_absorption[3] };
         hb_eval_near_spectral(plan, NREF, near, (hb_spectral_absorption){ WAVELENGTHS, sigma_a },
                               (float *const[]){ ref[0], ref[1], ref[2], ref[3] }, NULL);
+    } else if (c->op == OP_SPECTRAL) { /* a reference plan of each wavelength's absorption in every channel */
+        for (int j = 0; j < WAVELENGTHS; j++) {
+            static float other[2][NREF];
+            hb_material grey = *m;
+            grey.eumelanin = grey.pheomelanin = 0.0;
+            grey.sigma_a[0] = grey.sigma_a[1] = grey.sigma_a[2] = spectral_absorption[j][0];
+            hb_plan *at = NULL;
+            hb_plan_create(&grey, &o, &at, NULL);
+            hb_eval_angles(at, NREF, in, (hb_rgb_soa){ ref[j], other[0], other[1] }, NULL);
+            hb_plan_destroy(at);
+        }
     }
     hb_plan_destroy(plan);
 }
@@ -761,6 +780,7 @@ static void write_effects(const char *path, const row *rows, int nrows)
         { "HHH22 R, balanced: the tilt", "huang/R/G-balanced", "huang/effects/G-balanced-untilted" },
         { "CBTB16 near field, balanced: TT, TRT and the residual (R alone)", "chiang/near/balanced", "chiang/effects/R" },
         { "CBTB16 near field, balanced: pbrt-v4's 4 wavelengths (RGB)", "chiang/near-spectral4/balanced", "chiang/near/balanced" },
+        { "dFH11 balanced: pbrt-v4's 4 wavelengths, three a call (RGB)", "deon/full-spectral4/balanced", "deon/full/balanced" },
         { "CBTB16 per hit: pbrt-v4's 4 wavelengths (RGB)", "chiang/per-hit/near-spectral4", "chiang/per-hit/near-balanced" },
     };
     region r;
