@@ -84,7 +84,8 @@ static float *const *planes(float (*p)[N], float **out, int k)
 }
 
 /* Three wavelengths at the plan's own RGB absorptions (floats exactly) give what the RGB calls give, bit for bit, and
- * six (RGB twice) give it twice: the residual's shared division runs per three channels. */
+ * six (RGB twice) give it twice: the residual's shared division runs per three channels; calls of one
+ * sample too. */
 static void test_spectral_rgb_bits(hb_test_ctx *t)
 {
     static const double rgb[3] = { 0.375, 0.75, 1.5 }; /* floats exactly, as a plan's sigma_a is double */
@@ -118,6 +119,15 @@ static void test_spectral_rgb_bits(hb_test_ctx *t)
     hb_pdf_near(plan, N, near, pdf, NULL);
     hb_pdf_near_spectral(plan, N, near, three, pdf2, NULL);
     mismatched += memcmp(pdf, pdf2, sizeof pdf) != 0;
+    /* calls of one sample, a path tracer's per hit (their own path: the terms across the lanes) */
+    for (int k = 0; k < 64; k++) {
+        float one[3], spectral[3];
+        hb_near_soa at = { ti + k, pi + k, to + k, po + k, h + k };
+        hb_eval_near(plan, 1, at, (hb_rgb_soa){ &one[0], &one[1], &one[2] }, NULL);
+        hb_spectral_absorption a = { 3, (const float *const[]){ sigma[0] + k, sigma[1] + k, sigma[2] + k } };
+        hb_eval_near_spectral(plan, 1, at, a, (float *const[]){ &spectral[0], &spectral[1], &spectral[2] }, NULL);
+        mismatched += memcmp(one, spectral, sizeof one) != 0;
+    }
     CHECK(t, mismatched == 0, "%d planes differ from the RGB calls' bits", mismatched);
     hb_plan_destroy(plan);
 }

@@ -259,6 +259,32 @@ HB_INLINE vm load_near_one(hb_near_soa in, size_t k, vf a[5])
     return valid;
 }
 
+/* Sample k of a spectral near-field batch in every lane (the one-sample paths), as load_spectral
+ * checks it: the angles a[0..3], h a[4], the absorptions a[5..5 + wavelengths) as load_absorption
+ * converts them. */
+HB_INLINE vm load_spectral_one(const hb_spectral_batch *b, size_t k, vf *a)
+{
+    vm valid = load_near_one(b->near, k, a);
+    int ok = 1;
+    for (int j = 0; j < b->wavelengths; j++) {
+        float s = b->sigma_a[j][k];
+        ok = ok && s >= 0.0f && s <= FLT_MAX;
+        a[5 + j] = vf_set1(ok ? (float)fmin((double)s * 1.4426950408889634, 1e30) : 0.0f);
+    }
+    if (!ok)
+        valid = vf_lt(a[5], a[5]); /* false in every lane */
+    for (int j = 0; j < 5 + b->wavelengths; j++)
+        a[j] = vf_keep(valid, a[j]);
+    return valid;
+}
+
+/* `planes` planes of one sample from lane 0 (the one-sample paths); 0 where invalid. */
+HB_INLINE void store_planes_one(float *const *out, int planes, size_t k, vm valid, const vf *f)
+{
+    for (int c = 0; c < planes; c++)
+        store_one(out[c], k, valid, f[c]);
+}
+
 /* A near-field sampling batch: theta_o, phi_o, the `dims` uniform numbers, then h last. */
 HB_INLINE vm load_sample_near(hb_sample_streams in, int dims, size_t i, size_t lanes, vf *a)
 {

@@ -190,34 +190,40 @@ HB_INLINE void chiang_near(const hb_chiang *c, int channels, const vf *absorptio
 
 /* The near field at h of one sample whose values fill every lane, its four terms across the lanes
  * (hb_chiang.lobe_lanes; plans on the float M_p path): A_p and Phi(p, h) once (chiang_offset_at, the
- * same in every lane), then per lane L its term's A (0 for a term the plan leaves out), N (the trimmed
+ * same in every lane; `channels` channels at their absorption, as chiang_offset_at takes it), then per
+ * lane L its term's A (0 for a term the plan leaves out), N (the trimmed
  * logistic at phi - Phi(L, h), or 1 / (2 pi) in the residual's lane) and M_p (longitudinal_lobe_lanes),
  * and f the sum over the lanes: one pass where chiang_near takes one per term. f comes back in every
  * lane. */
-HB_INLINE void chiang_near_lanes(const hb_chiang *c, const mp_inclinations *in, vf cos_theta_o, vf phi, vf h,
-                                 vf f[3])
+HB_INLINE void chiang_near_lanes(const hb_chiang *c, int channels, const vf *absorption, const mp_inclinations *in,
+                                 vf cos_theta_o, vf phi, vf h, vf *f)
 {
-    vf absorption[3], terms[3][HB_CHIANG_TERMS];
+    vf terms[HB_CHIANG_CHANNELS][HB_CHIANG_TERMS], A[HB_CHIANG_CHANNELS];
     chiang_offset o;
-    chiang_plan_absorption(c, absorption);
-    chiang_offset_at(c, 3, absorption, cos_theta_o, h, 0, terms, &o);
-    vf order = vf_lane_index(), Phi = o.Phi[0], A[3] = { terms[0][0], terms[1][0], terms[2][0] };
+    chiang_offset_at(c, channels, absorption, cos_theta_o, h, 0, terms, &o);
+    vf order = vf_lane_index(), Phi = o.Phi[0];
+    HB_UNROLL
+    for (int ch = 0; ch < HB_CHIANG_CHANNELS; ch++)
+        A[ch] = ch < channels ? terms[ch][0] : vf_set1(0.0f);
     vm at;
     HB_UNROLL
     for (int p = 1; p < HB_CHIANG_TERMS; p++) {
         at = vf_ge(order, vf_set1((float)p));
         Phi = p < HB_CHIANG_ORDERS ? vf_select(at, o.Phi[p], Phi) : Phi;
         HB_UNROLL
-        for (int ch = 0; ch < 3; ch++)
-            A[ch] = vf_select(at, terms[ch][p], A[ch]);
+        for (int ch = 0; ch < HB_CHIANG_CHANNELS; ch++)
+            if (ch < channels)
+                A[ch] = vf_select(at, terms[ch][p], A[ch]);
     }
     vf e = vf_exp2_neg(vf_mul(vf_abs(wrap_angle(vf_sub(phi, Phi))), vf_set1(c->inv_s_log2e)));
     vf one_plus_e = vf_add(vf_set1(1.0f), e);
     vf logistic = vf_div(vf_mul(vf_set1(c->logistic_norm), e), vf_mul(one_plus_e, one_plus_e));
     vf N = vf_select(at, vf_set1(HB_INV_TWO_PI_F), logistic); /* `at`: the residual's lane and past it */
     vf MN = vf_mul(longitudinal_lobe_lanes(&c->lobe_lanes, 0, in, HB_I0_ABRAMOWITZ), N);
-    for (int ch = 0; ch < 3; ch++)
-        f[ch] = vf_set1(vf_sum_first(vf_mul(MN, A[ch]), HB_CHIANG_TERMS < HB_W ? HB_CHIANG_TERMS : HB_W));
+    HB_UNROLL
+    for (int ch = 0; ch < HB_CHIANG_CHANNELS; ch++)
+        if (ch < channels)
+            f[ch] = vf_set1(vf_sum_first(vf_mul(MN, A[ch]), HB_CHIANG_TERMS < HB_W ? HB_CHIANG_TERMS : HB_W));
 }
 
 /* The far field: the mean over h in [-1, 1] by the plan's nodes, each pairing h and -h; channels and

@@ -102,11 +102,31 @@ static void near_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa
  * two more than a whole block (make bench, the per-hit and near rows). */
 static void near_few_kernel(const hb_chiang *c, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid)
 {
-    vf f[3];
+    vf f[3], absorption[3];
+    chiang_plan_absorption(c, absorption);
     HB_ONE_BY_ONE(load_near_one, 5, in, n, invalid,
-                  (chiang_near_lanes(c, &(mp_inclinations){ a[0], a[2], cos_theta_of(a[0]) }, cos_theta_of(a[2]),
-                                     vf_sub(a[3], a[1]), a[4], f),
+                  (chiang_near_lanes(c, 3, absorption, &(mp_inclinations){ a[0], a[2], cos_theta_of(a[0]) },
+                                     cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f),
                    store_rgb_one(out, k, valid, f)));
+}
+
+/* The same at k wavelengths (a spectral call of f alone, at h): each sample's absorptions a[5..5 + k). */
+HB_INLINE void spectral_few_samples(const hb_chiang *c, int channels, size_t n, const hb_spectral_batch *b,
+                                    size_t *invalid)
+{
+    vf f[HB_CHIANG_CHANNELS];
+    HB_ONE_BY_ONE(load_spectral_one, 5 + HB_CHIANG_CHANNELS, b, n, invalid,
+                  (chiang_near_lanes(c, channels, a + 5, &(mp_inclinations){ a[0], a[2], cos_theta_of(a[0]) },
+                                     cos_theta_of(a[2]), vf_sub(a[3], a[1]), a[4], f),
+                   store_planes_one(b->f, channels, k, valid, f)));
+}
+
+static void spectral_few_kernel(const hb_chiang *c, size_t n, const hb_spectral_batch *b, size_t *invalid)
+{
+    if (b->wavelengths == 4)
+        spectral_few_samples(c, 4, n, b, invalid);
+    else
+        spectral_few_samples(c, b->wavelengths, n, b, invalid);
 }
 
 static void sample_near_kernel(const hb_chiang *c, size_t n, hb_sample_streams in, hb_sample_out out,
@@ -194,5 +214,6 @@ const hb_chiang_kernels HB_ISA_SYMBOL(chiang_kernels) = {
     .sample_near = sample_near_kernel,
     .pdf_near = pdf_near_kernel,
     .spectral = spectral_kernel,
+    .spectral_few = spectral_few_kernel,
     .sample_spectral = sample_spectral_kernel,
 };

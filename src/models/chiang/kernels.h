@@ -28,6 +28,8 @@ typedef struct hb_chiang_kernels {
     void (*pdf_near)(const hb_chiang *c, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
     /* k wavelengths per sample: f and the pdf near-field or far, the near-field sampler */
     void (*spectral)(const hb_chiang *c, size_t n, const hb_spectral_batch *b, size_t *invalid);
+    /* f alone at h, calls of at most near_few_max samples on the float M_p path (as near_few) */
+    void (*spectral_few)(const hb_chiang *c, size_t n, const hb_spectral_batch *b, size_t *invalid);
     void (*sample_spectral)(const hb_chiang *c, size_t n, const hb_spectral_sample_batch *b, size_t *invalid);
 } hb_chiang_kernels;
 

@@ -76,9 +76,14 @@ static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, 
     kernels_of(plan, n)->pdf_near(&hb_chiang_of(plan)->kernel, n, in, out, invalid);
 }
 
+/* As eval_near, a call of a few samples of f at h goes to the wide kernels' one-sample path. */
 static void spectral(const hb_plan *plan, size_t n, const hb_spectral_batch *b, size_t *invalid)
 {
-    kernels_of(plan, n)->spectral(&hb_chiang_of(plan)->kernel, n, b, invalid);
+    const hb_chiang_kernels *wide = plan->kernels;
+    if (b->near.h && !b->pdf && n <= (size_t)wide->near_few_max && hb_chiang_of(plan)->kernel.longitudinal[0].single)
+        wide->spectral_few(&hb_chiang_of(plan)->kernel, n, b, invalid);
+    else
+        kernels_of(plan, n)->spectral(&hb_chiang_of(plan)->kernel, n, b, invalid);
 }
 static void sample_spectral(const hb_plan *plan, size_t n, const hb_spectral_sample_batch *b, size_t *invalid)
 {
