@@ -421,7 +421,7 @@ static const config configs[] = {
       "CBTB16 near field at h at pbrt-v4's 4 wavelengths, balanced", 0 },
     { "deon", "full-spectral4", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SPECTRAL, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
-      "dFH11 full at pbrt-v4's 4 wavelengths (three a call), balanced", 0 },
+      "dFH11 full at pbrt-v4's 4 wavelengths, balanced", 0 },
     { "chiang", "sample-near", "balanced", HB_MODEL_CHIANG, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "CBTB16 sampling at h (direction, pdf and f / pdf), balanced", 0 },
@@ -780,7 +780,7 @@ static void write_effects(const char *path, const row *rows, int nrows)
         { "HHH22 R, balanced: the tilt", "huang/R/G-balanced", "huang/effects/G-balanced-untilted" },
         { "CBTB16 near field, balanced: TT, TRT and the residual (R alone)", "chiang/near/balanced", "chiang/effects/R" },
         { "CBTB16 near field, balanced: pbrt-v4's 4 wavelengths (RGB)", "chiang/near-spectral4/balanced", "chiang/near/balanced" },
-        { "dFH11 balanced: pbrt-v4's 4 wavelengths, three a call (RGB)", "deon/full-spectral4/balanced", "deon/full/balanced" },
+        { "dFH11 balanced: pbrt-v4's 4 wavelengths (RGB)", "deon/full-spectral4/balanced", "deon/full/balanced" },
         { "CBTB16 per hit: pbrt-v4's 4 wavelengths (RGB)", "chiang/per-hit/near-spectral4", "chiang/per-hit/near-balanced" },
     };
     region r;

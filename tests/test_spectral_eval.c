@@ -85,7 +85,7 @@ static float *const *planes(float (*p)[N], float **out, int k)
 
 /* Three wavelengths at the plan's own RGB absorptions (floats exactly) give what the RGB calls give, bit for bit, and
  * six (RGB twice) give it twice: the residual's shared division runs per three channels; calls of one
- * sample too. */
+ * sample too; and dFH11's three wavelengths its RGB f. */
 static void test_spectral_rgb_bits(hb_test_ctx *t)
 {
     static const double rgb[3] = { 0.375, 0.75, 1.5 }; /* floats exactly, as a plan's sigma_a is double */
@@ -129,6 +129,18 @@ static void test_spectral_rgb_bits(hb_test_ctx *t)
         mismatched += memcmp(one, spectral, sizeof one) != 0;
     }
     CHECK(t, mismatched == 0, "%d planes differ from the RGB calls' bits", mismatched);
+    hb_plan_destroy(plan);
+    /* dFH11's spectral kernels: the fused sum of its RGB f */
+    plan = default_plan(t, HB_MODEL_DEON, rgb, HB_QUALITY_BALANCED);
+    if (!plan)
+        return;
+    hb_eval_angles(plan, N, angles, out, NULL);
+    CHECK(t, hb_eval_angles_spectral(plan, N, angles, three, planes(f, fp, 3), NULL) == HB_OK, "%s",
+          hb_last_error()->message);
+    int deon_mismatched = 0;
+    for (int j = 0; j < 3; j++)
+        deon_mismatched += memcmp(f[j], g[j], sizeof f[j]) != 0;
+    CHECK(t, deon_mismatched == 0, "dFH11: %d planes differ from the RGB call's bits", deon_mismatched);
     hb_plan_destroy(plan);
 }
 
@@ -344,10 +356,11 @@ static void test_spectral_chi_square(hb_test_ctx *t)
     hb_plan_destroy(plan);
 }
 
-/* dFH11 (far and near field) and MJC03 (far field) without spectral kernels: f at 16 wavelengths
- * (k = 8, then 5 and 3, whose last groups are partial; the quick tier 5 and 3) against a reference plan of each wavelength's
+/* dFH11's far field (its spectral kernels), its near field and MJC03's far field (their per-sample
+ * absorption calls, three wavelengths a call): f at 16 wavelengths (k = 8, then 5 and 3, whose last
+ * groups of three are partial; the quick tier 5 and 3) against a reference plan of each wavelength's
  * absorption in every channel, within the balanced quality's target 1e-3 of the peak. */
-static void test_spectral_by_channels(hb_test_ctx *t)
+static void test_spectral_other_models(hb_test_ctx *t)
 {
     static const hb_model models[] = { HB_MODEL_DEON, HB_MODEL_DEON, HB_MODEL_MARSCHNER };
     static const int near_field[] = { 0, 1, 0 };
@@ -389,7 +402,7 @@ static void test_spectral_by_channels(hb_test_ctx *t)
             CHECK(t, st == HB_OK && report.invalid == 0, "%s", hb_last_error()->message);
             worst = fmax(worst, planes_error(f, g, k, n));
         }
-        hb_test_note(t, "%s %s: %d wavelengths, three at a time, against reference plans: %.2e of the peak",
+        hb_test_note(t, "%s %s: %d wavelengths against reference plans: %.2e of the peak",
                      models[mc] == HB_MODEL_DEON ? "dFH11" : "MJC03", near_field[mc] ? "near field" : "far field",
                      total, worst);
         CHECK(t, worst <= 1e-3, "off the reference by %.3g", worst);
@@ -443,7 +456,7 @@ const hb_test hb_tests_spectral_eval[] = {
     { "spectral_reference", test_spectral_reference, 1 },
     { "spectral_sampling", test_spectral_sampling, 1 },
     { "spectral_chi_square", test_spectral_chi_square, 0 },
-    { "spectral_by_channels", test_spectral_by_channels, 1 },
+    { "spectral_other_models", test_spectral_other_models, 1 },
     { "spectral_api", test_spectral_api, 0 },
     { NULL, NULL, 0 },
 };

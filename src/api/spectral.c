@@ -17,11 +17,17 @@ static void report_invalid(hb_eval_report *report, size_t invalid)
         report->invalid = invalid;
 }
 
-/* Whether the plan's model evaluates f at k wavelengths by its own spectral kernels (1), or by its
- * per-sample absorption calls three wavelengths at a time (0: f alone, kernel plans alone). */
+/* Whether the plan's model has every spectral call, in its kernels and its reference (1), or f alone by
+ * its plans' kernels (0): its spectral kernels where the plan's path has them, else its per-sample
+ * absorption calls three wavelengths at a time. */
 static int native_spectral(const hb_model_ops *ops)
 {
     return ops->spectral && ops->reference->spectral;
+}
+
+static int absorbing(const hb_model_ops *ops, int near)
+{
+    return near ? ops->eval_near_absorption != NULL : ops->eval_absorption != NULL;
 }
 
 /* The plan takes this spectral call (f_only: an evaluation of f, far field or near field by `near`) and
@@ -32,7 +38,7 @@ static hb_status spectral_checks(const char *call, const hb_plan *plan, size_t n
     if (!plan)
         return hb_fail_null(call, "plan");
     const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
-    int by_channels = f_only && plan->kernels && (near ? ops->eval_near_absorption != NULL : ops->eval_absorption != NULL);
+    int by_channels = f_only && plan->kernels && (ops->spectral || absorbing(ops, near));
     if (!(native_spectral(ops) || by_channels) || plan->options.term != HB_TERM_FULL)
         return hb_api_unsupported(call, plan, f_only ? "spectral evaluation" : "spectral sampling");
     if (sigma_a.wavelengths < 1 || sigma_a.wavelengths > HB_WAVELENGTHS_MAX)
@@ -155,14 +161,14 @@ static hb_status spectral_batch(const char *call, const hb_plan *plan, size_t n,
     hb_spectral_batch b = { in, sigma_a.wavelengths, sigma_a.sigma_a, f, pdf };
     size_t invalid = 0;
     const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
-    if (!native_spectral(ops)) {
-        st = spectral_by_channels(plan, n, &in, sigma_a, f, &invalid);
+    if (!plan->kernels) {
+        invalid = spectral_ref(plan, n, &b, sigma_a);
+    } else {
+        st = ops->spectral ? ops->spectral(plan, n, &b, &invalid) : HB_ERR_UNSUPPORTED;
+        if (st == HB_ERR_UNSUPPORTED && !pdf && absorbing(ops, in.h != NULL))
+            st = spectral_by_channels(plan, n, &in, sigma_a, f, &invalid);
         if (st != HB_OK)
             return hb_api_unsupported(call, plan, "spectral evaluation on this path");
-    } else if (plan->kernels) {
-        ops->spectral(plan, n, &b, &invalid);
-    } else {
-        invalid = spectral_ref(plan, n, &b, sigma_a);
     }
     report_invalid(report, invalid);
     return HB_OK;

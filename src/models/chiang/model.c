@@ -77,13 +77,14 @@ static void pdf_near(const hb_plan *plan, size_t n, hb_near_soa in, float *out, 
 }
 
 /* As eval_near, a call of a few samples of f at h goes to the wide kernels' one-sample path. */
-static void spectral(const hb_plan *plan, size_t n, const hb_spectral_batch *b, size_t *invalid)
+static hb_status spectral(const hb_plan *plan, size_t n, const hb_spectral_batch *b, size_t *invalid)
 {
     const hb_chiang_kernels *wide = plan->kernels;
     if (b->near.h && !b->pdf && n <= (size_t)wide->near_few_max && hb_chiang_of(plan)->kernel.longitudinal[0].single)
         wide->spectral_few(&hb_chiang_of(plan)->kernel, n, b, invalid);
     else
         kernels_of(plan, n)->spectral(&hb_chiang_of(plan)->kernel, n, b, invalid);
+    return HB_OK;
 }
 static void sample_spectral(const hb_plan *plan, size_t n, const hb_spectral_sample_batch *b, size_t *invalid)
 {

@@ -28,6 +28,10 @@ typedef struct deon_shape {
     int standard, channels, all_lobes;
 } deon_shape;
 
+/* The most channels a sample carries: RGB's three, or a spectral call's wavelengths (the standard
+ * shape's fused sum, deon_fused_shaped). */
+#define HB_DEON_CHANNELS HB_WAVELENGTHS_MAX
+
 #define HB_STANDARD_LOBES (((2u << HB_STANDARD_PMAX) - 1u) | 1u << HB_LOBE_RESIDUAL)
 
 HB_INLINE int deon_pmax(const hb_deon *d, deon_shape shape) { return shape.standard ? HB_STANDARD_PMAX : d->pmax; }
@@ -77,7 +81,7 @@ typedef struct deon_geometry {
     vf cos_phi;
     vf cos_theta_d;  /* theta_d = (theta_o - theta_i)/2 */
     vf cos_half_io;  /* cos of half the angle between w_i and w_o (eq. 12's Fresnel; 1 where unused) */
-    vf absorption[3]; /* sigma_a log2(e) per channel: the plan's, or each sample's (hb_eval_angles_absorption) */
+    vf absorption[HB_DEON_CHANNELS]; /* sigma_a log2(e) per channel: the plan's, or each sample's (hb_eval_angles_absorption, a spectral call's) */
     int grey;         /* the same absorption in every channel: one channel computed, copied */
 } deon_geometry;
 
@@ -94,7 +98,7 @@ typedef struct deon_medium {
     vf cos_theta_d;
     vf inv_eta_cos_t; /* 1 / (eta' cos(theta_d)) = 1 / sqrt(eta^2 - sin^2(theta_d)) */
     vf inv_eta_prime; /* 1 / eta' = cos(theta_d) / sqrt(eta^2 - sin^2(theta_d)) */
-    vf mu_log2e[3];   /* mu_a' log2(e), mu_a' = mu_a / cos(theta_t), per channel */
+    vf mu_log2e[HB_DEON_CHANNELS]; /* mu_a' log2(e), mu_a' = mu_a / cos(theta_t), per channel */
 } deon_medium;
 
 HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_medium *m, const int channels)
@@ -106,9 +110,9 @@ HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_med
     m->inv_eta_cos_t = vf_div(vf_set1(1.0f), eta_cos_t);
     m->inv_eta_prime = vf_mul(g->cos_theta_d, m->inv_eta_cos_t); /* sec. 5 */
     vf inv_cos_theta_t = vf_mul(vf_set1(d->ior.eta), m->inv_eta_cos_t);
-    HB_UNROLL
-    for (int c = 0; c < channels; c++) /* at most FLT_MAX / 4, so that twice it times a cosine stays finite */
-        m->mu_log2e[c] = vf_min(vf_mul(g->absorption[c], inv_cos_theta_t), vf_set1(8e37f));
+    HB_UNROLL /* to the most channels, each guarded by the count: straight code at a constant count */
+    for (int c = 0; c < HB_DEON_CHANNELS; c++) /* at most FLT_MAX / 4, so that twice it times a cosine stays finite */
+        m->mu_log2e[c] = c < channels ? vf_min(vf_mul(g->absorption[c], inv_cos_theta_t), vf_set1(8e37f)) : vf_set1(0.0f);
 }
 
 /* What the paths through one offset h = sin(gamma_i) share across channels: the Fresnel factor f
@@ -479,7 +483,7 @@ HB_INLINE vf detector_pair_scaled(const hb_scaled_detector *s, int p, vf offset,
 /* What every node of the fused sum reads from the sample, formed once per sample. */
 typedef struct deon_fused_sample {
     deon_medium medium;
-    vf mu2[3], M_scaled[HB_STANDARD_PMAX + 1], scaled_phi[HB_STANDARD_PMAX + 1], M_residual;
+    vf mu2[HB_DEON_CHANNELS], M_scaled[HB_STANDARD_PMAX + 1], scaled_phi[HB_STANDARD_PMAX + 1], M_residual;
     const vf *M;
 } deon_fused_sample;
 
@@ -491,7 +495,7 @@ typedef struct deon_fused_nodes {
 
 /* The running sums of the node loop: R's (the same in every channel), the channels', the pdf's. */
 typedef struct deon_fused_sums {
-    vf R, rgb[3], pdf;
+    vf R, rgb[HB_DEON_CHANNELS], pdf;
 } deon_fused_sums;
 
 HB_INLINE void deon_fused_prepare(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
@@ -500,8 +504,8 @@ HB_INLINE void deon_fused_prepare(const hb_deon *d, const deon_geometry *g, cons
     deon_medium_of(d, g, &s->medium, shape.channels);
     vf abs_phi = vf_abs(g->phi);
     HB_UNROLL
-    for (int c = 0; c < shape.channels; c++)
-        s->mu2[c] = vf_add(s->medium.mu_log2e[c], s->medium.mu_log2e[c]); /* two cos(gamma_t) per traversal */
+    for (int c = 0; c < HB_DEON_CHANNELS; c++) /* two cos(gamma_t) per traversal */
+        s->mu2[c] = c < shape.channels ? vf_add(s->medium.mu_log2e[c], s->medium.mu_log2e[c]) : vf_set1(0.0f);
     HB_UNROLL
     for (int p = 0; p <= HB_STANDARD_PMAX; p++) {
         s->M_scaled[p] = deon_lobe_on(d, p, shape) ? vf_mul(M[d->m_group[p]], vf_set1(d->detector[p].gauss_norm))
@@ -512,7 +516,10 @@ HB_INLINE void deon_fused_prepare(const hb_deon *d, const deon_geometry *g, cons
                         ? vf_mul(M[d->m_group[HB_LOBE_RESIDUAL]], vf_set1(HB_RESIDUAL_DETECTOR_PAIR))
                         : vf_set1(0.0f);
     s->M = M;
-    sums->R = sums->pdf = sums->rgb[0] = sums->rgb[1] = sums->rgb[2] = vf_set1(0.0f);
+    sums->R = sums->pdf = vf_set1(0.0f);
+    HB_UNROLL
+    for (int c = 0; c < HB_DEON_CHANNELS; c++)
+        sums->rgb[c] = vf_set1(0.0f);
 }
 
 HB_INLINE void deon_fused_node(const hb_deon *d, const deon_fused_sample *s, const deon_fused_nodes *node,
@@ -530,10 +537,10 @@ HB_INLINE void deon_fused_node(const hb_deon *d, const deon_fused_sample *s, con
     HB_UNROLL
     for (int p = 2; p <= HB_STANDARD_PMAX + 1; p++)
         a[p] = vf_mul(a[p - 1], f);
-    vf T[3], pair[HB_STANDARD_PMAX + 1], sp[HB_STANDARD_PMAX + 1];
+    vf T[HB_DEON_CHANNELS], pair[HB_STANDARD_PMAX + 1], sp[HB_STANDARD_PMAX + 1];
     HB_UNROLL
-    for (int c = 0; c < channels; c++)
-        T[c] = vf_exp2_neg(vf_mul(s->mu2[c], cos_gamma_t));
+    for (int c = 0; c < HB_DEON_CHANNELS; c++)
+        T[c] = c < channels ? vf_exp2_neg(vf_mul(s->mu2[c], cos_gamma_t)) : vf_set1(0.0f);
     HB_UNROLL
     for (int p = 0; p <= HB_STANDARD_PMAX; p++) {
         pair[p] = deon_lobe_on(d, p, shape)
@@ -543,9 +550,11 @@ HB_INLINE void deon_fused_node(const hb_deon *d, const deon_fused_sample *s, con
     }
     vf q = vf_mul(a[HB_STANDARD_PMAX + 1], s->M_residual);
     sums->R = vf_add(sums->R, sp[0]);
-    vf series[3];
+    vf series[HB_DEON_CHANNELS];
     HB_UNROLL
-    for (int c = 0; c < channels; c++) {
+    for (int c = 0; c < HB_DEON_CHANNELS; c++) {
+        if (c >= channels)
+            continue;
         series[c] = residual_series(f, one_minus_f, T[c]);
         vf inner = vf_fma(T[c], vf_mul(q, series[c]), sp[3]);
         inner = vf_fma(T[c], inner, sp[2]);
@@ -578,7 +587,7 @@ HB_INLINE void deon_fused_node(const hb_deon *d, const deon_fused_sample *s, con
 }
 
 HB_INLINE void deon_fused_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
-                                 vf out[3], deon_pdf_terms *pdf, deon_shape shape)
+                                 vf *out, deon_pdf_terms *pdf, deon_shape shape)
 {
     deon_fused_sample s;
     deon_fused_sums sums;
@@ -593,8 +602,10 @@ HB_INLINE void deon_fused_shaped(const hb_deon *d, const deon_geometry *g, const
     }
     if (pdf)
         pdf->sum = sums.pdf;
-    for (int c = 0; c < 3; c++)
-        out[c] = vf_add(sums.rgb[shape.channels == 1 ? 0 : c], sums.R);
+    HB_UNROLL /* a grey fibre's one channel copied to three; else every channel its own */
+    for (int c = 0; c < HB_DEON_CHANNELS; c++)
+        if (c < (shape.channels == 1 ? 3 : shape.channels))
+            out[c] = vf_add(sums.rgb[shape.channels == 1 ? 0 : c], sums.R);
 }
 
 /* The same for one sample whose value fills every lane of g and M, with the nodes across the lanes

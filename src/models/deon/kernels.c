@@ -67,6 +67,25 @@ HB_INLINE void deon_near_absorbing_angles(const hb_deon *d, const vf a[8], hb_i0
     deon_near(d, &g, M, a[4], f, NULL);
 }
 
+/* f at k wavelengths, each sample's absorptions a[5..5 + k) (load_spectral; the far field): the
+ * standard shape's fused sum, whose node work is shared but for each wavelength's transmittance and
+ * residual series. */
+HB_INLINE void deon_spectral_angles(const hb_deon *d, int channels, const vf *a, hb_i0 i0, vf *f)
+{
+    vf M[HB_MAX_LOBES + 1];
+    deon_geometry g;
+    deon_longitudinal_groups(d, a[0], a[2], i0, M);
+    deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
+    HB_UNROLL
+    for (int c = 0; c < HB_DEON_CHANNELS; c++)
+        g.absorption[c] = c < channels ? a[5 + c] : vf_set1(0.0f);
+    g.grey = 0;
+    if (d->lobes == HB_STANDARD_LOBES)
+        deon_fused_shaped(d, &g, M, f, NULL, (deon_shape){ 1, channels, 1 });
+    else
+        deon_fused_shaped(d, &g, M, f, NULL, (deon_shape){ 1, channels, 0 });
+}
+
 /* How many samples a call may have for the kernels to take them one at a time, the far field's
  * quadrature nodes or the near field's lobes across the lanes (model.c dispatches such calls of a
  * standard quadrature plan to angles_few and near_few): a path tracer's call at a hit costs one
@@ -145,6 +164,7 @@ const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
     .near = { deon_near_abramowitz, deon_near_paper },
     .near_few = { deon_near_few_abramowitz, deon_near_few_paper },
     .near_absorbing = { deon_near_absorbing_abramowitz, deon_near_absorbing_paper },
+    .spectral = { deon_spectral_abramowitz, deon_spectral_paper },
     .near_few_max = HB_DEON_NEAR_FEW_MAX,
     .pdf_near = { deon_pdf_near_abramowitz, deon_pdf_near_paper },
     .sample_near = { deon_sample_near_abramowitz, deon_sample_near_paper },

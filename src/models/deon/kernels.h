@@ -29,6 +29,7 @@ typedef void (*hb_deon_absorbing_fn)(const hb_deon *deon, size_t n, const hb_abs
 typedef void (*hb_deon_near_absorbing_fn)(const hb_deon *deon, size_t n, const hb_absorbing_near *in, hb_rgb_soa out,
                                           size_t *invalid);
 typedef void (*hb_deon_near_fn)(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out, size_t *invalid);
+typedef void (*hb_deon_spectral_fn)(const hb_deon *deon, size_t n, const hb_spectral_batch *b, size_t *invalid);
 typedef void (*hb_deon_pdf_near_fn)(const hb_deon *deon, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
 typedef void (*hb_deon_sample_near_fn)(const hb_deon *deon, size_t n, hb_sample_streams in, hb_sample_out out,
                                        size_t *invalid);
@@ -53,6 +54,7 @@ typedef struct hb_deon_kernels {
     hb_deon_near_fn near[2];   /* at each sample's offset h (near.h) */
     hb_deon_near_fn near_few[2]; /* at most near_few_max samples, each alone with its lobes across the lanes */
     hb_deon_near_absorbing_fn near_absorbing[2]; /* at each sample's h and absorption */
+    hb_deon_spectral_fn spectral[2]; /* f at k wavelengths, standard quadrature plans, the far field */
     int near_few_max;
     hb_deon_pdf_near_fn pdf_near[2];
     hb_deon_sample_near_fn sample_near[2];

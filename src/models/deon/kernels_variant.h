@@ -84,6 +84,21 @@ static void HB_DEON_VARIANT(deon_absorbing)(const hb_deon *deon, size_t n, const
              (deon_absorbing_angles(deon, a, HB_DEON_I0, f), store_rgb(out, i, lanes, valid, f)));
 }
 
+/* k wavelengths per sample (standard quadrature plans, the far field): pbrt-v4's four with the channel
+ * loops straight, any other count as it comes. */
+static void HB_DEON_VARIANT(deon_spectral)(const hb_deon *deon, size_t n, const hb_spectral_batch *b,
+                                   size_t *invalid)
+{
+    vf f[HB_DEON_CHANNELS];
+    if (b->wavelengths == 4)
+        HB_BATCH(load_spectral, 5 + HB_DEON_CHANNELS, b, n, invalid,
+                 (deon_spectral_angles(deon, 4, a, HB_DEON_I0, f), store_planes(b->f, 4, i, lanes, valid, f)));
+    else
+        HB_BATCH(load_spectral, 5 + HB_DEON_CHANNELS, b, n, invalid,
+                 (deon_spectral_angles(deon, b->wavelengths, a, HB_DEON_I0, f),
+                  store_planes(b->f, b->wavelengths, i, lanes, valid, f)));
+}
+
 static void HB_DEON_VARIANT(deon_near)(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out,
                                size_t *invalid)
 {

@@ -82,8 +82,10 @@ typedef struct hb_model_ops {
                                       size_t *invalid);
     void (*pdf_near)(const hb_plan *plan, size_t n, hb_near_soa in, float *pdf, size_t *invalid);
     /* k wavelengths per sample at their absorptions (hb_*_spectral), by the plan's kernels: f and the pdf
-     * near-field or far (hb_spectral_batch), the near-field sampler; NULL when the model has none. */
-    void (*spectral)(const hb_plan *plan, size_t n, const hb_spectral_batch *b, size_t *invalid);
+     * near-field or far (hb_spectral_batch), the near-field sampler; NULL when the model has none.
+     * spectral returns HB_ERR_UNSUPPORTED for a batch the plan's path cannot take (f is then evaluated
+     * through eval_absorption or eval_near_absorption, three wavelengths a call). */
+    hb_status (*spectral)(const hb_plan *plan, size_t n, const hb_spectral_batch *b, size_t *invalid);
     void (*sample_spectral)(const hb_plan *plan, size_t n, const hb_spectral_sample_batch *b, size_t *invalid);
 
     /* The look of a material's roughness and tilt, and the parameters that give a look (the
