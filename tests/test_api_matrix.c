@@ -179,7 +179,8 @@ static hb_status call_spectral_sampling(const hb_plan *p)
     hb_status q = hb_pdf_near_spectral(p, 1, (hb_near_soa){ &s.ti, &s.pi, &s.to, &s.po, &s.h }, a, &s.pdf, NULL);
     hb_sample_near_in in = { &s.to, &s.po, &s.h, (const float *const[]){ &s.u[0], &s.u[1], &s.u[2], &s.u[3] } };
     hb_status d = hb_sample_near_spectral(p, 1, &in, a, &(hb_sample_spectral_out){ &ti, &pi, &s.pdf, w.out }, NULL);
-    hb_status b = hb_pbrt_sample_f(p, wo, s.h, s.u, 4, s.sigma, wi, w.f, &s.pdf);
+    float sigma[4] = { s.sigma[0], s.sigma[1], s.sigma[2], s.sigma[0] };
+    hb_status b = hb_pbrt_sample_f(p, wo, s.h, s.u, 4, sigma, wi, w.f, &s.pdf);
     return q != HB_OK ? q : d != HB_OK ? d : b;
 }
 

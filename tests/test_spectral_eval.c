@@ -445,6 +445,20 @@ static void test_spectral_api(hb_test_ctx *t)
     CHECK(t, hb_pdf_near_spectral(plan, 4, in, (hb_spectral_absorption){ 1, (const float *const[]){ s0 } }, out0,
                                   NULL) == HB_ERR_UNSUPPORTED && strstr(hb_last_error()->message, "spectral"),
           "dFH11's pdf: %s", hb_last_error()->message);
+    hb_plan_destroy(plan);
+    /* a plan whose path has no per-sample absorption answers so for an empty batch too */
+    o.azimuthal = HB_AZIMUTHAL_TABLE;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "%s", err.message);
+    hb_angles_soa none = { NULL, NULL, NULL, NULL };
+    CHECK(t, hb_eval_angles_spectral(plan, 0, none, (hb_spectral_absorption){ 1, NULL }, NULL, NULL) ==
+                 HB_ERR_UNSUPPORTED &&
+             hb_eval_angles_spectral(plan, 4, (hb_angles_soa){ x, x, x, x },
+                                     (hb_spectral_absorption){ 1, (const float *const[]){ s0 } }, fo, NULL) ==
+                 HB_ERR_UNSUPPORTED,
+          "a dFH11 table plan: %s", hb_last_error()->message);
+    o.azimuthal = HB_AZIMUTHAL_QUADRATURE;
+    hb_plan_destroy(plan);
+    CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "%s", err.message);
     CHECK(t, hb_eval_near_spectral(plan, 4, in, (hb_spectral_absorption){ 1, (const float *const[]){ s0 } }, fo,
                                    &report) == HB_OK && report.invalid == 3 && out0[0] > 0.0f && out0[1] == 0.0f,
           "dFH11, invalid absorptions: %zu counted", report.invalid);

@@ -105,6 +105,14 @@ static hb_status spectral_by_channels(const hb_plan *plan, size_t n, const hb_ne
 {
     const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
     const int k = sigma_a.wavelengths;
+    if (!n) { /* the path's own answer for an empty batch: whether it takes a per-sample absorption */
+        size_t none;
+        hb_absorbing_near near = { *in, { NULL, NULL, NULL } };
+        hb_absorbing_batch far = { { .angles = { in->theta_i, in->phi_i, in->theta_o, in->phi_o } }, { NULL, NULL, NULL } };
+        *invalid = 0;
+        return in->h ? ops->eval_near_absorption(plan, 0, &near, (hb_rgb_soa){ NULL, NULL, NULL }, &none)
+                     : ops->eval_absorption(plan, 0, &far, (hb_rgb_soa){ NULL, NULL, NULL }, &none);
+    }
     for (size_t first = 0; first < n; first += CHUNK) {
         size_t m = n - first < CHUNK ? n - first : CHUNK, bad;
         hb_near_soa part = { in->theta_i + first, in->phi_i + first, in->theta_o + first, in->phi_o + first,
