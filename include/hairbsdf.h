@@ -790,6 +790,81 @@ HB_API hb_status hb_dual_eval(const hb_dual_table *table, size_t n, hb_angles_so
 HB_API hb_status hb_dual_radiance(const hb_dual_terms *terms, double d_f, double d_b, double theta_i, double phi_i,
                                   double theta_o, double phi_o, double fibres, double direct, double f[3]);
 
+/* The engines' estimate of the terms (docs/multiple-scattering.md, "The engines' tables"), for
+ * comparing a table built their way with the converged one: HDRP's pre-integration pattern, w_o from
+ * `directions` points of a Hammersley set uniform on the sphere (stratified in sin theta_o, the
+ * radical inverse in base 2 in phi_o), each against `azimuths` light azimuths phi_i evenly spaced
+ * over [-pi/2, pi/2), every pair sorted into the hemisphere w_o lies in relative to the light; each
+ * hemisphere's energy is 2 pi times its pairs' mean f and its moments are the f-weighted moments of
+ * theta_h over its pairs; A_b, delta_b and sigma_b2 follow by eqs. 14-17 as in hb_dual_terms_at.
+ * Deterministic, with the error of a quadrature of that many points (HDRP: 128 x 90). directions
+ * and azimuths in 1..65536, theta in (-pi/2, pi/2), d_b in [0, 1], else HB_ERR_PARAM. */
+HB_API hb_status hb_dual_terms_sampled(const hb_plan *plan, double theta, int directions, int azimuths, double d_b,
+                                       hb_dual_terms *terms);
+
+/* A table from terms the caller has (an engine's own, hb_dual_terms_sampled's, a lookup of
+ * hb_dual_engine's): terms[k] (struct_size sizeof(hb_dual_terms)) at the midpoints
+ * -pi/2 + pi (k + 1/2) / thetas, used as hb_dual_table_create's, for the plan's ISA and the density
+ * factors d_f, d_b. HB_ERR_PARAM for a term that is not finite, an energy or variance below 0;
+ * HB_ERR_LIMIT for a_f >= 1, as hb_dual_table_create. */
+HB_API hb_status hb_dual_table_from_terms(const hb_plan *plan, int thetas, const hb_dual_terms *terms, double d_f,
+                                          double d_b, hb_dual_table **table);
+
+/* An engine-wide table (docs/multiple-scattering.md, "One table for every hair colour"): the terms
+ * of one material family, the base material and options given with its absorption and its R lobe's
+ * longitudinal roughness (the model's look: dFH11's beta_m, CBTB16's and MJC03's in radians, HHH22's
+ * from its microfacet roughness) as axes, so that one texture serves every colour and roughness of
+ * that family. Each channel's terms depend on that channel's absorption alone, so a node holds one
+ * channel: a_f, a_b, alpha_f, beta_f2, alpha_b, beta_b2 at (theta, roughness, absorption); A_b,
+ * delta_b and sigma_b2 follow from them by eqs. 14-17 after interpolation. */
+typedef struct hb_dual_engine_axes {
+    size_t struct_size;   /* sizeof(hb_dual_engine_axes), set by hb_dual_engine_axes_default */
+    int thetas;           /* theta_i at the midpoints of (-pi/2, pi/2), 2..1024; default 64 */
+    int roughnesses;      /* evenly spaced over [roughness_min, roughness_max], 2..256; default 16 */
+    double roughness_min, roughness_max; /* radians; default 0.05 and 0.6 */
+    int absorptions;      /* evenly spaced in exp(-sigma_a) over [exp(-absorption_max), 1], 2..256; default 16 */
+    double absorption_max; /* sigma_a per unit radius at the last node; default 12 */
+    /* 0 (the default): every node by hb_dual_terms_at, converged; else the engines' estimate,
+     * hb_dual_terms_sampled with these many directions and azimuths (HDRP: 128 and 90) */
+    int sampled_directions, sampled_azimuths;
+} hb_dual_engine_axes;
+HB_API void hb_dual_engine_axes_default(hb_dual_engine_axes *axes);
+
+typedef struct hb_dual_engine hb_dual_engine;
+
+/* Builds the engine-wide table of the family of `base` (its absorption and melanins ignored, its
+ * roughness replaced by the axis) under `options` (their progress and parallel drive the build: the
+ * roughnesses times ceil(absorptions / 3) plans of three absorptions each are the tasks, each over
+ * every theta), with d_b for sigma_b2. HB_ERR_PARAM names an axis outside its range. */
+HB_API hb_status hb_dual_engine_create(const hb_material *base, const hb_options *options,
+                                       const hb_dual_engine_axes *axes, double d_b, hb_dual_engine **engine,
+                                       hb_error *error);
+HB_API void hb_dual_engine_destroy(hb_dual_engine *engine);
+
+/* The terms at theta for a fibre of the family with R roughness `roughness` and absorption sigma_a
+ * per channel: at the two theta nodes about theta, the nodes interpolated linearly in roughness and
+ * exp(-sigma_a), each clamped to its axis (as the engines clamp), and eqs. 14-17 from them; between
+ * the two, linear in theta, as hb_dual_engine_table's table gives them. HB_ERR_LIMIT where a_f >= 1. */
+HB_API hb_status hb_dual_engine_terms(const hb_dual_engine *engine, double theta, double roughness,
+                                      const double sigma_a[3], hb_dual_terms *terms);
+
+/* The per-material table of a plan of the family (its roughness and absorption, melanins included,
+ * looked up; every other field and its model and lobes those of the base, else HB_ERR_PARAM naming
+ * the first that differs) at the engine's thetas, for hb_dual_eval and the shaders. */
+HB_API hb_status hb_dual_engine_table(const hb_dual_engine *engine, const hb_plan *plan, double d_f,
+                                      hb_dual_table **table);
+
+/* The engine-wide table as the shaders read it (shaders/hairbsdf_dual.glsl, .hlsl: hb_dual_engine_f):
+ * HB_DUAL_ENGINE_NODE_FLOATS floats per node, a_f, a_b, alpha_f, beta_f2, alpha_b, beta_b2 and two
+ * zeros, node (roughness r, absorption j, theta k) at ((r * absorptions + j) * thetas + k); *count
+ * gets the floats' count. Valid while the engine lives; NULL for a NULL engine. */
+#define HB_DUAL_ENGINE_NODE_FLOATS 8
+HB_API const float *hb_dual_engine_nodes(const hb_dual_engine *engine, size_t *count);
+
+/* The shaders' hb_dual_engine_constants for density factor d_f: thetas, roughnesses, roughness_min,
+ * roughness_max, absorptions, 1 - exp(-absorption_max), d_f and the table's d_b. */
+HB_API hb_status hb_dual_engine_constants(const hb_dual_engine *engine, double d_f, float constants[8]);
+
 /* Light in a fibre assembly, traced fibre by fibre (docs/multiple-scattering.md): the ground truth the
  * dual-scattering terms and the engines' tables approximate. Parallel circular fibres of radius 1
  * along the frame's y, placed at random without overlap (random sequential addition from the seed),

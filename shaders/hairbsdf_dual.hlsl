@@ -1,8 +1,11 @@
-// hairbsdf for HLSL: the dual-scattering term f_DS from a plan's table (hairbsdf_dual_body.inc has
-// the equations). The engine fills hb_dual_constants with the table's node count and density factors
-// and uploads hb_dual_table_nodes' floats (docs/multiple-scattering.md gives the layout). Before
-// including this file, define how the table is read:
-//     #define HB_DUAL_TABLE(i) dual_table[i]   // float i of hb_dual_table_nodes (a StructuredBuffer<float>)
+// hairbsdf for HLSL: the dual-scattering term f_DS from a plan's table or from an engine-wide table
+// (hairbsdf_dual_body.inc has the equations). For a plan's table the engine fills hb_dual_constants
+// with the table's node count and density factors and uploads hb_dual_table_nodes' floats; for an
+// engine-wide table, hb_dual_engine_constants with hb_dual_engine_constants' floats and uploads
+// hb_dual_engine_nodes' (docs/multiple-scattering.md gives the layouts). Before including this file,
+// define how either table is read:
+//     #define HB_DUAL_TABLE(i) dual_table[i]          // float i of hb_dual_table_nodes (a StructuredBuffer<float>)
+//     #define HB_DUAL_ENGINE_TABLE(i) engine_table[i] // float i of hb_dual_engine_nodes
 #ifndef HAIRBSDF_DUAL_HLSL
 #define HAIRBSDF_DUAL_HLSL
 
@@ -10,6 +13,7 @@
 #define HB_CONST static const
 #define vec3 float3
 #define vec4 float4
+#define vec2 float2
 #endif
 
 #include "hairbsdf_dual_body.inc"

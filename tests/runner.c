@@ -147,7 +147,7 @@ void hb_test_longitudinal_setup(const hb_test_ctx *t, hb_material *m, hb_options
 }
 
 static const hb_test *const suites[] = { hb_tests_api, hb_tests_vmath, hb_tests_longitudinal, hb_tests_deon,
-                                          hb_tests_marschner, hb_tests_marschner_full, hb_tests_huang, hb_tests_huang_paper, hb_tests_sample, hb_tests_sample_huang, hb_tests_huang_internal, hb_tests_huang_table, hb_tests_properties, hb_tests_corpus, hb_tests_cli, hb_tests_images, hb_tests_deon_table, hb_tests_table_file, hb_tests_table_build, hb_tests_absorption, hb_tests_shaders, hb_tests_colour_table, hb_tests_plan_select, hb_tests_threads, hb_tests_chiang, hb_tests_renderer_calls, hb_tests_colour, hb_tests_deon_near, hb_tests_marschner_sample, hb_tests_docs, hb_tests_api_matrix, hb_tests_dual, hb_tests_near_vectors, hb_tests_convert, hb_tests_assembly, hb_tests_dual_eval, hb_tests_assembly_dual, hb_tests_spectral, hb_tests_spectral_eval };
+                                          hb_tests_marschner, hb_tests_marschner_full, hb_tests_huang, hb_tests_huang_paper, hb_tests_sample, hb_tests_sample_huang, hb_tests_huang_internal, hb_tests_huang_table, hb_tests_properties, hb_tests_corpus, hb_tests_cli, hb_tests_images, hb_tests_deon_table, hb_tests_table_file, hb_tests_table_build, hb_tests_absorption, hb_tests_shaders, hb_tests_colour_table, hb_tests_plan_select, hb_tests_threads, hb_tests_chiang, hb_tests_renderer_calls, hb_tests_colour, hb_tests_deon_near, hb_tests_marschner_sample, hb_tests_docs, hb_tests_api_matrix, hb_tests_dual, hb_tests_near_vectors, hb_tests_convert, hb_tests_assembly, hb_tests_dual_eval, hb_tests_dual_engine, hb_tests_assembly_dual, hb_tests_spectral, hb_tests_spectral_eval };
 
 const hb_test *hb_test_find(const char *name)
 {

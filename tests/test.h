@@ -136,6 +136,7 @@ extern const hb_test hb_tests_api_matrix[];
 extern const hb_test hb_tests_dual[];
 extern const hb_test hb_tests_assembly[];
 extern const hb_test hb_tests_dual_eval[];
+extern const hb_test hb_tests_dual_engine[];
 extern const hb_test hb_tests_assembly_dual[];
 extern const hb_test hb_tests_spectral[];
 extern const hb_test hb_tests_spectral_eval[];

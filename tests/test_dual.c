@@ -270,24 +270,13 @@ static void test_lobe_energies(hb_test_ctx *t)
 
 /* The engines' way: HDRP's pre-integration (Unity's Graphics repository, HairMultipleScattering-
  * PreIntegration.compute) estimates a_f and a_b per theta from 128 outgoing directions of a
- * Hammersley set uniform on the sphere, each against 90 light azimuths 2 degrees apart over
- * [-pi/2, pi/2), sorting every pair by the hemisphere w_o lies in (relative to the light) and
- * averaging each hemisphere's f over the pairs that fell in it, times its 2 pi of solid angle. The
- * same estimator here on the plan's own f, against hb_dual_terms_grid's converged terms at 64 theta
+ * Hammersley set uniform on the sphere, each against 90 light azimuths 2 degrees apart
+ * (hb_dual_terms_sampled). That estimate against hb_dual_terms_grid's converged terms at 64 theta
  * (whose own error is dual_independent_rule's, 1e-4 and below), for dFH11 blond fibres from smooth to
  * rough: the noise an engine's table carries. */
-static double radical_inverse_2(unsigned k)
-{
-    double x = 0.0, f = 0.5;
-    for (; k; k >>= 1, f *= 0.5)
-        x += (k & 1u) * f;
-    return x;
-}
-
 static void test_engine_recipe(hb_test_ctx *t)
 {
-    enum { THETAS = 64, DIRECTIONS = 128, AZIMUTHS = 90, PAIRS = DIRECTIONS * AZIMUTHS };
-    static float ti[PAIRS], pi[PAIRS], to[PAIRS], po[PAIRS], f[3][PAIRS];
+    enum { THETAS = 64 };
     static hb_dual_terms terms[THETAS];
     static const double roughness[] = { 0.05, 0.1, 0.2, 0.4 };
     hb_test_note(t, "a_f and a_b by HDRP's recipe (128 x 90 pairs per theta) against the converged terms, dFH11 blond, "
@@ -309,28 +298,12 @@ static void test_engine_recipe(hb_test_ctx *t)
               hb_last_error()->message);
         double worst[2] = { 0.0, 0.0 }, mean[2] = { 0.0, 0.0 };
         for (int k = 0; k < THETAS; k++) {
-            for (int d = 0; d < DIRECTIONS; d++) {
-                double z = 1.0 - 2.0 * (d + 0.5) / DIRECTIONS, a = 2.0 * M_PI * radical_inverse_2((unsigned)d);
-                double planar = sqrt(fmax(0.0, 1.0 - z * z)); /* the fibre along y: theta_o = asin(z) */
-                for (int j = 0; j < AZIMUTHS; j++) {
-                    int q = d * AZIMUTHS + j;
-                    ti[q] = (float)theta_node(k, THETAS), pi[q] = (float)(-M_PI_2 + j * M_PI / AZIMUTHS);
-                    to[q] = (float)asin(z), po[q] = (float)atan2(planar * sin(a), planar * cos(a));
-                }
-            }
-            hb_eval_angles(plan, PAIRS, (hb_angles_soa){ ti, pi, to, po }, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
-            double sum[2] = { 0.0, 0.0 };
-            int count[2] = { 0, 0 };
-            for (int q = 0; q < PAIRS; q++) {
-                int forward = fabs(remainder((double)po[q] - pi[q], 2.0 * M_PI)) > M_PI_2;
-                sum[!forward] += f[1][q], count[!forward]++;
-            }
-            double recipe[2] = { 2.0 * M_PI * sum[0] / count[0], 2.0 * M_PI * sum[1] / count[1] };
-            double converged[2] = { terms[k].a_f[1], terms[k].a_b[1] };
-            for (int h = 0; h < 2; h++) {
-                double err = fabs(recipe[h] - converged[h]);
-                worst[h] = fmax(worst[h], err), mean[h] += err / THETAS;
-            }
+            hb_dual_terms recipe = { .struct_size = sizeof recipe };
+            CHECK(t, hb_dual_terms_sampled(plan, theta_node(k, THETAS), 128, 90, HB_DUAL_DENSITY, &recipe) == HB_OK, "%s",
+                  hb_last_error()->message);
+            double err[2] = { fabs(recipe.a_f[1] - terms[k].a_f[1]), fabs(recipe.a_b[1] - terms[k].a_b[1]) };
+            for (int h = 0; h < 2; h++)
+                worst[h] = fmax(worst[h], err[h]), mean[h] += err[h] / THETAS;
         }
         hb_test_note(t, "beta_m %.2f: a_f off by %.4f mean, %.4f at most (a_f at theta 0: %.4f); a_b by %.4f mean, "
                         "%.4f at most (%.4f)",

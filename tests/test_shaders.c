@@ -305,9 +305,80 @@ static void test_dual_shader(hb_test_ctx *t)
     hb_gpu_close(gpu);
 }
 
+/* Dual scattering's f_DS from an engine-wide table (16 theta x 8 roughnesses x 8 absorptions, dFH11),
+ * the fibre's roughness and absorption given to the shader, against hb_dual_eval of the plan's
+ * table from it (hb_dual_engine_table): dFH11 fibres between the roughness nodes, lossless, blond,
+ * brown and red. */
+static void test_dual_engine_shader(hb_test_ctx *t)
+{
+    char name[256] = "";
+    size_t sizes[2] = { 0, 0 };
+    uint32_t *code[2];
+    hb_gpu *gpu = open_kernels(t, "tests/shaders/dual_engine_eval.comp", "tests/shaders/dual_engine_eval.hlsl", code,
+                               sizes, name, sizeof name);
+    if (!gpu)
+        return;
+    static const struct {
+        const char *name;
+        double beta_m, eumelanin, pheomelanin;
+    } materials[] = { { "lossless, beta_m 0.13", 0.13, 0.0, 0.0 }, { "blond, beta_m 0.13", 0.13, 0.3, 0.0 },
+                      { "brown, beta_m 0.27", 0.27, 1.3, 0.0 }, { "red, beta_m 0.41", 0.41, 0.0, 2.0 } };
+    static float angles[4 * DIRECTIONS], cpu_f[3][DIRECTIONS], params[13], fibres[DIRECTIONS];
+    shader_directions(t, angles);
+    for (int k = 0; k < DIRECTIONS; k++)
+        fibres[k] = k % 5 == 0 ? 0.0f : (float)hb_test_range(t, 0.0, 16.0);
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    hb_dual_engine_axes axes;
+    hb_dual_engine_axes_default(&axes);
+    axes.thetas = 16, axes.roughnesses = 8, axes.absorptions = 8;
+    hb_dual_engine *engine = NULL;
+    hb_error error;
+    CHECK(t, hb_dual_engine_create(&m, &o, &axes, HB_DUAL_DENSITY, &engine, &error) == HB_OK, "%s", error.message);
+    size_t floats = 0;
+    const float *nodes = hb_dual_engine_nodes(engine, &floats);
+    hb_dual_engine_constants(engine, HB_DUAL_DENSITY, params);
+    double worst[2] = { 0.0, 0.0 };
+    for (size_t mi = 0; engine && code[0] && code[1] && mi < sizeof materials / sizeof materials[0]; mi++) {
+        m.beta_m = materials[mi].beta_m, m.eumelanin = materials[mi].eumelanin, m.pheomelanin = materials[mi].pheomelanin;
+        hb_plan *plan = NULL;
+        hb_dual_table *table = NULL;
+        if (hb_plan_create(&m, &o, &plan, &error) != HB_OK ||
+            hb_dual_engine_table(engine, plan, HB_DUAL_DENSITY, &table) != HB_OK) {
+            CHECK(t, 0, "%s: %s", materials[mi].name, hb_last_error()->message);
+            hb_plan_destroy(plan);
+            continue;
+        }
+        double sigma_a[3];
+        hb_material_absorption(&m, sigma_a);
+        params[8] = (float)DIRECTIONS, params[9] = (float)m.beta_m;
+        for (int c = 0; c < 3; c++)
+            params[10 + c] = (float)sigma_a[c];
+        hb_dual_eval(table, DIRECTIONS,
+                     (hb_angles_soa){ angles, angles + DIRECTIONS, angles + 2 * DIRECTIONS, angles + 3 * DIRECTIONS }, fibres,
+                     NULL, (hb_rgb_soa){ cpu_f[0], cpu_f[1], cpu_f[2] }, NULL);
+        float *data[5] = { params, (float *)nodes, angles, NULL, fibres };
+        size_t counts[5] = { 13, floats, 4 * DIRECTIONS, 3 * DIRECTIONS, DIRECTIONS };
+        compare_kernels(t, gpu, code, sizes, 5, data, counts, (const float(*)[DIRECTIONS])cpu_f, materials[mi].name,
+                        worst, 1e-5);
+        hb_dual_table_destroy(table);
+        hb_plan_destroy(plan);
+    }
+    hb_test_note(t, "%s: f_DS from the engine-wide table, largest difference from hb_dual_eval of the plan's table, of "
+                    "each material's peak: GLSL %.2g, HLSL %.2g",
+                 name, worst[0], worst[1]);
+    hb_dual_engine_destroy(engine);
+    free(code[0]);
+    free(code[1]);
+    hb_gpu_close(gpu);
+}
+
 const hb_test hb_tests_shaders[] = {
     { "shaders_match_cpu_table_path", test_shaders_match_cpu, 0 },
     { "shaders_huang_match_cpu", test_huang_shader, 0 },
     { "shaders_dual_match_cpu", test_dual_shader, 0 },
+    { "shaders_dual_engine_match_cpu", test_dual_engine_shader, 0 },
     { NULL, NULL, 0 },
 };

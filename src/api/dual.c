@@ -14,6 +14,7 @@
 #include "math/dual_scattering.h"
 #include "math/quadrature.h"
 #include "checks.h"
+#include "dual_sums.h"
 #include "models/build/build_tasks.h"
 #include "models/interface/model.h"
 
@@ -22,10 +23,6 @@ enum {
     ORIENTATIONS = 16 /* an elliptical fibre's orientations to the light, averaged by the midpoint rule */
 };
 
-/* Per channel and hemisphere (0 forward, 1 backward): the energy and its first two moments in theta_h. */
-typedef struct hemisphere_sums {
-    double energy[2][3], first[2][3], second[2][3];
-} hemisphere_sums;
 
 typedef struct pending {
     float ti[CHUNK], pi[CHUNK], to[CHUNK], po[CHUNK];
@@ -35,7 +32,7 @@ typedef struct pending {
 } pending;
 
 /* Evaluates the pending directions and adds them to the sums. */
-static void flush(const hb_plan *plan, pending *q, hemisphere_sums *s)
+static void flush(const hb_plan *plan, pending *q, hb_dual_sums *s)
 {
     float f[3][CHUNK];
     hb_eval_angles(plan, (size_t)q->count, (hb_angles_soa){ q->ti, q->pi, q->to, q->po }, (hb_rgb_soa){ f[0], f[1], f[2] },
@@ -55,7 +52,7 @@ static void flush(const hb_plan *plan, pending *q, hemisphere_sums *s)
  * An elliptical fibre's sums are the mean over its orientations to the light, w_i at phi_i = psi for
  * ORIENTATIONS midpoints psi of [0, pi) (its cross-section repeats after pi), each over both sides
  * phi_o = psi +- x, which the mirror symmetry no longer makes equal. */
-static void hemispheres(const hb_plan *rule, const hb_plan *evaluated, double theta, hemisphere_sums *sums)
+static void hemispheres(const hb_plan *rule, const hb_plan *evaluated, double theta, hb_dual_sums *sums)
 {
     int orientations = rule->material.eccentricity > 0.0 ? ORIENTATIONS : 1, sides = orientations > 1 ? 2 : 1;
     const hb_model_ops *ops = hb_model_ops_of(rule->options.model);
@@ -65,7 +62,7 @@ static void hemispheres(const hb_plan *rule, const hb_plan *evaluated, double th
     int theta_panels = (int)ceil(M_PI / (2.0 * fmin(beta_m, 0.5)));
     int phi_panels = (azimuths + QUARTERS * RULE - 1) / (QUARTERS * RULE); /* per quarter */
     double xt[RULE], wt[RULE], xp[RULE], wp[RULE];
-    *sums = (hemisphere_sums){ { { 0 } }, { { 0 } }, { { 0 } } };
+    *sums = (hb_dual_sums){ { { 0 } }, { { 0 } }, { { 0 } } };
     pending q;
     q.count = 0;
     for (int pass = 0; pass < orientations * sides; pass++) {
@@ -95,35 +92,48 @@ static void hemispheres(const hb_plan *rule, const hb_plan *evaluated, double th
         flush(evaluated, &q, sums);
 }
 
-hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms)
+void hb_dual_terms_of_sums(const hb_dual_sums *sums, double d_b, hb_dual_terms *terms)
+{
+    for (int c = 0; c < 3; c++) {
+        double *energy[2] = { &terms->a_f[c], &terms->a_b[c] }, *mean[2] = { &terms->alpha_f[c], &terms->alpha_b[c] },
+               *variance[2] = { &terms->beta_f2[c], &terms->beta_b2[c] };
+        for (int h = 0; h < 2; h++) {
+            double e = sums->energy[h][c], m = e > 0.0 ? sums->first[h][c] / e : 0.0;
+            *energy[h] = e;
+            *mean[h] = m;
+            *variance[h] = e > 0.0 ? fmax(0.0, sums->second[h][c] / e - m * m) : 0.0;
+        }
+        terms->A_b[c] = hb_dual_back_energy(terms->a_f[c], terms->a_b[c]);
+        terms->delta_b[c] = hb_dual_back_shift(terms->a_f[c], terms->a_b[c], terms->alpha_f[c], terms->alpha_b[c]);
+        terms->sigma_b2[c] = hb_dual_back_variance(terms->a_f[c], terms->a_b[c], terms->beta_f2[c], terms->beta_b2[c], d_b);
+    }
+}
+
+hb_status hb_dual_check_call(const char *call, const hb_plan *plan, double theta, double d_b, const hb_dual_terms *terms)
 {
     if (!plan || !terms)
-        return hb_fail_null(__func__, !plan ? "plan" : "terms");
-    size_t size = terms->struct_size;
-    hb_status st = hb_api_struct_size(__func__, "terms", size, offsetof(hb_dual_terms, sigma_b2) + sizeof terms->sigma_b2,
-                                      sizeof *terms);
+        return hb_fail_null(call, !plan ? "plan" : "terms");
+    hb_status st = hb_api_struct_size(call, "terms", terms->struct_size,
+                                      offsetof(hb_dual_terms, sigma_b2) + sizeof terms->sigma_b2, sizeof *terms);
     if (st != HB_OK)
         return st;
     if (!(fabs(theta) < M_PI_2))
-        return hb_fail(HB_ERR_PARAM, "%s: theta = %g is outside (-pi/2, pi/2)", __func__, theta);
+        return hb_fail(HB_ERR_PARAM, "%s: theta = %g is outside (-pi/2, pi/2)", call, theta);
     if (!(d_b >= 0.0 && d_b <= 1.0))
-        return hb_fail(HB_ERR_PARAM, "%s: d_b = %g is outside [0, 1]", __func__, d_b);
+        return hb_fail(HB_ERR_PARAM, "%s: d_b = %g is outside [0, 1]", call, d_b);
+    return HB_OK;
+}
+
+hb_status hb_dual_terms_at(const hb_plan *plan, double theta, double d_b, hb_dual_terms *terms)
+{
+    hb_status st = hb_dual_check_call(__func__, plan, theta, d_b, terms);
+    if (st != HB_OK)
+        return st;
+    size_t size = terms->struct_size;
     hb_dual_terms all = { .struct_size = size };
-    hemisphere_sums sums;
+    hb_dual_sums sums;
     hemispheres(plan, plan, theta, &sums);
-    for (int c = 0; c < 3; c++) {
-        double *energy[2] = { &all.a_f[c], &all.a_b[c] }, *mean[2] = { &all.alpha_f[c], &all.alpha_b[c] },
-               *variance[2] = { &all.beta_f2[c], &all.beta_b2[c] };
-        for (int h = 0; h < 2; h++) {
-            double e = sums.energy[h][c], m = e > 0.0 ? sums.first[h][c] / e : 0.0;
-            *energy[h] = e;
-            *mean[h] = m;
-            *variance[h] = e > 0.0 ? fmax(0.0, sums.second[h][c] / e - m * m) : 0.0;
-        }
-        all.A_b[c] = hb_dual_back_energy(all.a_f[c], all.a_b[c]);
-        all.delta_b[c] = hb_dual_back_shift(all.a_f[c], all.a_b[c], all.alpha_f[c], all.alpha_b[c]);
-        all.sigma_b2[c] = hb_dual_back_variance(all.a_f[c], all.a_b[c], all.beta_f2[c], all.beta_b2[c], d_b);
-    }
+    hb_dual_terms_of_sums(&sums, d_b, &all);
     memcpy(terms, &all, size);
     return HB_OK;
 }
@@ -148,7 +158,7 @@ hb_status hb_dual_lobe_energies(const hb_plan *plan, double theta, double forwar
         hb_status st = hb_plan_create(&plan->material, &o, &lobe, &error);
         if (st != HB_OK)
             return hb_fail(st, "%s: the plan of lobe %s alone: %s", __func__, hb_lobe_name(p), error.message);
-        hemisphere_sums sums;
+        hb_dual_sums sums;
         hemispheres(plan, lobe, theta, &sums);
         hb_plan_destroy(lobe);
         for (int c = 0; c < 3; c++)

@@ -119,6 +119,49 @@ hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_f, doub
     return st;
 }
 
+/* HB_ERR_PARAM unless every term of the node is finite and its energies and variances are not negative. */
+static hb_status check_terms(const char *call, const hb_dual_terms *t, int k)
+{
+    const double *signed_terms[] = { t->alpha_f, t->alpha_b, t->delta_b };
+    const double *positive[] = { t->a_f, t->a_b, t->beta_f2, t->beta_b2, t->A_b, t->sigma_b2 };
+    for (int c = 0; c < 3; c++) {
+        for (size_t j = 0; j < sizeof signed_terms / sizeof *signed_terms; j++)
+            if (!isfinite(signed_terms[j][c]))
+                return hb_fail(HB_ERR_PARAM, "%s: terms[%d] has a shift of %g (channel %d)", call, k, signed_terms[j][c], c);
+        for (size_t j = 0; j < sizeof positive / sizeof *positive; j++)
+            if (!(positive[j][c] >= 0.0 && positive[j][c] <= DBL_MAX))
+                return hb_fail(HB_ERR_PARAM, "%s: terms[%d] has an energy or variance of %g (channel %d)", call, k,
+                               positive[j][c], c);
+    }
+    return HB_OK;
+}
+
+hb_status hb_dual_table_from_terms(const hb_plan *plan, int thetas, const hb_dual_terms *terms, double d_f, double d_b,
+                                   hb_dual_table **table)
+{
+    if (!plan || !terms || !table)
+        return hb_fail_null(__func__, !plan ? "plan" : !terms ? "terms" : "table");
+    *table = NULL;
+    if (thetas < 2 || thetas > THETAS_MAX)
+        return hb_fail(HB_ERR_PARAM, "%s: thetas = %d is outside [2, %d]", __func__, thetas, THETAS_MAX);
+    hb_status st = check_density(__func__, d_f, d_b);
+    for (int k = 0; k < thetas && st == HB_OK; k++)
+        st = terms[k].struct_size != sizeof *terms
+                 ? hb_fail(HB_ERR_VERSION, "%s: terms[%d].struct_size = %zu; this release's is %zu", __func__, k,
+                           terms[k].struct_size, sizeof *terms)
+                 : check_terms(__func__, &terms[k], k);
+    hb_dual_table *t = NULL;
+    if (st == HB_OK)
+        st = table_alloc(__func__, plan, thetas, d_f, d_b, &t);
+    if (st != HB_OK)
+        return st;
+    memcpy(t->terms, terms, (size_t)thetas * sizeof *terms);
+    st = table_finish(__func__, t);
+    if (st == HB_OK)
+        *table = t;
+    return st;
+}
+
 /* A node's terms as the file stores them: the nine per-channel arrays in the struct's order. */
 static double *term_doubles(hb_dual_terms *t) { return (double *)((char *)t + offsetof(hb_dual_terms, a_f)); }
 
