@@ -318,6 +318,8 @@ images: $(TOOL)
 	$(TOOL) assembly --model chiang --eumelanin 0.3 --layers 16 --depth-bins 16 --paths 100000 \
 	  --svg docs/images/assembly_blond_depth.svg > /dev/null
 	$(TOOL) dual --model chiang --eumelanin 0.3 --svg docs/images/dual_blond_energies.svg > /dev/null
+	$(TOOL) tress --eumelanin 0.3 --paths 8000000 --exposure 2 -o docs/images/tress_blond_front.png > /dev/null
+	$(TOOL) tress --eumelanin 0.3 --paths 8000000 --view behind --exposure 0.5 -o docs/images/tress_blond_behind.png > /dev/null
 
 # The pkg-config file is written at install time, so it always names this PREFIX.
 install: all

@@ -963,6 +963,33 @@ HB_API hb_status hb_assembly_trace(const hb_plan *plan, const hb_assembly *assem
 HB_API hb_status hb_assembly_dual(const hb_plan *plan, const hb_dual_table *table, const hb_assembly *assembly, int rays,
                                   double *radiance, double *radiance_se, double *single);
 
+/* A picture of a bundle (a tress) seen from the side (docs/multiple-scattering.md, "A tress, traced
+ * and dual-scattered"): an orthographic camera looking at the bundle along -w(theta_o, view_phi),
+ * image rows the assembly's theta_bins in theta_o (row 0 the highest), columns `columns` strips
+ * across the bundle's width 2 R (R its radius, column 0 at -R along (cos view_phi, 0, -sin view_phi)),
+ * each pixel's value L / E, the radiance over the light's irradiance, per channel:
+ * - traced: hb_assembly_trace's paths of the same assembly that leave with theta_o in the row and
+ *   |phi_o - view_phi| < pi / phi_bins (one azimuth bin about the camera), by where they last
+ *   scattered; traced_single the part that scattered once;
+ * - dual: `rays` view rays per pixel, uniform in the pixel's strip and solid angle, each shading the
+ *   first fibre it meets with v f + f_DS as hb_assembly_dual does (0 where it meets none);
+ *   dual_single the part v f.
+ * Each of the six arrays (rows x columns x 3 doubles, [row][column][channel]) may be NULL. */
+typedef struct hb_assembly_image {
+    size_t struct_size; /* sizeof(hb_assembly_image) */
+    double view_phi;    /* the camera's azimuth in the fibre frame: 0 lit from the front at phi_light 0, pi from behind */
+    int columns;        /* 1..4096 */
+    int rays;           /* 1..2^20 */
+    double *traced, *traced_se, *traced_single, *dual, *dual_se, *dual_single;
+} hb_assembly_image;
+
+/* Renders both pictures of assembly (a bundle, else HB_ERR_UNSUPPORTED) with the plan and its table;
+ * the trace as hb_assembly_trace (result may be NULL; progress and parallel drive it), the same bit
+ * for bit however its tasks run. */
+HB_API hb_status hb_assembly_render(const hb_plan *plan, const hb_dual_table *table, const hb_assembly *assembly,
+                                    hb_assembly_image *image, hb_assembly_result *result, hb_progress_fn progress,
+                                    void *progress_context, hb_parallel_fn parallel, void *parallel_context);
+
 /* Instruction sets: names as used by --isa and the HB_ISA environment variable
  * ("scalar", "sse4.1", "avx2", "avx512", "neon"). */
 HB_API const char *hb_isa_name(hb_isa isa);

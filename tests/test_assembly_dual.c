@@ -96,13 +96,121 @@ static void test_one_fibre(hb_test_ctx *t)
     hb_plan_destroy(plan);
 }
 
-/* The traced reflected light and what single scattering alone and dual scattering predict, green. */
+/* The table an engine bakes by HDRP's recipe (hb_dual_terms_sampled, 128 directions x 90 azimuths at
+ * each of 64 theta), with the density factors d_f, d_b. */
+static hb_dual_table *recipe_table_of(hb_test_ctx *t, const hb_plan *plan, double d_f, double d_b)
+{
+    enum { THETAS = 64 };
+    hb_dual_terms terms[THETAS];
+    for (int k = 0; k < THETAS; k++) {
+        terms[k].struct_size = sizeof terms[k];
+        CHECK(t, hb_dual_terms_sampled(plan, -M_PI_2 + M_PI * (k + 0.5) / THETAS, 128, 90, d_b, &terms[k]) == HB_OK, "%s",
+              hb_last_error()->message);
+    }
+    hb_dual_table *table = NULL;
+    CHECK(t, hb_dual_table_from_terms(plan, THETAS, terms, d_f, d_b, &table) == HB_OK, "%s", hb_last_error()->message);
+    return table;
+}
+
+/* hb_assembly_render's two pictures agree where they must: with d_f = d_b = 0 the dual picture is
+ * single scattering at the fibres the camera sees, the traced light that scattered once, lit from
+ * the front and from behind. For one fibre, in every pixel the trace resolves; for a bundle of
+ * several, in total: the far field leaves a fibre from where the light met it and the camera sees
+ * the fibre where its view ray meets it, two lines through the fibre that neighbours shadow
+ * differently, so single scattering moves between neighbouring pixels (measured) and not in total. */
+static void test_render_single(hb_test_ctx *t)
+{
+    enum { ROWS = 6, COLUMNS = 8, PIXELS = ROWS * COLUMNS * 3 };
+    hb_plan *plan = dual_plan(t, HB_MODEL_DEON, 0.3, 0.0);
+    hb_dual_table *none = plan ? table_of(t, plan, 0.0, 0.0) : NULL;
+    if (!none) {
+        hb_plan_destroy(plan);
+        return;
+    }
+    static double traced[PIXELS], traced_se[PIXELS], once[PIXELS], dual[PIXELS], dual_se[PIXELS], single[PIXELS];
+    static const struct { const char *name; double layers, packing; } bundles[] = { { "one fibre", 1.0, 0.25 },
+                                                                                  { "a bundle of 7", 3.0, 0.2 } };
+    for (int b = 0; b < 2; b++)
+        for (int view = 0; view < 2; view++) {
+            hb_assembly a;
+            hb_assembly_default(&a);
+            a.shape = HB_ASSEMBLY_BUNDLE, a.layers = bundles[b].layers, a.packing = bundles[b].packing;
+            a.theta_bins = ROWS, a.phi_bins = 12, a.paths = t->quick ? 200000 : 2000000;
+            hb_assembly_image im = { .struct_size = sizeof im, .view_phi = view ? M_PI : 0.0, .columns = COLUMNS,
+                                     .rays = t->quick ? 256 : 2048, .traced = traced, .traced_se = traced_se,
+                                     .traced_single = once, .dual = dual, .dual_se = dual_se, .dual_single = single };
+            hb_assembly_result r = { .struct_size = sizeof r };
+            CHECK(t, hb_assembly_render(plan, none, &a, &im, &r, NULL, NULL, NULL, NULL) == HB_OK, "%s",
+                  hb_last_error()->message);
+            double sum[2] = { 0.0, 0.0 }, var = 0.0, worst = 0.0;
+            for (int k = 1; k < PIXELS; k += 3) { /* green */
+                CHECK(t, dual[k] == single[k], "pixel %d: the dual picture without its term is not v f", k / 3);
+                sum[0] += once[k], sum[1] += single[k];
+                double pixel_var = traced_se[k] * traced_se[k] + dual_se[k] * dual_se[k];
+                var += pixel_var;
+                if (once[k] > 3.0 * traced_se[k]) /* the pixels the trace resolves; where no path arrived, its se is 0 */
+                    worst = fmax(worst, fabs(once[k] - single[k]) / sqrt(pixel_var));
+            }
+            double z = fabs(sum[0] - sum[1]) / sqrt(var);
+            hb_test_note(t, "%s (%ld), lit from %s, single scattering: traced %.4f, rendered %.4f (sum of L / E over the "
+                            "pixels), %.2f standard errors; the worst pixel %.2f",
+                         bundles[b].name, r.fibres, view ? "behind" : "the front", sum[0], sum[1], z, worst);
+            CHECK(t, z < 3.0 && (b == 1 || worst < 4.0), "the pictures differ by %.2f standard errors in total, %.2f in "
+                                                         "a pixel", z, worst);
+            CHECK(t, sum[0] > 0.0, "no light reached the camera");
+        }
+    hb_dual_table_destroy(none);
+    hb_plan_destroy(plan);
+}
+
+/* The tress of `hairbsdf tress` (docs/images/tress_blond_*.png): a blond dFH11 bundle of radius 8
+ * diameters at packing 0.3, lit at theta 0.3, seen from the front and from behind, 24 x 32 pixels:
+ * the pictures' sums, traced against dual scattering at the paper's density factors, with their
+ * standard errors. Each picture holds more than its single scattering. */
+static void test_render_tress(hb_test_ctx *t)
+{
+    enum { ROWS = 24, COLUMNS = 32, PIXELS = ROWS * COLUMNS * 3 };
+    hb_plan *plan = dual_plan(t, HB_MODEL_DEON, 0.3, 0.0);
+    hb_dual_table *table = plan ? table_of(t, plan, HB_DUAL_DENSITY, HB_DUAL_DENSITY) : NULL;
+    if (!table) {
+        hb_plan_destroy(plan);
+        return;
+    }
+    static double traced[PIXELS], traced_se[PIXELS], once[PIXELS], dual[PIXELS], dual_se[PIXELS], single[PIXELS];
+    hb_assembly a;
+    hb_assembly_default(&a);
+    a.shape = HB_ASSEMBLY_BUNDLE, a.theta_bins = ROWS, a.phi_bins = 24, a.paths = t->quick ? 100000 : 4000000;
+    for (int view = 0; view < 2; view++) {
+        hb_assembly_image im = { .struct_size = sizeof im, .view_phi = view ? M_PI : 0.0, .columns = COLUMNS,
+                                 .rays = t->quick ? 16 : 256, .traced = traced, .traced_se = traced_se,
+                                 .traced_single = once, .dual = dual, .dual_se = dual_se, .dual_single = single };
+        CHECK(t, hb_assembly_render(plan, table, &a, &im, NULL, NULL, NULL, NULL, NULL) == HB_OK, "%s",
+              hb_last_error()->message);
+        double sum[4] = { 0, 0, 0, 0 }, var[2] = { 0, 0 };
+        for (int k = 1; k < PIXELS; k += 3) {
+            sum[0] += traced[k], sum[1] += dual[k], sum[2] += once[k], sum[3] += single[k];
+            var[0] += traced_se[k] * traced_se[k], var[1] += dual_se[k] * dual_se[k];
+        }
+        double ratio = sum[1] / sum[0], ratio_se = ratio * hypot(sqrt(var[0]) / sum[0], sqrt(var[1]) / sum[1]);
+        hb_test_note(t, "blond tress seen from %-9s: traced %.3f +- %.3f (single scattering %.3f), dual %.3f +- %.3f "
+                        "(v f %.3f): dual %+.1f%% +- %.1f%% (green, sum of L / E)",
+                     view ? "behind" : "the front", sum[0], sqrt(var[0]), sum[2], sum[1], sqrt(var[1]), sum[3],
+                     100.0 * (ratio - 1.0), 100.0 * ratio_se);
+        CHECK(t, sum[0] > sum[2] && sum[1] > sum[3] && isfinite(ratio), "a picture without its multiple scattering: "
+              "traced %g (single %g), dual %g (v f %g)", sum[0], sum[2], sum[1], sum[3]);
+    }
+    hb_dual_table_destroy(table);
+    hb_plan_destroy(plan);
+}
+
+/* The traced reflected light and what single scattering alone and dual scattering predict, green;
+ * dual_recipe: dual scattering from the recipe's table (recipe NULL: not computed). */
 typedef struct cell_result {
-    double traced, traced_se, single, dual, median_bin;
+    double traced, traced_se, single, dual, dual_recipe, median_bin;
 } cell_result;
 
-static void compare(hb_test_ctx *t, const hb_plan *plan, const hb_dual_table *table, const hb_assembly *a, int rays,
-                    cell_result *out)
+static void compare(hb_test_ctx *t, const hb_plan *plan, const hb_dual_table *table, const hb_dual_table *recipe,
+                    const hb_assembly *a, int rays, cell_result *out)
 {
     size_t bins = (size_t)2 * a->theta_bins * a->phi_bins * 3;
     double *traced = malloc(bins * sizeof(double)), *traced_se = malloc(bins * sizeof(double));
@@ -113,6 +221,13 @@ static void compare(hb_test_ctx *t, const hb_plan *plan, const hb_dual_table *ta
     out->traced = side_total(a, traced, traced_se, 0, &out->traced_se);
     out->single = side_total(a, single, NULL, 0, NULL);
     out->dual = side_total(a, dual, NULL, 0, NULL);
+    out->dual_recipe = NAN;
+    if (recipe) {
+        double *by_recipe = malloc(bins * sizeof(double));
+        CHECK(t, hb_assembly_dual(plan, recipe, a, rays, by_recipe, NULL, NULL) == HB_OK, "%s", hb_last_error()->message);
+        out->dual_recipe = side_total(a, by_recipe, NULL, 0, NULL);
+        free(by_recipe);
+    }
     double *errors = malloc(bins * sizeof(double));
     int count = 0;
     for (size_t k = 1; k < bins / 2; k += 3) /* the reflected bins the trace resolves */
@@ -146,24 +261,28 @@ static void test_errors(hb_test_ctx *t)
     hb_test_note(t, "slab of 8 layers lit from above (phi 0), the reflected light (the backward hemisphere), green; "
                     "%lld paths, %d view rays per bin; d_f = d_b = 0.7; CBTB16 of dFH11's look (hb_material_convert):",
                  paths, rays);
-    hb_test_note(t, "model  fibre     packing theta  traced             single alone  dual scattering  median bin (dual)");
+    hb_test_note(t, "model  fibre     packing theta  traced             single alone  dual scattering  median bin (dual)  "
+                    "dual, HDRP's table");
     for (size_t mi = 0; mi < (t->quick ? 1u : 2u); mi++) {
         for (size_t m = t->quick ? 1 : 0; m < (t->quick ? 2 : sizeof fibres / sizeof fibres[0]); m++) {
             hb_plan *plan = dual_plan(t, models[mi], fibres[m].eumelanin, fibres[m].pheomelanin);
             hb_dual_table *table = plan ? table_of(t, plan, HB_DUAL_DENSITY, HB_DUAL_DENSITY) : NULL;
+            hb_dual_table *recipe = plan ? recipe_table_of(t, plan, HB_DUAL_DENSITY, HB_DUAL_DENSITY) : NULL;
             for (size_t p = t->quick ? 1 : 0; table && p < 2; p++)
                 for (size_t l = 0; l < (t->quick ? 1u : 2u); l++) {
                     hb_assembly a;
                     hb_assembly_default(&a);
                     a.packing = packings[p], a.theta_light = thetas[l], a.paths = paths;
                     cell_result c;
-                    compare(t, plan, table, &a, rays, &c);
-                    hb_test_note(t, "%-6s %-9s %7.2f %5.1f  %.5f +- %.5f  %+6.1f%%       %+6.1f%%          %5.1f%%",
+                    compare(t, plan, table, recipe, &a, rays, &c);
+                    hb_test_note(t, "%-6s %-9s %7.2f %5.1f  %.5f +- %.5f  %+6.1f%%       %+6.1f%%          %5.1f%%"
+                                    "             %+6.1f%%",
                                  model_names[mi], fibres[m].name,
                                  a.packing, a.theta_light, c.traced, c.traced_se, percent(c.single, c.traced),
-                                 percent(c.dual, c.traced), 100.0 * c.median_bin);
+                                 percent(c.dual, c.traced), 100.0 * c.median_bin, percent(c.dual_recipe, c.traced));
                 }
             hb_dual_table_destroy(table);
+            hb_dual_table_destroy(recipe);
             hb_plan_destroy(plan);
         }
     }
@@ -261,6 +380,8 @@ static void test_refusals(hb_test_ctx *t)
 }
 
 const hb_test hb_tests_assembly_dual[] = {
+    { "assembly_render_single", test_render_single, 0 },
+    { "assembly_render_tress", test_render_tress, 0 },
     { "assembly_dual_one_fibre", test_one_fibre, 0 },
     { "assembly_dual_errors", test_errors, 0 },
     { "assembly_dual_density_fit", test_density_fit, 0 },

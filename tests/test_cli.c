@@ -606,6 +606,30 @@ static void test_assembly_dual(hb_test_ctx *t)
     CHECK(t, r.status == 2 && strstr(r.err, "slab"), "a bundle: %d %s", r.status, r.err);
 }
 
+/* hairbsdf tress writes the labelled PNG of the two pictures and prints their sums; it needs -o. */
+static void test_tress(hb_test_ctx *t)
+{
+    char path[600], args[1024];
+    if (hb_test_temp_file(path, sizeof path, ".png") != 0) {
+        CHECK(t, 0, "no temporary file in %s", hb_test_temp_dir());
+        return;
+    }
+    hb_tool_run r;
+    snprintf(args, sizeof args, "tress --eumelanin 0.3 --layers 2 --paths 2000 --rays 4 --rows 6 --columns 8 -o \"%s\"",
+             path);
+    if (!run_tool(t, args, "", &r))
+        return;
+    CHECK(t, r.status == 0 && strstr(r.out, "\ntraced,") && strstr(r.out, "\ndual,"), "tress: %d %s", r.status, r.err);
+    FILE *f = fopen(path, "rb");
+    unsigned char head[8] = { 0 };
+    CHECK(t, f && fread(head, 1, 8, f) == 8 && memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0, "tress -o wrote no PNG");
+    if (f)
+        fclose(f);
+    unlink(path);
+    run_tool(t, "tress --paths 100", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "-o FILE.png"), "without -o: %d %s", r.status, r.err);
+}
+
 /* hairbsdf plan describes the plan of the same options eval would use; --tolerance and --budget-ns reach
  * the library through every command. */
 static void test_plan_commands(hb_test_ctx *t)
@@ -851,6 +875,7 @@ const hb_test hb_tests_cli[] = {
     { "cli_eval_wavelengths", test_eval_wavelengths, 0 },
     { "cli_dual_save", test_dual_save, 0 },
     { "cli_assembly_dual", test_assembly_dual, 0 },
+    { "cli_tress", test_tress, 0 },
     { "cli_input_edges", test_input_edges, 0 },
     { "cli_help", test_help, 0 },
     { "cli_hostile_inputs", test_hostile_inputs, 0 },

@@ -40,6 +40,9 @@ const char *cli_model_paper(hb_model model);
 /* A whole field as an integer in [0, 2^64 - 1]; 0 for anything else (a sign, an overflow). */
 int cli_parse_u64(const char *s, unsigned long long *out);
 
+/* A whole field as a number in [lo, hi]: 1 with *out, 0 for anything else. */
+int cli_parse_range(const char *s, double lo, double hi, double *out);
+
 /* The help text of the model options. */
 extern const char cli_model_options_help[];
 
@@ -48,6 +51,7 @@ int cmd_sample(int argc, char **argv);
 int cmd_furnace(int argc, char **argv);
 int cmd_dual(int argc, char **argv);
 int cmd_assembly(int argc, char **argv);
+int cmd_tress(int argc, char **argv);
 int cmd_dump(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_bake(int argc, char **argv);

@@ -189,6 +189,16 @@ int cli_parse_u64(const char *s, unsigned long long *out)
     return 1;
 }
 
+int cli_parse_range(const char *s, double lo, double hi, double *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    if (end == s || *end || !(v >= lo && v <= hi))
+        return 0;
+    *out = v;
+    return 1;
+}
+
 static int parse_triple(const char *s, double out[3])
 {
     char buf[256];

@@ -42,3 +42,10 @@ int cli_progress(void *context, double fraction)
     fprintf(stderr, "building the table: %.0f%%\n", 100.0 * fraction);
     return 0;
 }
+
+int cli_tracing_progress(void *context, double fraction)
+{
+    (void)context;
+    fprintf(stderr, "tracing: %.0f%%\n", 100.0 * fraction);
+    return 0;
+}

@@ -10,4 +10,7 @@ void cli_parallel(void *context, int count, hb_task_fn task, void *task_context)
 /* hb_progress_fn printing "building the table: N%" to stderr; never cancels. */
 int cli_progress(void *context, double fraction);
 
+/* hb_progress_fn printing "tracing: N%" to stderr, for the assembly's paths; never cancels. */
+int cli_tracing_progress(void *context, double fraction);
+
 #endif

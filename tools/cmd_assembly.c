@@ -32,16 +32,6 @@ static void assembly_usage(FILE *to)
             cli_model_options_help);
 }
 
-static int parse_number(const char *s, double lo, double hi, double *out)
-{
-    char *end;
-    double v = strtod(s, &end);
-    if (end == s || *end || !(v >= lo && v <= hi))
-        return 0;
-    *out = v;
-    return 1;
-}
-
 static int parse_pair(const char *s, double *a, double *b)
 {
     char *end;
@@ -76,17 +66,17 @@ static int parse_assembly_option(int argc, char **argv, int *i, hb_assembly *a, 
     else if (strcmp(o, "--shape") == 0)
         ok = strcmp(v, "slab") == 0 ? (a->shape = HB_ASSEMBLY_SLAB, 1) : strcmp(v, "bundle") == 0 ? (a->shape = HB_ASSEMBLY_BUNDLE, 1) : 0;
     else if (strcmp(o, "--layers") == 0)
-        ok = parse_number(v, 1.0, 1024.0, &a->layers);
+        ok = cli_parse_range(v, 1.0, 1024.0, &a->layers);
     else if (strcmp(o, "--packing") == 0)
-        ok = parse_number(v, 1e-6, 0.5, &a->packing);
+        ok = cli_parse_range(v, 1e-6, 0.5, &a->packing);
     else if (strcmp(o, "--period") == 0)
-        ok = parse_number(v, 4.0, 4096.0, &x) && x == floor(x) ? (a->period = (int)x, 1) : 0;
+        ok = cli_parse_range(v, 4.0, 4096.0, &x) && x == floor(x) ? (a->period = (int)x, 1) : 0;
     else if (strcmp(o, "--light") == 0)
         ok = parse_pair(v, &a->theta_light, &a->phi_light);
     else if (strcmp(o, "--paths") == 0)
-        ok = parse_number(v, 1.0, 1e12, &x) && x == floor(x) ? (a->paths = (long long)x, 1) : 0;
+        ok = cli_parse_range(v, 1.0, 1e12, &x) && x == floor(x) ? (a->paths = (long long)x, 1) : 0;
     else if (strcmp(o, "--bounces") == 0)
-        ok = parse_number(v, 1.0, 100000.0, &x) && x == floor(x) ? (a->max_bounces = (int)x, 1) : 0;
+        ok = cli_parse_range(v, 1.0, 100000.0, &x) && x == floor(x) ? (a->max_bounces = (int)x, 1) : 0;
     else if (strcmp(o, "--seed") == 0)
         ok = cli_parse_u64(v, &a->seed);
     else if (strcmp(o, "--bins") == 0)
@@ -97,7 +87,7 @@ static int parse_assembly_option(int argc, char **argv, int *i, hb_assembly *a, 
         ok = parse_pair(v, &density[0], &density[1]) && density[0] >= 0.0 && density[0] <= 1.0 && density[1] >= 0.0 &&
              density[1] <= 1.0;
     else if (strcmp(o, "--depth-bins") == 0)
-        ok = parse_number(v, 1.0, 4096.0, &x) && x == floor(x) ? (a->depth_bins = (int)x, 1) : 0;
+        ok = cli_parse_range(v, 1.0, 4096.0, &x) && x == floor(x) ? (a->depth_bins = (int)x, 1) : 0;
     else
         return 0;
     if (!ok) {
@@ -226,13 +216,6 @@ static int plot_depth(const char *path, const hb_assembly *a, const hb_assembly_
     return status;
 }
 
-static int tracing_progress(void *context, double fraction)
-{
-    (void)context;
-    fprintf(stderr, "tracing: %.0f%%\n", 100.0 * fraction);
-    return 0;
-}
-
 int cmd_assembly(int argc, char **argv)
 {
     cli_model_args args;
@@ -277,7 +260,7 @@ int cmd_assembly(int argc, char **argv)
     if ((radiance && (!r.radiance || !r.radiance_se)) || (depth && !r.depth) || (dual && (!p.dual || !p.dual_se || !p.single))) {
         fprintf(stderr, "hairbsdf assembly: out of memory\n");
         status = 1;
-    } else if (hb_assembly_trace(plan, &a, &r, args.progress ? tracing_progress : NULL, NULL,
+    } else if (hb_assembly_trace(plan, &a, &r, args.progress ? cli_tracing_progress : NULL, NULL,
                                  args.threads > 1 ? cli_parallel : NULL, &args.threads) != HB_OK) {
         fprintf(stderr, "hairbsdf assembly: %s\n", hb_last_error()->message);
         status = 2;

@@ -85,6 +85,15 @@ static double f_of_display(double v, double exposure) { return v / (1.0 - v) / e
 uint8_t *figure_frame(const uint8_t *panels_rgb8, int panel_width, int height, int panels, const char *caption,
                       const char *const *titles, double exposure, int *out_width, int *out_height)
 {
+    static const figure_axes lat_long = { "PHI_O (DEGREES)", "THETA_O", "F", -180.0, 180.0, 90.0, -90.0 };
+    return figure_frame_axes(panels_rgb8, panel_width, height, panels, caption, titles, &lat_long, exposure, out_width,
+                             out_height);
+}
+
+uint8_t *figure_frame_axes(const uint8_t *panels_rgb8, int panel_width, int height, int panels, const char *caption,
+                           const char *const *titles, const figure_axes *axes, double exposure, int *out_width,
+                           int *out_height)
+{
     /* rows above the panels: the caption, the panels' titles, the axis labels */
     int scale = panel_width >= 400 ? 2 : 1, line = 9 * scale, char_w = 6 * scale;
     int left = 5 * char_w, right = 2 * char_w + 10 * char_w, top = 3 * line + 2 * scale, bottom = 3 * line;
@@ -103,28 +112,27 @@ uint8_t *figure_frame(const uint8_t *panels_rgb8, int panel_width, int height, i
                    (size_t)panel_width * 3);
         if (titles && titles[p])
             draw_text(&c, p ? x0 : 2 * scale, 2 * scale + line, titles[p]);
-        /* phi_o ticks: -180 .. 180 degrees across the panel, -pi at the left edge */
+        /* x ticks: x_left at the panel's left edge to x_right at its right */
         for (int k = 0; k <= 4; k++) {
             int x = x0 + (int)lrint((double)k / 4.0 * (panel_width - 1));
             for (int d = 1; d <= 3 * scale; d++)
                 put(&c, x, top + height + d, 230);
-            char label[8];
-            snprintf(label, sizeof label, "%d", -180 + 90 * k);
+            char label[16];
+            snprintf(label, sizeof label, "%g", axes->x_left + (axes->x_right - axes->x_left) * k / 4.0);
             draw_tick_label(&c, x, top + height + 4 * scale, label, 1);
         }
-        char axis[] = "PHI_O (DEGREES)";
-        draw_tick_label(&c, x0 + panel_width / 2, top + height + 4 * scale + line, axis, 1);
+        draw_tick_label(&c, x0 + panel_width / 2, top + height + 4 * scale + line, axes->x_label, 1);
     }
-    /* theta_o ticks: 90 at the top to -90 at the bottom */
+    /* y ticks: y_top at the top to y_bottom at the bottom */
     for (int k = 0; k <= 4; k++) {
         int y = top + (int)lrint((double)k / 4.0 * (height - 1));
         for (int d = 1; d <= 3 * scale; d++)
             put(&c, left - d, y, 230);
-        char label[8];
-        snprintf(label, sizeof label, "%d", 90 - 45 * k);
+        char label[16];
+        snprintf(label, sizeof label, "%g", axes->y_top + (axes->y_bottom - axes->y_top) * k / 4.0);
         draw_tick_label(&c, left - 4 * scale, y - 3 * scale, label, 0);
     }
-    draw_text(&c, scale, top - line - scale, "THETA_O");
+    draw_text(&c, scale, top - line - scale, axes->y_label);
     /* the colour scale: the tone curve from f = 0 (bottom) to 95% of white (top), with f at ticks */
     int bar_x = c.width - right + char_w, bar_w = 2 * char_w;
     for (int y = 0; y < height; y++) {
@@ -144,7 +152,7 @@ uint8_t *figure_frame(const uint8_t *panels_rgb8, int panel_width, int height, i
             put(&c, bar_x + bar_w + d, y, 230);
         draw_text(&c, bar_x + bar_w + 3 * scale, y - 3 * scale, label);
     }
-    draw_text(&c, bar_x, top - line - scale, "F");
+    draw_text(&c, bar_x, top - line - scale, axes->value_label);
     *out_width = c.width;
     *out_height = c.height;
     return c.rgb;

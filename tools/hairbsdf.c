@@ -16,6 +16,7 @@ static void usage(FILE *to)
             "  furnace   white-furnace energy against theta_o, in total, by lobe or by order (--svg plots it)\n"
             "  dual      dual-scattering terms (Zinke 2008) against the light's inclination, as CSV\n"
             "  assembly  light traced through a slab or bundle of fibres: reflected, transmitted, by order\n"
+            "  tress     a bundle of fibres seen from the side, traced and by dual scattering (PNG)\n"
             "  dump      a lat-long image of f over all w_o for one w_i (PFM, EXR or PNG), or two side by side\n"
             "  plan      what a plan simulates, skipped and costs (with --tolerance X or --budget-ns X: what it chose)\n"
             "  bake      the table an engine bakes for a material (dFH11 N_p, HHH22 TT+TRT), binary or EXR\n"
@@ -71,6 +72,8 @@ static int run(int argc, char **argv)
         return cmd_dual(argc - 1, argv + 1);
     if (strcmp(cmd, "assembly") == 0)
         return cmd_assembly(argc - 1, argv + 1);
+    if (strcmp(cmd, "tress") == 0)
+        return cmd_tress(argc - 1, argv + 1);
     if (strcmp(cmd, "plan") == 0)
         return cmd_plan(argc - 1, argv + 1);
     if (strcmp(cmd, "bake") == 0)

@@ -49,4 +49,12 @@ hb_status hb_assembly_check(const char *call, const hb_assembly *a);
 /* Where a ray from inside leaves the assembly (the slab's faces, the bundle's circle), along it. */
 double hb_fibres_exit(const hb_fibres *f, const hb_ray2 *ray);
 
+/* hb_assembly_trace that also tallies hb_assembly_render's traced picture (image NULL: none;
+ * src/assembly/trace.c), and the dual-scattering picture (src/assembly/dual_view.c). */
+hb_status hb_assembly_trace_image(const hb_plan *plan, const hb_assembly *a, hb_assembly_result *result,
+                                  const hb_assembly_image *image, hb_progress_fn progress, void *progress_context,
+                                  hb_parallel_fn parallel, void *parallel_context);
+hb_status hb_assembly_dual_image(const hb_plan *plan, const hb_dual_table *table, const hb_assembly *a,
+                                 const hb_assembly_image *image);
+
 #endif

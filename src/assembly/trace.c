@@ -30,6 +30,7 @@ typedef struct tally {
     double side[2][3], side2[2][3], absorbed[3], absorbed2[3], unfinished[3];
     double order[2][HB_ASSEMBLY_ORDERS][3], order2[2][HB_ASSEMBLY_ORDERS][3];
     double *bins, *bins2, *depth; /* 2 theta_bins phi_bins 3; the same; depth_bins DEPTH_ORDERS 3 */
+    double *image, *image2, *image1; /* hb_assembly_render's pixels (theta_bins columns 3): sum, squares, order 1 */
     long long events, invalid;
 } tally;
 
@@ -50,6 +51,7 @@ typedef struct run {
     double light[3];      /* w toward the light */
     double lx, lz;        /* its unit part in the x-z plane */
     unsigned long long key;
+    const hb_assembly_image *image; /* NULL: no picture */
     int slots;
     tally *tallies;
     path_state *states;
@@ -69,6 +71,33 @@ static double uniform53(unsigned long long key, unsigned long long path)
 
 /* A path's end: the light it carries leaves through `side` (0 reflected, 1 transmitted) along
  * (dx, dy, dz), or, for side -1, is still going after max_bounces; the rest of its unit was absorbed. */
+/* A path leaving toward the camera (its azimuth within half a bin of view_phi) into its pixel: the
+ * row of its theta_o, the column of the fibre it last scattered at (its centre) across the camera's
+ * view: the far field scatters from the fibre as a whole. */
+static void add_pixel(const run *r, tally *t, const path_state *s, int k)
+{
+    const hb_assembly *a = r->a;
+    const hb_assembly_image *im = r->image;
+    double phi = atan2(s->dx[k], s->dz[k]);
+    if (!(fabs(remainder(phi - im->view_phi, 2.0 * M_PI)) < M_PI / a->phi_bins))
+        return;
+    double theta = asin(fmax(-1.0, fmin(1.0, s->dy[k]))), radius = r->fibres->height;
+    double across = s->skip_x[k] * cos(im->view_phi) - s->skip_z[k] * sin(im->view_phi);
+    int i = (int)floor((theta + M_PI_2) / M_PI * a->theta_bins), j = (int)floor((across + radius) / (2.0 * radius) * im->columns);
+    i = i < 0 ? 0 : i >= a->theta_bins ? a->theta_bins - 1 : i;
+    j = j < 0 ? 0 : j >= im->columns ? im->columns - 1 : j;
+    size_t pixel = ((size_t)(a->theta_bins - 1 - i) * (size_t)im->columns + (size_t)j) * 3;
+    /* L / E = (dP / P) (E 2 R cos theta_light / E) / (dA dw), dA = (2 R / columns) cos theta_o per unit
+     * length: each path's share carries cos theta_light / cos theta_o (gather_image the rest) */
+    double projected = cos(a->theta_light) / fmax(cos(theta), 1e-6);
+    for (int c = 0; c < 3; c++) {
+        double v = s->beta[c][k] * projected;
+        t->image[pixel + c] += v, t->image2[pixel + c] += v * v;
+        if (s->order[k] == 1)
+            t->image1[pixel + c] += v;
+    }
+}
+
 static void finish(const run *r, tally *t, const path_state *s, int k, int side)
 {
     const hb_assembly *a = r->a;
@@ -94,6 +123,8 @@ static void finish(const run *r, tally *t, const path_state *s, int k, int side)
         double lost = 1.0 - v;
         t->absorbed[c] += lost, t->absorbed2[c] += lost * lost;
     }
+    if (side >= 0 && s->order[k] > 0 && r->image)
+        add_pixel(r, t, s, k);
 }
 
 static void launch(const run *r, path_state *s, int k, unsigned long long path)
@@ -304,6 +335,32 @@ static void mean_se(double sum, double sum2, double n, double *mean, double *se)
         *se = sqrt(var / n);
 }
 
+/* The pictures' pixels over every slot, as L / E: a pixel's share of the paths (each already times
+ * cos theta_light / cos theta_o) times the lit width 2 R over the pixel's width 2 R / columns and its
+ * solid angle. */
+static void gather_image(const run *r, double n)
+{
+    const hb_assembly *a = r->a;
+    const hb_assembly_image *im = r->image;
+    size_t pixels = (size_t)a->theta_bins * (size_t)im->columns * 3;
+    for (size_t k = 0; k < pixels; k++) {
+        double sum = 0.0, sum2 = 0.0, once = 0.0;
+        for (int slot = 0; slot < r->slots; slot++) /* in slot order: the same sums however the tasks ran */
+            sum += r->tallies[slot].image[k], sum2 += r->tallies[slot].image2[k], once += r->tallies[slot].image1[k];
+        int i = a->theta_bins - 1 - (int)(k / 3 / (size_t)im->columns);
+        double solid = (sin(-M_PI_2 + M_PI * (i + 1) / a->theta_bins) - sin(-M_PI_2 + M_PI * i / a->theta_bins)) * 2.0 *
+                       M_PI / a->phi_bins;
+        double scale = im->columns / solid, mean, se;
+        mean_se(sum, sum2, n, &mean, &se);
+        if (im->traced)
+            im->traced[k] = mean * scale;
+        if (im->traced_se)
+            im->traced_se[k] = se * scale;
+        if (im->traced_single)
+            im->traced_single[k] = once / n * scale;
+    }
+}
+
 static void gather(const run *r, hb_assembly_result *out)
 {
     const hb_assembly *a = r->a;
@@ -356,6 +413,8 @@ static void gather(const run *r, hb_assembly_result *out)
     }
     for (size_t k = 0; out->depth && sum.depth && k < ndepth; k++)
         out->depth[k] = sum.depth[k] / n;
+    if (r->image)
+        gather_image(r, n);
     out->events = sum.events, out->invalid = sum.invalid;
     free(sum.bins), free(sum.bins2), free(sum.depth);
 }
@@ -363,6 +422,13 @@ static void gather(const run *r, hb_assembly_result *out)
 hb_status hb_assembly_trace(const hb_plan *plan, const hb_assembly *a, hb_assembly_result *result,
                             hb_progress_fn progress, void *progress_context, hb_parallel_fn parallel,
                             void *parallel_context)
+{
+    return hb_assembly_trace_image(plan, a, result, NULL, progress, progress_context, parallel, parallel_context);
+}
+
+hb_status hb_assembly_trace_image(const hb_plan *plan, const hb_assembly *a, hb_assembly_result *result,
+                                  const hb_assembly_image *image, hb_progress_fn progress, void *progress_context,
+                                  hb_parallel_fn parallel, void *parallel_context)
 {
     hb_status st = check(plan, a, result);
     if (st != HB_OK)
@@ -374,7 +440,7 @@ hb_status hb_assembly_trace(const hb_plan *plan, const hb_assembly *a, hb_assemb
     int light = a->transport == HB_ASSEMBLY_LIGHT_TRANSPORT;
     int near = !light && hb_model_ops_of(plan->options.model)->sample_near != NULL;
     run r = { .plan = plan, .a = a, .fibres = &fibres, .near = near, .light_transport = light,
-              .dimensions = hb_plan_sample_dimensions(plan) - near };
+              .dimensions = hb_plan_sample_dimensions(plan) - near, .image = image };
     double ct = cos(a->theta_light);
     r.light[0] = sin(a->phi_light) * ct, r.light[1] = sin(a->theta_light), r.light[2] = cos(a->phi_light) * ct;
     r.lx = sin(a->phi_light), r.lz = cos(a->phi_light);
@@ -383,15 +449,20 @@ hb_status hb_assembly_trace(const hb_plan *plan, const hb_assembly *a, hb_assemb
     int part = hb_build_part((int)tasks);
     r.slots = part < MOST_SLOTS ? part : MOST_SLOTS;
     size_t nbins = (size_t)2 * a->theta_bins * a->phi_bins * 3, ndepth = (size_t)a->depth_bins * DEPTH_ORDERS * 3;
+    size_t npixels = image ? (size_t)a->theta_bins * (size_t)image->columns * 3 : 0, per_slot = 2 * nbins + ndepth + 3 * npixels;
     r.tallies = calloc((size_t)r.slots, sizeof *r.tallies);
     r.states = malloc((size_t)r.slots * sizeof *r.states);
-    double *arrays = calloc((size_t)r.slots * (2 * nbins + ndepth), sizeof(double));
+    double *arrays = calloc((size_t)r.slots * per_slot, sizeof(double));
     if (!r.tallies || !r.states || !arrays) {
         st = hb_fail(HB_ERR_NOMEM, "hb_assembly_trace: no memory for %d batches of %d paths", r.slots, BATCH);
     } else {
         for (int s = 0; s < r.slots; s++) {
-            double *base = arrays + (size_t)s * (2 * nbins + ndepth);
+            double *base = arrays + (size_t)s * per_slot;
             r.tallies[s].bins = base, r.tallies[s].bins2 = base + nbins, r.tallies[s].depth = base + 2 * nbins;
+            if (image) {
+                double *pixels = base + 2 * nbins + ndepth;
+                r.tallies[s].image = pixels, r.tallies[s].image2 = pixels + npixels, r.tallies[s].image1 = pixels + 2 * npixels;
+            }
         }
         hb_options o = { .progress = progress, .progress_context = progress_context, .parallel = parallel,
                          .parallel_context = parallel_context };
