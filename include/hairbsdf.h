@@ -754,11 +754,22 @@ typedef struct hb_dual_table hb_dual_table;
 /* Builds the table of a plan (its model, lobes and quality; its ISA for hb_dual_eval) with the density
  * factors d_f and d_b in [0, 1] (HB_DUAL_DENSITY), `thetas` in 2..4096 (64 is an engine's choice);
  * progress and parallel as hb_dual_terms_grid. HB_ERR_LIMIT when a_f >= 1 at a node (eqs. 14-15's
- * series of forward scatterings diverges: MJC03's lossless forward energy exceeds 1), naming it. */
+ * series of forward scatterings diverges: MJC03's lossless forward energy exceeds 1), naming it.
+ * A tolerance or budget plan drops the term where it adds less than the plan's target (its
+ * tolerance, or the error its budget accepts): the table's terms are then zeros, f_DS is 0, and
+ * hb_dual_table_included says so. */
 HB_API hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_f, double d_b, hb_progress_fn progress,
                                       void *progress_context, hb_parallel_fn parallel, void *parallel_context,
                                       hb_dual_table **table);
 HB_API void hb_dual_table_destroy(hb_dual_table *table);
+
+/* 1 when the table carries dual scattering, 0 when its tolerance or budget plan dropped it (or for a
+ * NULL table). *share (may be NULL) gets the largest, over the nodes and channels, of what the term
+ * adds to the fibre's own scattering as a share of its energy a_f + a_b: the local back-scattering
+ * d_b A_b, or the global term at one fibre d_f a_f (a_f + a_b + d_b A_b), whichever is larger
+ * (docs/multiple-scattering.md, "When a scene needs it"); of the terms the plan gave when built, of
+ * the file's when loaded. */
+HB_API int hb_dual_table_included(const hb_dual_table *table, double *share);
 
 /* A table as a file (docs/multiple-scattering.md, "Table files"), for an engine to bake once and load:
  * hb_dual_table_save writes it into bytes (*size gets its length; bytes NULL: the length alone;

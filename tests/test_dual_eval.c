@@ -390,6 +390,63 @@ static void test_describe(hb_test_ctx *t)
     }
 }
 
+/* A tolerance plan keeps dual scattering only where it adds at least its tolerance: the share
+ * hb_dual_table_included reports is the largest over the table's nodes of eq. 14's local term d_b A_b
+ * and the global term at one fibre, d_f a_f (a_f + a_b + d_b A_b), over a_f + a_b, recomputed here from
+ * a plain plan's terms; below the tolerance the table's terms and f_DS are zeros, and
+ * hb_plan_describe says which it is. Black and blond dFH11 fibres at tolerances 0.4 and 0.05. */
+static void test_included(hb_test_ctx *t)
+{
+    static const struct { double eumelanin, tolerance; } cases[] = { { 8.0, 0.4 }, { 8.0, 0.05 }, { 0.3, 0.4 } };
+    for (int c = 0; c < 3; c++) {
+        hb_material m;
+        hb_options o;
+        hb_material_default(&m);
+        hb_options_default(&o);
+        m.eumelanin = cases[c].eumelanin;
+        hb_plan *plain = NULL, *plan = NULL;
+        hb_error err;
+        CHECK(t, hb_plan_create(&m, &o, &plain, &err) == HB_OK, "%s", err.message);
+        o.tolerance = cases[c].tolerance;
+        CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "%s", err.message);
+        hb_dual_table *table = NULL;
+        if (plan)
+            CHECK(t, hb_dual_table_create(plan, 16, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL, &table) ==
+                         HB_OK, "%s", hb_last_error()->message);
+        if (!table) {
+            hb_plan_destroy(plain), hb_plan_destroy(plan);
+            return;
+        }
+        double share = 0.0, want = 0.0;
+        int included = hb_dual_table_included(table, &share);
+        for (int k = 0; k < 16; k++) {
+            hb_dual_terms d = { .struct_size = sizeof d };
+            hb_dual_terms_at(plan, -M_PI_2 + M_PI * (k + 0.5) / 16, HB_DUAL_DENSITY, &d);
+            for (int ch = 0; ch < 3; ch++)
+                want = fmax(want, fmax(HB_DUAL_DENSITY * d.A_b[ch],
+                                       HB_DUAL_DENSITY * d.a_f[ch] * (d.a_f[ch] + d.a_b[ch] + HB_DUAL_DENSITY * d.A_b[ch])) /
+                                      (d.a_f[ch] + d.a_b[ch]));
+        }
+        CHECK(t, fabs(share - want) <= 1e-12 * want, "share %.17g, recomputed %.17g", share, want);
+        CHECK(t, included == !(share < cases[c].tolerance), "share %g at tolerance %g: included %d", share,
+              cases[c].tolerance, included);
+        float ti[1] = { 0.3f }, pi[1] = { 0.0f }, to[1] = { 0.2f }, po[1] = { 3.0f }, n[1] = { 1.0f }, f[3][1];
+        hb_dual_eval(table, 1, (hb_angles_soa){ ti, pi, to, po }, n, NULL, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+        CHECK(t, included ? f[1][0] > 0.0f : f[1][0] == 0.0f, "f_DS %g where included is %d", f[1][0], included);
+        char text[4096];
+        hb_plan_describe(plan, text, sizeof text);
+        CHECK(t, strstr(text, included ? "multiple scattering: included" : "multiple scattering: dropped"),
+              "describe disagrees with the table (included %d): %s", included, text);
+        hb_plan_describe(plain, text, sizeof text);
+        CHECK(t, !strstr(text, "multiple scattering: included") && !strstr(text, "multiple scattering: dropped"),
+              "a plain plan decides nothing: %s", text);
+        hb_test_note(t, "eumelanin %g, tolerance %g: dual scattering adds at most %.2f of the fibre's energy: %s",
+                     cases[c].eumelanin, cases[c].tolerance, share, included ? "included" : "dropped");
+        hb_dual_table_destroy(table);
+        hb_plan_destroy(plain), hb_plan_destroy(plan);
+    }
+}
+
 const hb_test hb_tests_dual_eval[] = {
     { "dual_eval_energy", test_energy, 0 },
     { "dual_eval_isas", test_isas, 1 },
@@ -398,5 +455,6 @@ const hb_test hb_tests_dual_eval[] = {
     { "dual_eval_refusals", test_refusals, 0 },
     { "dual_eval_table_file", test_table_file, 1 },
     { "dual_describe", test_describe, 0 },
+    { "dual_included", test_included, 0 },
     { NULL, NULL, 0 },
 };

@@ -10,6 +10,7 @@
 #include "checks.h"
 #include "dual/kernels.h"
 #include "kernel/isas.h"
+#include "math/dual_scattering.h"
 #include "math/valid.h"
 #include "models/file/dual_file.h"
 
@@ -88,9 +89,38 @@ static hb_status table_finish(const char *call, hb_dual_table *t)
                 hb_dual_table_destroy(t);
                 return st;
             }
+    t->share = 0.0;
+    for (int k = 0; k < t->thetas; k++)
+        for (int c = 0; c < 3; c++)
+            t->share = fmax(t->share, hb_dual_share(t->terms[k].a_f[c], t->terms[k].a_b[c], t->terms[k].A_b[c], t->d_f,
+                                                    t->d_b));
+    t->included = t->share > 0.0; /* a file of a dropped table holds zeros */
     for (int k = 0; k < t->thetas; k++)
         node_floats(&t->terms[k], t->nodes + (size_t)k * HB_DUAL_PER_NODE);
     return HB_OK;
+}
+
+/* A tolerance or budget plan's table keeps the term only where it adds at least the plan's target. */
+static void drop_if_negligible(const hb_plan *plan, hb_dual_table *t)
+{
+    if (!plan->selection.active)
+        return;
+    double target = plan->selection.tolerance > 0.0 ? plan->selection.tolerance : plan->selection.expected_error;
+    if (!(t->share < target))
+        return;
+    t->included = 0;
+    for (int k = 0; k < t->thetas; k++) {
+        size_t size = t->terms[k].struct_size;
+        t->terms[k] = (hb_dual_terms){ .struct_size = size };
+        node_floats(&t->terms[k], t->nodes + (size_t)k * HB_DUAL_PER_NODE);
+    }
+}
+
+int hb_dual_table_included(const hb_dual_table *table, double *share)
+{
+    if (share)
+        *share = table ? table->share : 0.0;
+    return table ? table->included : 0;
 }
 
 hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_f, double d_b, hb_progress_fn progress,
@@ -114,8 +144,10 @@ hb_status hb_dual_table_create(const hb_plan *plan, int thetas, double d_f, doub
         return st;
     }
     st = table_finish(__func__, t);
-    if (st == HB_OK)
+    if (st == HB_OK) {
+        drop_if_negligible(plan, t);
         *table = t;
+    }
     return st;
 }
 

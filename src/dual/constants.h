@@ -28,6 +28,8 @@ struct hb_dual_table {
     hb_model model;       /* the plan's, and the fields section of its table files: what a saved */
     unsigned char *fields; /* table is checked against when it is loaded */
     size_t fields_size;
+    int included;  /* 0: a tolerance or budget plan dropped the term, and the terms are zeros */
+    double share;  /* the term's largest share of the fibre's energy (hb_dual_table_included) */
 };
 
 /* The table's terms at theta, the kernels' linear interpolation in double (src/dual/reference.c). */

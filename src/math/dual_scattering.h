@@ -35,4 +35,15 @@ static inline double hb_dual_back_variance(double a_f, double a_b, double beta_f
     return sigma * sigma;
 }
 
+/* What dual scattering adds to a fibre's own scattering, as a share of its energy a_f + a_b: the
+ * larger of the local back-scattering d_b A_b (fully lit) and the global term at one fibre,
+ * d_f a_f (a_f + a_b + d_b A_b), the largest over n >= 1 of d_f a_f^n (its energies), since a_f < 1. */
+static inline double hb_dual_share(double a_f, double a_b, double A_b, double d_f, double d_b)
+{
+    double own = a_f + a_b;
+    if (!(own > 0.0))
+        return 0.0;
+    return fmax(d_b * A_b, d_f * a_f * (own + d_b * A_b)) / own;
+}
+
 #endif
