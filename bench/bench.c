@@ -189,6 +189,16 @@ static void make_inputs(const hb_material *m)
     }
 }
 
+/* An OP_DUAL row's table (dual_table, the plan's 64-node one): 1, or 0 with the failure printed. */
+static int make_dual_table(const hb_plan *plan, bench_op op)
+{
+    if (op != OP_DUAL || hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL,
+                                              &dual_table) == HB_OK)
+        return 1;
+    fprintf(stderr, "bench: %s\n", hb_last_error()->message);
+    return 0;
+}
+
 static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int per_hit, row *r)
 {
     hb_plan *plan = NULL;
@@ -199,9 +209,7 @@ static int time_plan(const hb_material *m, const hb_options *o, bench_op op, int
     }
     int repeats = o->term == HB_TERM_FULL ? REPEATS / 10 : REPEATS;
     double t[REPEATS];
-    if (op == OP_DUAL && hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL,
-                                              &dual_table) != HB_OK) {
-        fprintf(stderr, "bench: %s\n", hb_last_error()->message);
+    if (!make_dual_table(plan, op)) {
         hb_plan_destroy(plan);
         return 0;
     }
@@ -859,8 +867,14 @@ static int run_once(const char *name, long repeats)
         for (int d = 0; d < HB_SAMPLE_DIMENSIONS; d++)
             streams[d] = uniforms[d];
         hb_uniforms(1, 0, BATCH, HB_SAMPLE_DIMENSIONS, streams);
+        if (!make_dual_table(plan, configs[ci].op)) {
+            hb_plan_destroy(plan);
+            return 2;
+        }
         for (long r = 0; r < repeats; r++)
             run_op(plan, configs[ci].op, configs[ci].per_hit);
+        hb_dual_table_destroy(dual_table);
+        dual_table = NULL;
         hb_plan_destroy(plan);
         return 0;
     }

@@ -10,7 +10,7 @@ bench=$1
 budgets=${2:-}
 batch=4096
 entry_points="hb_eval_angles hb_sample_angles hb_pdf_angles hb_eval_near hb_sample_near hb_pdf_near
-              hb_eval_pdf_angles hb_eval_pdf_vectors hb_eval_angles_absorption hb_eval_near_spectral hb_eval_angles_spectral"
+              hb_eval_pdf_angles hb_eval_pdf_vectors hb_eval_angles_absorption hb_eval_near_spectral hb_eval_angles_spectral hb_dual_eval"
 
 # instructions per sample of one batch of configuration $1 on ISA $2
 count() {

@@ -410,6 +410,50 @@ static void test_spectral_other_models(hb_test_ctx *t)
     }
 }
 
+/* A dFH11 reference plan's spectral f (its reference at k absorptions) is its RGB reference at each
+ * wavelength's absorption, far and near field: 8 wavelengths against a reference plan of each
+ * wavelength's absorption in every channel, float for float. */
+static void test_spectral_deon_reference(hb_test_ctx *t)
+{
+    static const double none[3] = { 0.0, 0.0, 0.0 };
+    hb_plan *plan = default_plan(t, HB_MODEL_DEON, none, HB_QUALITY_REFERENCE);
+    if (!plan)
+        return;
+    int n = t->quick ? 8 : 32;
+    random_directions(t);
+    for (int near = 0; near < 2; near++) {
+        float *fp[K], *sp[K];
+        long differ = 0;
+        for (int j = 0; j < K; j++) {
+            double s;
+            hb_melanin_absorption_spectral(0.6, 0.1, 380.0 + 400.0 * j / (K - 1), &s);
+            for (int q = 0; q < n; q++)
+                sigma[j][q] = (float)s;
+            double grey[3] = { sigma[j][0], sigma[j][0], sigma[j][0] };
+            hb_plan *reference = default_plan(t, HB_MODEL_DEON, grey, HB_QUALITY_REFERENCE);
+            if (!reference)
+                return;
+            hb_rgb_soa rgb = { g[j], g[K - 1], g[K - 1] };
+            if (near)
+                hb_eval_near(reference, (size_t)n, (hb_near_soa){ ti, pi, to, po, h }, rgb, NULL);
+            else
+                hb_eval_angles(reference, (size_t)n, (hb_angles_soa){ ti, pi, to, po }, rgb, NULL);
+            hb_plan_destroy(reference);
+        }
+        hb_spectral_absorption a = { K, (const float *const *)planes(sigma, sp, K) };
+        hb_status st = near ? hb_eval_near_spectral(plan, (size_t)n, (hb_near_soa){ ti, pi, to, po, h }, a,
+                                                    planes(f, fp, K), NULL)
+                            : hb_eval_angles_spectral(plan, (size_t)n, (hb_angles_soa){ ti, pi, to, po }, a,
+                                                      planes(f, fp, K), NULL);
+        CHECK(t, st == HB_OK, "%s", hb_last_error()->message);
+        for (int j = 0; j < K; j++) /* grey: plane K - 1 held every reference's g and b, and is the last's */
+            for (int q = 0; q < n; q++)
+                differ += f[j][q] != g[j][q];
+        CHECK(t, differ == 0, "%s: %ld values differ from the RGB reference's", near ? "near" : "far", differ);
+    }
+    hb_plan_destroy(plan);
+}
+
 /* Refusals name the problem; an invalid absorption makes an invalid sample with zeros. */
 static void test_spectral_api(hb_test_ctx *t)
 {
@@ -466,6 +510,7 @@ static void test_spectral_api(hb_test_ctx *t)
 }
 
 const hb_test hb_tests_spectral_eval[] = {
+    { "spectral_deon_reference", test_spectral_deon_reference, 0 },
     { "spectral_rgb_bits", test_spectral_rgb_bits, 1 },
     { "spectral_reference", test_spectral_reference, 1 },
     { "spectral_sampling", test_spectral_sampling, 1 },

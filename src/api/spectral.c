@@ -17,17 +17,23 @@ static void report_invalid(hb_eval_report *report, size_t invalid)
         report->invalid = invalid;
 }
 
-/* Whether the plan's model has every spectral call, in its kernels and its reference (1), or f alone by
- * its plans' kernels (0): its spectral kernels where the plan's path has them, else its per-sample
- * absorption calls three wavelengths at a time. */
-static int native_spectral(const hb_model_ops *ops)
-{
-    return ops->spectral && ops->reference->spectral;
-}
-
 static int absorbing(const hb_model_ops *ops, int near)
 {
     return near ? ops->eval_near_absorption != NULL : ops->eval_absorption != NULL;
+}
+
+/* Whether the plan takes the spectral sampler's calls (its pdf): a model with a spectral sampler, in
+ * its kernels or, for a reference plan, its reference. */
+static int samples_spectral(const hb_plan *plan, const hb_model_ops *ops)
+{
+    return ops->sample_spectral && (plan->kernels ? ops->spectral != NULL : ops->reference->sample_spectral != NULL);
+}
+
+/* Whether the plan takes a spectral f: its spectral kernels where its path has them, else its
+ * per-sample absorption calls three wavelengths at a time; for a reference plan, its reference. */
+static int evaluates_spectral(const hb_plan *plan, const hb_model_ops *ops, int near)
+{
+    return plan->kernels ? ops->spectral || absorbing(ops, near) : ops->reference->spectral != NULL;
 }
 
 /* The plan takes this spectral call (f_only: an evaluation of f, far field or near field by `near`) and
@@ -38,8 +44,8 @@ static hb_status spectral_checks(const char *call, const hb_plan *plan, size_t n
     if (!plan)
         return hb_fail_null(call, "plan");
     const hb_model_ops *ops = hb_model_ops_of(plan->options.model);
-    int by_channels = f_only && plan->kernels && (ops->spectral || absorbing(ops, near));
-    if (!(native_spectral(ops) || by_channels) || plan->options.term != HB_TERM_FULL)
+    int takes = f_only ? evaluates_spectral(plan, ops, near) : samples_spectral(plan, ops);
+    if (!takes || plan->options.term != HB_TERM_FULL)
         return hb_api_unsupported(call, plan, f_only ? "spectral evaluation" : "spectral sampling");
     if (sigma_a.wavelengths < 1 || sigma_a.wavelengths > HB_WAVELENGTHS_MAX)
         return hb_fail(HB_ERR_PARAM, "%s: sigma_a.wavelengths is %d, not in [1, %d]", call, sigma_a.wavelengths,

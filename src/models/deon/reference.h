@@ -15,11 +15,13 @@ double hb_ref_detector_direct(double beta, double x, int terms);
 double hb_ref_detector_fourier(double beta, double x, int terms);
 double hb_ref_detector(double beta, double x);
 
-/* dFH11 attenuation A(p, h) (eqs. 12-14, RGB; A[R] = 1 under eq. 12's half-angle Fresnel, which the
- * caller applies) and exit azimuth Phi(p, h) (eq. 8) at h = sin(gamma_i) for every order up to
- * pmax; A[HB_LOBE_RESIDUAL] is the sum over the orders above pmax. */
-void hb_ref_deon_node(const hb_plan *plan, double sin2_theta_d, double gamma_i, double A[HB_MAX_LOBES + 1][3],
-                      double Phi[HB_MAX_LOBES]);
+#define HB_REF_DEON_CHANNELS HB_WAVELENGTHS_MAX /* RGB's three, or a spectral call's wavelengths */
+
+/* dFH11 attenuation A(p, h) (eqs. 12-14, at k channels of absorptions sigma_a; A[R] = 1 under eq.
+ * 12's half-angle Fresnel, which the caller applies) and exit azimuth Phi(p, h) (eq. 8) at
+ * h = sin(gamma_i) for every order up to pmax; A[HB_LOBE_RESIDUAL] is the sum over the orders above pmax. */
+void hb_ref_deon_node(const hb_plan *plan, int k, const double *sigma_a, double sin2_theta_d, double gamma_i,
+                      double A[HB_MAX_LOBES + 1][HB_REF_DEON_CHANNELS], double Phi[HB_MAX_LOBES]);
 
 /* dFH11 f = sum_p M_p N_p (eqs. 7, 10-14) for the plan's lobes, N_p converged to 1e-10. */
 void hb_ref_deon(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
@@ -37,5 +39,10 @@ void hb_ref_deon_near(const hb_plan *plan, double theta_i, double phi_i, double 
 void hb_ref_deon_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double u[4],
                              double *theta_i, double *phi_i);
 double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h);
+
+/* f at k wavelengths of absorptions sigma_a (hb_*_spectral on a reference plan): the near field at h,
+ * or the far field where h is NaN; *pdf (may be NULL) 0, for dFH11 has no spectral sampler. */
+void hb_ref_deon_spectral(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                          int k, const double *sigma_a, double *f, double *pdf);
 
 #endif

@@ -34,8 +34,8 @@ static double lobe_masses(const hb_plan *plan, const double M[HB_MAX_LOBES + 1],
                           double mass[HB_MAX_LOBES + 1], double Phi[HB_MAX_LOBES])
 {
     const hb_deon *d = &hb_deon_of(plan)->kernel;
-    double A[HB_MAX_LOBES + 1][3], total = 0.0;
-    hb_ref_deon_node(plan, sin2_theta_d, gamma_i, A, Phi);
+    double A[HB_MAX_LOBES + 1][HB_REF_DEON_CHANNELS], total = 0.0;
+    hb_ref_deon_node(plan, 3, plan->sigma_a, sin2_theta_d, gamma_i, A, Phi);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         mass[p] = hb_deon_lobe_on(d, p) ? M[d->m_group[p]] * (A[p][0] + A[p][1] + A[p][2]) / 3.0 : 0.0;
         total += mass[p];
@@ -200,5 +200,5 @@ static void deon_eval(const hb_plan *plan, double theta_i, double phi_i, double 
 
 const hb_reference_ops hb_ref_deon_ops = {
     .eval = deon_eval, .eval_near = hb_ref_deon_near, .sample = hb_ref_deon_sample, .pdf = hb_ref_deon_pdf,
-    .sample_near = hb_ref_deon_sample_near, .pdf_near = hb_ref_deon_pdf_near,
+    .sample_near = hb_ref_deon_sample_near, .pdf_near = hb_ref_deon_pdf_near, .spectral = hb_ref_deon_spectral,
 };
