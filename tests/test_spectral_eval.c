@@ -410,18 +410,21 @@ static void test_spectral_other_models(hb_test_ctx *t)
     }
 }
 
-/* A dFH11 reference plan's spectral f (its reference at k absorptions) is its RGB reference at each
- * wavelength's absorption, far and near field: 8 wavelengths against a reference plan of each
- * wavelength's absorption in every channel, float for float. */
-static void test_spectral_deon_reference(hb_test_ctx *t)
+/* A reference plan's spectral f (its reference at k absorptions) is its RGB reference at each
+ * wavelength's absorption: dFH11 far and near field, MJC03 far field; 8 wavelengths against a
+ * reference plan of each wavelength's absorption in every channel, float for float. */
+static void test_spectral_reference_plans(hb_test_ctx *t)
 {
     static const double none[3] = { 0.0, 0.0, 0.0 };
-    hb_plan *plan = default_plan(t, HB_MODEL_DEON, none, HB_QUALITY_REFERENCE);
-    if (!plan)
-        return;
+    static const struct { hb_model model; int near; const char *name; } cases[] = {
+        { HB_MODEL_DEON, 0, "dFH11 far" }, { HB_MODEL_DEON, 1, "dFH11 near" }, { HB_MODEL_MARSCHNER, 0, "MJC03 far" } };
     int n = t->quick ? 8 : 32;
     random_directions(t);
-    for (int near = 0; near < 2; near++) {
+    for (int c = 0; c < 3; c++) {
+        hb_plan *plan = default_plan(t, cases[c].model, none, HB_QUALITY_REFERENCE);
+        if (!plan)
+            return;
+        int near = cases[c].near;
         float *fp[K], *sp[K];
         long differ = 0;
         for (int j = 0; j < K; j++) {
@@ -430,7 +433,7 @@ static void test_spectral_deon_reference(hb_test_ctx *t)
             for (int q = 0; q < n; q++)
                 sigma[j][q] = (float)s;
             double grey[3] = { sigma[j][0], sigma[j][0], sigma[j][0] };
-            hb_plan *reference = default_plan(t, HB_MODEL_DEON, grey, HB_QUALITY_REFERENCE);
+            hb_plan *reference = default_plan(t, cases[c].model, grey, HB_QUALITY_REFERENCE);
             if (!reference)
                 return;
             hb_rgb_soa rgb = { g[j], g[K - 1], g[K - 1] };
@@ -449,9 +452,9 @@ static void test_spectral_deon_reference(hb_test_ctx *t)
         for (int j = 0; j < K; j++) /* grey: plane K - 1 held every reference's g and b, and is the last's */
             for (int q = 0; q < n; q++)
                 differ += f[j][q] != g[j][q];
-        CHECK(t, differ == 0, "%s: %ld values differ from the RGB reference's", near ? "near" : "far", differ);
+        CHECK(t, differ == 0, "%s: %ld values differ from the RGB reference's", cases[c].name, differ);
+        hb_plan_destroy(plan);
     }
-    hb_plan_destroy(plan);
 }
 
 /* Refusals name the problem; an invalid absorption makes an invalid sample with zeros. */
@@ -510,7 +513,7 @@ static void test_spectral_api(hb_test_ctx *t)
 }
 
 const hb_test hb_tests_spectral_eval[] = {
-    { "spectral_deon_reference", test_spectral_deon_reference, 0 },
+    { "spectral_reference_plans", test_spectral_reference_plans, 0 },
     { "spectral_rgb_bits", test_spectral_rgb_bits, 1 },
     { "spectral_reference", test_spectral_reference, 1 },
     { "spectral_sampling", test_spectral_sampling, 1 },

@@ -33,7 +33,8 @@ static int samples_spectral(const hb_plan *plan, const hb_model_ops *ops)
  * per-sample absorption calls three wavelengths at a time; for a reference plan, its reference. */
 static int evaluates_spectral(const hb_plan *plan, const hb_model_ops *ops, int near)
 {
-    return plan->kernels ? ops->spectral || absorbing(ops, near) : ops->reference->spectral != NULL;
+    return plan->kernels ? ops->spectral || absorbing(ops, near)
+                         : ops->reference->spectral && (!near || ops->reference->eval_near);
 }
 
 /* The plan takes this spectral call (f_only: an evaluation of f, far field or near field by `near`) and

@@ -104,8 +104,8 @@ static ref_index index_of(double eta, double theta_d, int p)
 }
 
 /* A(p, h) at gamma_i (the survey's "Finding A"), with the plan's absorption variant. */
-static void attenuation(const hb_plan *plan, int p, const ref_index *ix, const double mu[3], double gamma_i,
-                        double A[3])
+static void attenuation(const hb_plan *plan, int p, const ref_index *ix, int k, const double *mu, double gamma_i,
+                        double *A)
 {
     double fe = hb_ref_marschner_fresnel(ix->eta_perp, ix->eta_par, gamma_i);
     double gamma_t = asin(sin(gamma_i) / ix->eta_perp);
@@ -114,12 +114,12 @@ static void attenuation(const hb_plan *plan, int p, const ref_index *ix, const d
         base *= hb_ref_marschner_fresnel(1.0 / ix->eta_perp, 1.0 / ix->eta_par, gamma_t);
     double path = plan->options.absorption == HB_ABSORPTION_PAPER ? 2.0 * (1.0 + cos(2.0 * gamma_t))
                                                                   : 2.0 * cos(gamma_t);
-    for (int c = 0; c < 3; c++)
+    for (int c = 0; c < k; c++)
         A[c] = base * exp(-p * mu[c] * path);
 }
 
 /* MJC03 sec. 4.3 caustic fade and glint, the same formulas as the kernels' caustic_marschner. */
-static void caustic(const hb_plan *plan, int p, const ref_index *ix, const double mu[3], double phi, double N[3])
+static void caustic(const hb_plan *plan, int p, const ref_index *ix, int k, const double *mu, double phi, double *N)
 {
     const hb_material *m = &plan->material;
     double b = fmax(ix->cubic_b, 0.0), gamma_c = sqrt(b / (-3.0 * ix->cubic_a));
@@ -133,15 +133,15 @@ static void caustic(const hb_plan *plan, int p, const ref_index *ix, const doubl
     double d_plus = remainder(centred - phi_c, 2.0 * M_PI), d_minus = remainder(centred + phi_c, 2.0 * M_PI);
     double w2 = 2.0 * m->caustic_width * m->caustic_width;
     double g_plus = exp(-d_plus * d_plus / w2), g_minus = exp(-d_minus * d_minus / w2);
-    double A[3];
-    attenuation(plan, p, ix, mu, gamma_c, A);
+    double A[HB_REF_MARSCHNER_CHANNELS];
+    attenuation(plan, p, ix, k, mu, gamma_c, A);
     double glint = t * m->glint_scale * dh * (g_plus + g_minus) / (m->caustic_width * sqrt(2.0 * M_PI));
-    for (int c = 0; c < 3; c++)
+    for (int c = 0; c < k; c++)
         N[c] = N[c] * (1.0 - t * g_plus) * (1.0 - t * g_minus) + glint * A[c];
 }
 
-void hb_ref_marschner_azimuthal(const hb_plan *plan, int p, double theta_d, double phi, double cos_phi_sum,
-                                double N[3])
+void hb_ref_marschner_azimuthal(const hb_plan *plan, int p, int k, const double *sigma_a, double theta_d, double phi,
+                                double cos_phi_sum, double *N)
 {
     double eta = plan->material.eta;
     if (p == 2 && hb_marschner_of(plan)->kernel.eccentric) {
@@ -149,46 +149,65 @@ void hb_ref_marschner_azimuthal(const hb_plan *plan, int p, double theta_d, doub
     }
     ref_index ix = index_of(eta, theta_d, p);
     double cos_theta_t = sqrt(1.0 - sin(theta_d) * sin(theta_d) / (plan->material.eta * plan->material.eta));
-    double mu[3];
-    for (int c = 0; c < 3; c++)
-        mu[c] = plan->sigma_a[c] / cos_theta_t;
-    N[0] = N[1] = N[2] = 0.0;
+    double mu[HB_REF_MARSCHNER_CHANNELS];
+    for (int c = 0; c < k; c++)
+        mu[c] = sigma_a[c] / cos_theta_t, N[c] = 0.0;
     double roots[HB_REF_MAX_ROOTS];
     int n = p == 0 ? 1 : hb_ref_marschner_roots(p, ix.eta_perp, phi, 0, roots);
     if (p == 0) /* gamma_i = -phi / 2 */
         roots[0] = -0.5 * remainder(phi, 2.0 * M_PI);
-    for (int k = 0; k < n; k++) {
-        double weight = cos(roots[k]) / (2.0 * fmax(fabs(exit_slope(p, ix.eta_perp, roots[k], 0)), 1e-6));
-        double A[3];
+    for (int r = 0; r < n; r++) {
+        double weight = cos(roots[r]) / (2.0 * fmax(fabs(exit_slope(p, ix.eta_perp, roots[r], 0)), 1e-6));
+        double A[HB_REF_MARSCHNER_CHANNELS];
         if (p == 0)
-            A[0] = A[1] = A[2] = hb_ref_marschner_fresnel(ix.eta_perp, ix.eta_par, roots[k]);
+            for (int c = 0; c < k; c++)
+                A[c] = hb_ref_marschner_fresnel(ix.eta_perp, ix.eta_par, roots[r]);
         else
-            attenuation(plan, p, &ix, mu, roots[k], A);
-        for (int c = 0; c < 3; c++)
+            attenuation(plan, p, &ix, k, mu, roots[r], A);
+        for (int c = 0; c < k; c++)
             N[c] += weight * A[c];
     }
     if (p > 0)
-        caustic(plan, p, &ix, mu, phi, N);
+        caustic(plan, p, &ix, k, mu, phi, N);
 }
 
-void hb_ref_marschner(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
+/* f at k channels of absorptions sigma_a. */
+static void full(const hb_plan *plan, int k, const double *sigma_a, double theta_i, double phi_i, double theta_o,
+                 double phi_o, double *f)
 {
     unsigned lobes = hb_marschner_of(plan)->kernel.lobes;
     double theta_d = 0.5 * (theta_o - theta_i), theta_h = 0.5 * (theta_i + theta_o);
     double phi = remainder(phi_o - phi_i, 2.0 * M_PI), cos_phi_sum = cos(phi_i + phi_o);
-    f[0] = f[1] = f[2] = 0.0;
+    for (int c = 0; c < k; c++)
+        f[c] = 0.0;
     for (int p = 0; p < 3; p++) {
         if (!(lobes >> p & 1u))
             continue;
-        double N[3], beta = hb_marschner_of(plan)->beta[p], x = theta_h - hb_marschner_of(plan)->mean[p];
+        double N[HB_REF_MARSCHNER_CHANNELS], beta = hb_marschner_of(plan)->beta[p], x = theta_h - hb_marschner_of(plan)->mean[p];
         double M = exp(-x * x / (2.0 * beta * beta)) / (beta * sqrt(2.0 * M_PI)); /* M_p = g(alpha_p, beta_p; theta_h) */
-        hb_ref_marschner_azimuthal(plan, p, theta_d, phi, cos_phi_sum, N);
-        for (int c = 0; c < 3; c++)
+        hb_ref_marschner_azimuthal(plan, p, k, sigma_a, theta_d, phi, cos_phi_sum, N);
+        for (int c = 0; c < k; c++)
             f[c] += M * N[c];
     }
     double cos_d = cos(theta_d), projection = fmax(cos(theta_i), 0.0) / fmax(cos_d * cos_d, 1e-8);
-    for (int c = 0; c < 3; c++)
+    for (int c = 0; c < k; c++)
         f[c] *= projection;
+}
+
+void hb_ref_marschner(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3])
+{
+    full(plan, 3, plan->sigma_a, theta_i, phi_i, theta_o, phi_o, f);
+}
+
+/* The spectral calls on a reference plan: the far field (MJC03 has no near field: h is NaN) at k
+ * wavelengths; no spectral sampler, so *pdf is 0. */
+static void marschner_spectral(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
+                               int k, const double *sigma_a, double *f, double *pdf)
+{
+    (void)h;
+    full(plan, k, sigma_a, theta_i, phi_i, theta_o, phi_o, f);
+    if (pdf)
+        *pdf = 0.0;
 }
 
 /* The plan's term: the R lobe's longitudinal term alone (HB_TERM_LONGITUDINAL), or the whole of f.
@@ -203,4 +222,4 @@ static void marschner_eval(const hb_plan *plan, double theta_i, double phi_i, do
         hb_ref_marschner(plan, theta_i, phi_i, theta_o, phi_o, f);
 }
 
-const hb_reference_ops hb_ref_marschner_ops = { .eval = marschner_eval };
+const hb_reference_ops hb_ref_marschner_ops = { .eval = marschner_eval, .spectral = marschner_spectral };

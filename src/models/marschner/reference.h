@@ -15,9 +15,12 @@ double hb_ref_marschner_longitudinal(double beta, double mean, double theta_i, d
 
 /* MJC03 full model f = sum_p M_p N_p cos(theta_i) / cos^2(theta_d) for the plan's lobes. */
 void hb_ref_marschner(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double f[3]);
-/* N_p of MJC03 (caustic treatment included) at theta_d and phi; cos_phi_sum = cos(phi_i + phi_o) for eta*. */
-void hb_ref_marschner_azimuthal(const hb_plan *plan, int p, double theta_d, double phi, double cos_phi_sum,
-                                double N[3]);
+#define HB_REF_MARSCHNER_CHANNELS HB_WAVELENGTHS_MAX /* RGB's three, or a spectral call's wavelengths */
+
+/* N_p of MJC03 (caustic treatment included) at theta_d and phi for k channels of absorptions sigma_a;
+ * cos_phi_sum = cos(phi_i + phi_o) for eta*. */
+void hb_ref_marschner_azimuthal(const hb_plan *plan, int p, int k, const double *sigma_a, double theta_d, double phi,
+                                double cos_phi_sum, double *N);
 /* The survey's corrected Fresnel F(eta', eta'', angle): eta' for the perpendicular, eta'' for the
  * parallel component; F(1/eta', 1/eta'', gamma_t) inside the fibre. */
 double hb_ref_marschner_fresnel(double eta_perp, double eta_par, double angle);
