@@ -93,7 +93,7 @@ static void build_task(void *context, int index)
             v[5] = t.beta_b2[c];
         }
         if (st != HB_OK)
-            hb_plan_fail(&b->errors[index], st, "%s", hb_last_error()->message);
+            b->errors[index] = *hb_last_error(); /* the terms' refusal, on this task's thread */
     }
     hb_plan_destroy(plan);
     b->status[index] = st;
@@ -275,6 +275,14 @@ static hb_status engine_terms(const hb_dual_engine *e, double theta, double roug
     return st;
 }
 
+/* The thread's last failure again with the call's name before it (copied first: the message is
+ * formatted into the same buffer). */
+static hb_status prefixed(const char *call, hb_status st)
+{
+    hb_error last = *hb_last_error();
+    return hb_fail(st, "%s: %s", call, last.message);
+}
+
 hb_status hb_dual_engine_terms(const hb_dual_engine *engine, double theta, double roughness, const double sigma_a[3],
                                hb_dual_terms *terms)
 {
@@ -292,7 +300,7 @@ hb_status hb_dual_engine_terms(const hb_dual_engine *engine, double theta, doubl
     hb_dual_terms t = { .struct_size = sizeof t };
     hb_status st = engine_terms(engine, theta, roughness, sigma_a, &t);
     if (st != HB_OK)
-        return hb_fail(st, "%s: %s", __func__, hb_last_error()->message);
+        return prefixed(__func__, st);
     *terms = t;
     return HB_OK;
 }
@@ -361,7 +369,7 @@ hb_status hb_dual_engine_table(const hb_dual_engine *engine, const hb_plan *plan
         st = node_terms(engine, k, look.longitudinal, sigma_a, &terms[k]);
     }
     st = st == HB_OK ? hb_dual_table_from_terms(plan, engine->axes.thetas, terms, d_f, engine->d_b, table)
-                     : hb_fail(st, "%s: %s", __func__, hb_last_error()->message);
+                     : prefixed(__func__, st);
     free(terms);
     return st;
 }
