@@ -1,6 +1,7 @@
 /* hb_plan_describe: what a plan simulates, what it skipped and why, and what it is expected to cost. */
 #include <math.h>
 
+#include "dual_sums.h"
 #include "math/dual_scattering.h"
 #include "plan/creation.h"
 
@@ -32,8 +33,7 @@ static void describe_multiple_scattering(hb_text *t, const hb_plan *plan)
     if (!plan->selection.active)
         return;
     /* hb_dual_table_create's rule (src/api/dual_table.c) on its own nodes; here at 16 inclinations */
-    double share = 0.0, plan_target = plan->selection.tolerance > 0.0 ? plan->selection.tolerance
-                                                                      : plan->selection.expected_error;
+    double share = 0.0, plan_target = hb_dual_drop_target(plan);
     for (int k = 0; k < DESCRIBED_THETAS; k++) {
         if (hb_dual_terms_at(plan, -M_PI_2 + M_PI * (k + 0.5) / DESCRIBED_THETAS, HB_DUAL_DENSITY, &d) != HB_OK)
             return;

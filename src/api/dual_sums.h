@@ -18,4 +18,8 @@ void hb_dual_terms_of_sums(const hb_dual_sums *sums, double d_b, hb_dual_terms *
  * struct_size known, theta in (-pi/2, pi/2), d_b in [0, 1]; words a failure for `call`. */
 hb_status hb_dual_check_call(const char *call, const hb_plan *plan, double theta, double d_b, const hb_dual_terms *terms);
 
+/* The share below which a tolerance or budget plan drops dual scattering (its tolerance, or the error
+ * its budget accepts); 0 for other plans, which keep it (src/api/dual_table.c). */
+double hb_dual_drop_target(const hb_plan *plan);
+
 #endif

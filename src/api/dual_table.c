@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "checks.h"
+#include "dual_sums.h"
 #include "dual/kernels.h"
 #include "kernel/isas.h"
 #include "math/dual_scattering.h"
@@ -100,13 +101,17 @@ static hb_status table_finish(const char *call, hb_dual_table *t)
     return HB_OK;
 }
 
+double hb_dual_drop_target(const hb_plan *plan)
+{
+    if (!plan->selection.active)
+        return 0.0;
+    return plan->selection.tolerance > 0.0 ? plan->selection.tolerance : plan->selection.expected_error;
+}
+
 /* A tolerance or budget plan's table keeps the term only where it adds at least the plan's target. */
 static void drop_if_negligible(const hb_plan *plan, hb_dual_table *t)
 {
-    if (!plan->selection.active)
-        return;
-    double target = plan->selection.tolerance > 0.0 ? plan->selection.tolerance : plan->selection.expected_error;
-    if (!(t->share < target))
+    if (!(t->share < hb_dual_drop_target(plan)))
         return;
     t->included = 0;
     for (int k = 0; k < t->thetas; k++) {
