@@ -876,6 +876,17 @@ HB_API const float *hb_dual_engine_nodes(const hb_dual_engine *engine, size_t *c
  * roughness_max, absorptions, 1 - exp(-absorption_max), d_f and the table's d_b. */
 HB_API hb_status hb_dual_engine_constants(const hb_dual_engine *engine, double d_f, float constants[8]);
 
+/* The engine-wide table as a file (docs/multiple-scattering.md, "Engine table files"): its axes, d_b,
+ * the base plan's fields and every node's six terms in double, so that a tool bakes it once and an
+ * engine loads it. hb_dual_engine_save writes it into bytes (*size gets its length; bytes NULL: the
+ * length alone; HB_ERR_BUFFER when capacity is smaller). hb_dual_engine_load builds the engine from
+ * it for the same base and options as hb_dual_engine_create's (the file's fields must equal those of
+ * their plan; HB_ERR_FILE names the first that differs, or the damage). Loading equals the saved
+ * engine node for node. */
+HB_API hb_status hb_dual_engine_save(const hb_dual_engine *engine, void *bytes, size_t capacity, size_t *size);
+HB_API hb_status hb_dual_engine_load(const hb_material *base, const hb_options *options, const void *bytes,
+                                     size_t size, hb_dual_engine **engine, hb_error *error);
+
 /* Light in a fibre assembly, traced fibre by fibre (docs/multiple-scattering.md): the ground truth the
  * dual-scattering terms and the engines' tables approximate. Parallel circular fibres of radius 1
  * along the frame's y, placed at random without overlap (random sequential addition from the seed),

@@ -137,6 +137,9 @@ extern const hb_test hb_tests_dual[];
 extern const hb_test hb_tests_assembly[];
 extern const hb_test hb_tests_dual_eval[];
 extern const hb_test hb_tests_dual_engine[];
+/* The engine-wide dual-scattering table of the default material's family at these axes, d_b 0.7
+ * (test_dual_engine.c); NULL after a failed check. */
+hb_dual_engine *hb_test_dual_engine(hb_test_ctx *t, const hb_dual_engine_axes *axes);
 extern const hb_test hb_tests_assembly_dual[];
 extern const hb_test hb_tests_spectral[];
 extern const hb_test hb_tests_spectral_eval[];

@@ -13,6 +13,19 @@ static int run_tool(hb_test_ctx *t, const char *args, const char *input, hb_tool
     return hb_test_run_tool(t, args, input, strlen(input), r);
 }
 
+/* A temporary file with the suffix into path, then the tool run with args_format's %s as that path. */
+static int run_tool_writing(hb_test_ctx *t, const char *suffix, char *path, size_t path_size, const char *args_format,
+                            hb_tool_run *r)
+{
+    char args[1024];
+    if (hb_test_temp_file(path, path_size, suffix) != 0) {
+        CHECK(t, 0, "no temporary file in %s", hb_test_temp_dir());
+        return 0;
+    }
+    snprintf(args, sizeof args, args_format, path);
+    return run_tool(t, args, "", r);
+}
+
 static void test_eval_matches_library(hb_test_ctx *t)
 {
     const float rows[][4] = { { 0.3f, 0.0f, -0.3f, 0.5f }, { 0.3f, 0.0f, -0.2f, 0.5f }, { -1.2f, 1.0f, 1.1f, -2.0f },
@@ -486,6 +499,19 @@ static void test_plot_commands(hb_test_ctx *t)
     unlink(svg_path);
 }
 
+/* dFH11's default material with eumelanin 0.3, default options; NULL if it is refused. */
+static hb_plan *blond_plan(void)
+{
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.eumelanin = 0.3;
+    hb_plan *plan = NULL;
+    hb_plan_create(&m, &o, &plan, NULL);
+    return plan;
+}
+
 /* eval with an n column (and v) prints f and then the dual-scattering term, as hb_dual_eval gives it
  * from the plan's 64-node table; an invalid v writes zeros; pdf has no such column. */
 static void test_eval_dual_columns(hb_test_ctx *t)
@@ -495,14 +521,8 @@ static void test_eval_dual_columns(hb_test_ctx *t)
                                                           "0.3,0,-0.2,2.9,5,0\n0.3,0,-0.2,0.4,2,1.5\n",
                   &r))
         return;
-    hb_material m;
-    hb_options o;
-    hb_material_default(&m);
-    hb_options_default(&o);
-    m.eumelanin = 0.3;
-    hb_plan *plan = NULL;
+    hb_plan *plan = blond_plan();
     hb_dual_table *table = NULL;
-    hb_plan_create(&m, &o, &plan, NULL);
     CHECK(t, plan && hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL, &table) == HB_OK,
           "table");
     float ti[2] = { 0.3f, 0.3f }, pi[2] = { 0, 0 }, to[2] = { -0.2f, -0.2f }, po[2] = { 0.4f, 2.9f }, n[2] = { 2, 5 },
@@ -526,13 +546,8 @@ static void test_eval_dual_columns(hb_test_ctx *t)
 static void test_dual_save(hb_test_ctx *t)
 {
     char path[600], args[1024];
-    if (hb_test_temp_file(path, sizeof path, ".hbdt") != 0) {
-        CHECK(t, 0, "no temporary file in %s", hb_test_temp_dir());
-        return;
-    }
     hb_tool_run r, own;
-    snprintf(args, sizeof args, "dual --eumelanin 0.3 --save \"%s\"", path);
-    if (!run_tool(t, args, "", &r))
+    if (!run_tool_writing(t, ".hbdt", path, sizeof path, "dual --eumelanin 0.3 --save \"%s\"", &r))
         return;
     CHECK(t, r.status == 0 && r.out[0] == '\0', "dual --save: %d %s", r.status, r.err);
     const char *rows = "theta_i,phi_i,theta_o,phi_o,n\n0.3,0,-0.2,0.4,2\n-0.6,1,0.5,2.9,7\n";
@@ -544,6 +559,64 @@ static void test_dual_save(hb_test_ctx *t)
     snprintf(args, sizeof args, "eval --eumelanin 1.3 --dual-table \"%s\"", path);
     run_tool(t, args, rows, &r);
     CHECK(t, r.status == 2 && strstr(r.err, "eumelanin"), "another material: %d %s", r.status, r.err);
+    unlink(path);
+}
+
+/* dual --engine --save writes the engine-wide table eval --dual-engine loads: eval's f_DS is that of
+ * the library's own engine of the same axes, looked up for the material; without --save the nodes
+ * print as CSV; a file of another family and a malformed --sampled are refused. */
+static void test_dual_engine_save(hb_test_ctx *t)
+{
+    char path[600], args[1024];
+    hb_tool_run r;
+    if (!run_tool_writing(t, ".hbde", path, sizeof path, "dual --engine --thetas 8 --roughnesses 2 --absorptions 3 --save \"%s\"", &r))
+        return;
+    CHECK(t, r.status == 0 && r.out[0] == '\0', "dual --engine --save: %d %s", r.status, r.err);
+    hb_dual_engine_axes axes;
+    hb_dual_engine_axes_default(&axes);
+    axes.thetas = 8, axes.roughnesses = 2, axes.absorptions = 3;
+    hb_dual_engine *engine = hb_test_dual_engine(t, &axes);
+    hb_dual_table *table = NULL;
+    hb_plan *plan = blond_plan();
+    CHECK(t, plan && hb_dual_engine_table(engine, plan, HB_DUAL_DENSITY, &table) == HB_OK, "%s", hb_last_error()->message);
+    float ti[2] = { 0.3f, -0.6f }, pi[2] = { 0.0f, 1.0f }, to[2] = { -0.2f, 0.5f }, po[2] = { 0.4f, 2.9f }, n[2] = { 2, 7 };
+    float f[3][2] = { { 0 } };
+    if (table)
+        hb_dual_eval(table, 2, (hb_angles_soa){ ti, pi, to, po }, n, NULL, (hb_rgb_soa){ f[0], f[1], f[2] }, NULL);
+    snprintf(args, sizeof args, "eval --eumelanin 0.3 --dual-engine \"%s\"", path);
+    run_tool(t, args, "theta_i,phi_i,theta_o,phi_o,n\n0.3,0,-0.2,0.4,2\n-0.6,1,0.5,2.9,7\n", &r);
+    const char *row = r.out;
+    for (int k = 0; k < 2 && r.status == 0; k++) {
+        float x[6] = { 0 };
+        CHECK(t, sscanf(row, "%g,%g,%g,%g,%g,%g", &x[0], &x[1], &x[2], &x[3], &x[4], &x[5]) == 6 && x[3] == f[0][k] &&
+                     x[4] == f[1][k] && x[5] == f[2][k] && f[1][k] > 0.0f,
+              "row %d: %.60s, the library's f_DS %.9g %.9g %.9g", k, row, f[0][k], f[1][k], f[2][k]);
+        row = strchr(row, '\n') ? strchr(row, '\n') + 1 : "";
+    }
+    CHECK(t, r.status == 0, "eval --dual-engine: %d %s", r.status, r.err);
+    snprintf(args, sizeof args, "eval --eumelanin 0.3 --eta 1.5 --dual-engine \"%s\"", path);
+    run_tool(t, args, "theta_i,phi_i,theta_o,phi_o,n\n0.3,0,-0.2,0.4,2\n", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "eta"), "another family: %d %s", r.status, r.err);
+    run_tool(t, "dual --engine --thetas 2 --roughnesses 2 --absorptions 2", "", &r);
+    int lines = 0;
+    for (const char *c = r.out; *c; c++)
+        lines += *c == '\n';
+    CHECK(t, r.status == 0 && lines == 9 && strstr(r.out, "roughness,sigma_a,theta,a_f,a_b,alpha_f,beta_f2,alpha_b,beta_b2\n"),
+          "dual --engine: %d %s%s", r.status, r.out, r.err);
+    hb_dual_engine_axes small = axes;
+    small.thetas = 2, small.absorptions = 2;
+    hb_dual_engine *two = hb_test_dual_engine(t, &small);
+    size_t count = 0;
+    const float *nodes = hb_dual_engine_nodes(two, &count);
+    char first[64];
+    snprintf(first, sizeof first, "\n0.05,0,-0.785398,%.6g,", nodes ? nodes[0] : 0.0f);
+    CHECK(t, nodes && strstr(r.out, first), "the first node: want '%s' in %s", first + 1, r.out);
+    run_tool(t, "dual --engine --sampled 128,x", "", &r);
+    CHECK(t, r.status == 2 && strstr(r.err, "--sampled"), "--sampled 128,x: %d %s", r.status, r.err);
+    hb_dual_engine_destroy(two);
+    hb_dual_table_destroy(table);
+    hb_plan_destroy(plan);
+    hb_dual_engine_destroy(engine);
     unlink(path);
 }
 
@@ -609,15 +682,10 @@ static void test_assembly_dual(hb_test_ctx *t)
 /* hairbsdf tress writes the labelled PNG of the two pictures and prints their sums; it needs -o. */
 static void test_tress(hb_test_ctx *t)
 {
-    char path[600], args[1024];
-    if (hb_test_temp_file(path, sizeof path, ".png") != 0) {
-        CHECK(t, 0, "no temporary file in %s", hb_test_temp_dir());
-        return;
-    }
+    char path[600];
     hb_tool_run r;
-    snprintf(args, sizeof args, "tress --eumelanin 0.3 --layers 2 --paths 2000 --rays 4 --rows 6 --columns 8 -o \"%s\"",
-             path);
-    if (!run_tool(t, args, "", &r))
+    if (!run_tool_writing(t, ".png", path, sizeof path,
+                          "tress --eumelanin 0.3 --layers 2 --paths 2000 --rays 4 --rows 6 --columns 8 -o \"%s\"", &r))
         return;
     CHECK(t, r.status == 0 && strstr(r.out, "\ntraced,") && strstr(r.out, "\ndual,"), "tress: %d %s", r.status, r.err);
     FILE *f = fopen(path, "rb");
@@ -874,6 +942,7 @@ const hb_test hb_tests_cli[] = {
     { "cli_eval_dual_columns", test_eval_dual_columns, 0 },
     { "cli_eval_wavelengths", test_eval_wavelengths, 0 },
     { "cli_dual_save", test_dual_save, 0 },
+    { "cli_dual_engine_save", test_dual_engine_save, 0 },
     { "cli_assembly_dual", test_assembly_dual, 0 },
     { "cli_tress", test_tress, 0 },
     { "cli_input_edges", test_input_edges, 0 },

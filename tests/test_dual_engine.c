@@ -4,8 +4,9 @@
  * the converged terms of a fibre whose roughness and absorption lie on its nodes, and between them
  * misses the per-material terms by what its interpolation costs, printed beside the same table
  * built by HDRP's estimate at HDRP's counts; a plan's table from it is what hb_dual_eval and the
- * shaders read; what it cannot serve is refused by name. */
+ * shaders read; saved and loaded it is the same table; what it cannot serve is refused by name. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "test.h"
@@ -72,7 +73,7 @@ static void test_sampled_converges(hb_test_ctx *t)
     hb_plan_destroy(plan);
 }
 
-static hb_dual_engine *engine_of(hb_test_ctx *t, const hb_dual_engine_axes *axes)
+hb_dual_engine *hb_test_dual_engine(hb_test_ctx *t, const hb_dual_engine_axes *axes)
 {
     hb_material m;
     hb_options o;
@@ -96,7 +97,7 @@ static void test_engine_nodes(hb_test_ctx *t)
     hb_dual_engine_axes a;
     hb_dual_engine_axes_default(&a);
     a.thetas = 8, a.roughnesses = 3, a.absorptions = 5, a.roughness_min = 0.1, a.roughness_max = 0.3;
-    hb_dual_engine *e = engine_of(t, &a);
+    hb_dual_engine *e = hb_test_dual_engine(t, &a);
     double sigma_a[3] = { node_absorption(&a, 0), node_absorption(&a, 2), node_absorption(&a, 3) };
     hb_plan *plan = deon_plan(t, 0.2, 0.0, 0.0, sigma_a);
     if (!e || !plan)
@@ -196,7 +197,7 @@ static void test_engine_between_nodes(hb_test_ctx *t)
     if (t->quick)
         a.thetas = 16, a.roughnesses = 4, a.absorptions = 6;
     sampled = a, sampled.sampled_directions = 128, sampled.sampled_azimuths = 90;
-    hb_dual_engine *tables[2] = { engine_of(t, &a), t->quick ? NULL : engine_of(t, &sampled) };
+    hb_dual_engine *tables[2] = { hb_test_dual_engine(t, &a), t->quick ? NULL : hb_test_dual_engine(t, &sampled) };
     if (!tables[0])
         return;
     hb_test_note(t, "engine-wide table (%d theta x %d roughness in [%.2f, %.2f] x %d absorption), dFH11, against each "
@@ -254,9 +255,70 @@ static void test_engine_between_nodes(hb_test_ctx *t)
     hb_dual_engine_destroy(tables[1]);
 }
 
+/* An engine table saved and loaded is the built one node for node, for a base of any absorption and
+ * R roughness (the axes replace both); the loaded table saves to the same bytes; a file of another
+ * family or model, a damaged byte, a short file, a material's table file and a small buffer are
+ * refused, naming why. */
+static void test_engine_file(hb_test_ctx *t)
+{
+    hb_dual_engine_axes a;
+    hb_dual_engine_axes_default(&a);
+    a.thetas = 6, a.roughnesses = 2, a.absorptions = 4, a.roughness_min = 0.1, a.roughness_max = 0.3;
+    hb_dual_engine *e = hb_test_dual_engine(t, &a);
+    if (!e)
+        return;
+    size_t size = 0, small = 0, again = 0, count = 0, loaded_count = 0;
+    CHECK(t, hb_dual_engine_save(e, NULL, 0, &size) == HB_OK && size > 6 * 2 * 4 * 6 * 8, "the length: %zu", size);
+    unsigned char *bytes = malloc(size), *resaved = malloc(size);
+    CHECK(t, hb_dual_engine_save(e, bytes, size - 1, &small) == HB_ERR_BUFFER && small == size &&
+                 strstr(hb_last_error()->message, "capacity"), "a buffer a byte short: %s", hb_last_error()->message);
+    CHECK(t, hb_dual_engine_save(e, bytes, size, &size) == HB_OK, "save: %s", hb_last_error()->message);
+    hb_material m;
+    hb_options o;
+    hb_material_default(&m);
+    hb_options_default(&o);
+    m.eumelanin = 5.0, m.beta_m = 0.4; /* what the axes replace */
+    hb_dual_engine *loaded = NULL, *refused = NULL;
+    hb_error error;
+    CHECK(t, hb_dual_engine_load(&m, &o, bytes, size, &loaded, &error) == HB_OK, "load: %s", error.message);
+    const float *built = hb_dual_engine_nodes(e, &count), *read = hb_dual_engine_nodes(loaded, &loaded_count);
+    CHECK(t, read && count == loaded_count && memcmp(built, read, count * sizeof *built) == 0,
+          "the loaded nodes are the built ones");
+    double sigma_a[3] = { 0.2, 1.5, 7.0 };
+    hb_dual_terms x = { .struct_size = sizeof x }, y = { .struct_size = sizeof y };
+    CHECK(t, loaded && hb_dual_engine_terms(e, 0.37, 0.17, sigma_a, &x) == HB_OK &&
+                 hb_dual_engine_terms(loaded, 0.37, 0.17, sigma_a, &y) == HB_OK && memcmp(&x, &y, sizeof x) == 0,
+          "the loaded engine's terms between nodes are the built one's bit for bit");
+    CHECK(t, loaded && hb_dual_engine_save(loaded, resaved, size, &again) == HB_OK && again == size &&
+                 memcmp(bytes, resaved, size) == 0, "the loaded engine saves to the same bytes");
+    hb_material other = m;
+    other.eta = 1.5;
+    CHECK(t, hb_dual_engine_load(&other, &o, bytes, size, &refused, &error) == HB_ERR_FILE && !refused &&
+                 strstr(error.message, "eta") && strstr(error.message, "hb_dual_engine_load"),
+          "another family: %s", error.message);
+    hb_options chiang = o;
+    chiang.model = HB_MODEL_CHIANG;
+    CHECK(t, hb_dual_engine_load(&m, &chiang, bytes, size, &refused, &error) == HB_ERR_FILE && strstr(error.message, "model"),
+          "another model: %s", error.message);
+    bytes[size / 2] ^= 1;
+    CHECK(t, hb_dual_engine_load(&m, &o, bytes, size, &refused, &error) == HB_ERR_FILE && strstr(error.message, "checksum"),
+          "a damaged byte: %s", error.message);
+    bytes[size / 2] ^= 1;
+    CHECK(t, hb_dual_engine_load(&m, &o, bytes, size - 8, &refused, &error) == HB_ERR_FILE &&
+                 strstr(error.message, "truncated"), "a short file: %s", error.message);
+    CHECK(t, hb_dual_engine_load(&m, &o, "HBDUALT1", 8, &refused, &error) == HB_ERR_FILE &&
+                 strstr(error.message, "HBDUALE1"), "a material's table file: %s", error.message);
+    CHECK(t, hb_dual_engine_load(&m, &o, NULL, 8, &refused, &error) == HB_ERR_NULL && strstr(error.message, "bytes"),
+          "no bytes: %s", error.message);
+    free(bytes), free(resaved);
+    hb_dual_engine_destroy(loaded);
+    hb_dual_engine_destroy(e);
+}
+
 const hb_test hb_tests_dual_engine[] = {
     { "dual_sampled_converges", test_sampled_converges, 0 },
     { "dual_engine_nodes", test_engine_nodes, 0 },
+    { "dual_engine_file", test_engine_file, 0 },
     { "dual_engine_between_nodes", test_engine_between_nodes, 0 },
     { NULL, NULL, 0 },
 };

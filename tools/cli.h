@@ -23,6 +23,14 @@ void cli_model_args_default(cli_model_args *args);
 /* The material the options describe: args->material with a colour option resolved. */
 hb_status cli_material(const cli_model_args *args, hb_material *material, hb_error *error);
 
+/* --threads and --progress into the options of a table build (their parallel and progress). */
+void cli_build_hooks(const cli_model_args *args, hb_options *options);
+
+/* One of the library's table files whole, in a buffer the caller frees; NULL with the reason in why.
+ * Only a regular file of at most HB_TABLE_FILE_MAX_BYTES is opened: a device, a FIFO or a directory
+ * could stream without end or block, and a larger file is no table. */
+void *cli_read_table_file(const char *path, size_t *size, const char **why);
+
 /* hb_plan_create of cli_material(args) and options; with --table, from that file's table. */
 hb_status cli_plan_create(const cli_model_args *args, const hb_options *options, hb_plan **plan, hb_error *error);
 
@@ -50,6 +58,9 @@ int cmd_eval(int argc, char **argv, int pdf); /* pdf: hairbsdf pdf */
 int cmd_sample(int argc, char **argv);
 int cmd_furnace(int argc, char **argv);
 int cmd_dual(int argc, char **argv);
+/* hairbsdf dual --engine: the material family's engine-wide table (tools/cmd_dual_engine.c) */
+int cmd_dual_engine(const cli_model_args *args, int thetas, int roughnesses, int absorptions, const int sampled[2],
+                    double density, const char *save);
 int cmd_assembly(int argc, char **argv);
 int cmd_tress(int argc, char **argv);
 int cmd_dump(int argc, char **argv);

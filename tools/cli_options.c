@@ -104,11 +104,15 @@ hb_status cli_material(const cli_model_args *args, hb_material *material, hb_err
     return HB_OK;
 }
 
-/* The whole file at path in a buffer the caller frees; NULL if it cannot be read. */
-/* A table file whole; NULL with the reason in why. Only a regular file of at most
- * HB_TABLE_FILE_MAX_BYTES is opened: a device, a FIFO or a directory could stream without end or
- * block, and a larger file is no table. */
-static void *read_table_file(const char *path, size_t *size, const char **why)
+void cli_build_hooks(const cli_model_args *args, hb_options *options)
+{
+    if (args->threads > 1)
+        options->parallel = cli_parallel, options->parallel_context = (void *)&args->threads;
+    if (args->progress)
+        options->progress = cli_progress;
+}
+
+void *cli_read_table_file(const char *path, size_t *size, const char **why)
 {
     struct stat st;
     *why = "it cannot be read";
@@ -144,14 +148,11 @@ hb_status cli_plan_create(const cli_model_args *args, const hb_options *options,
     if (st != HB_OK)
         return st;
     hb_options o = *options;
-    if (args->threads > 1)
-        o.parallel = cli_parallel, o.parallel_context = (void *)&args->threads;
-    if (args->progress)
-        o.progress = cli_progress;
+    cli_build_hooks(args, &o);
     if (!args->table_path)
         return hb_plan_create(&material, &o, plan, error);
     const char *why;
-    o.table_file = read_table_file(args->table_path, &o.table_file_size, &why);
+    o.table_file = cli_read_table_file(args->table_path, &o.table_file_size, &why);
     if (!o.table_file) {
         snprintf(error->message, sizeof error->message, "cannot read the table file %s: %s", args->table_path, why);
         return error->status = HB_ERR_FILE;

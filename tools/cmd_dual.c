@@ -1,5 +1,6 @@
 /* hairbsdf dual: a fibre's dual-scattering terms against the light's inclination theta (Zinke et al.
- * 2008; docs/multiple-scattering.md), as CSV, or its table as a file (--save). */
+ * 2008; docs/multiple-scattering.md), as CSV, or its table as a file (--save); with --engine, its
+ * family's engine-wide table (cmd_dual_engine.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +14,8 @@ static void dual_usage(FILE *to)
 {
     fprintf(to, "usage: hairbsdf dual [options] [--thetas N] [--density D] [--by-lobe] [--svg FILE [--plot TERMS]]\n"
                 "       hairbsdf dual [options] [--thetas N] [--density D] --save FILE.hbdt\n"
+                "       hairbsdf dual [options] --engine [--thetas N] [--roughnesses R] [--absorptions A]\n"
+                "                     [--sampled D,Z] [--density D] [--save FILE.hbde]\n"
                 "Prints, per channel at N inclinations theta of the light (the midpoints of N equal parts\n"
                 "of (-pi/2, pi/2), default 64): the forward and backward energies a_f, a_b, their mean\n"
                 "theta_h alpha_f, alpha_b and variances beta_f2, beta_b2, and the multiple back-scattering\n"
@@ -21,7 +24,12 @@ static void dual_usage(FILE *to)
                 "TERMS (a comma list of the names above, default a_f,a_b) per channel against theta.\n"
                 "--threads N computes the rows on N threads (hb_dual_terms_grid), the same numbers.\n"
                 "--save FILE writes the material's table at N nodes (hb_dual_table_save; default 64) for an\n"
-                "engine to load (hb_dual_table_load; hairbsdf eval --dual-table FILE) instead of the CSV.\n%s",
+                "engine to load (hb_dual_table_load; hairbsdf eval --dual-table FILE) instead of the CSV.\n"
+                "--engine makes the engine-wide table of the material's family instead (hb_dual_engine_create:\n"
+                "N thetas, --roughnesses R over [0.05, 0.6], default 16, --absorptions A up to 12, default 16;\n"
+                "--sampled D,Z by the engines' estimate at D directions and Z azimuths, HDRP's 128,90) and\n"
+                "prints its nodes (roughness, sigma_a, theta, a_f, a_b, alpha_f, beta_f2, alpha_b, beta_b2),\n"
+                "or with --save FILE writes it (hb_dual_engine_save; hairbsdf eval --dual-engine FILE).\n%s",
             cli_model_options_help);
 }
 
@@ -148,7 +156,7 @@ int cmd_dual(int argc, char **argv)
 {
     cli_model_args args;
     cli_model_args_default(&args);
-    int thetas = 64, by_lobe = 0;
+    int thetas = 64, by_lobe = 0, engine = 0, roughnesses = 16, absorptions = 16, sampled[2] = { 0, 0 };
     double density = HB_DUAL_DENSITY;
     const char *svg = NULL, *terms = "a_f,a_b", *save = NULL;
     char err[256];
@@ -160,6 +168,28 @@ int cmd_dual(int argc, char **argv)
         char *end;
         if (strcmp(argv[i], "--by-lobe") == 0) {
             by_lobe = 1;
+            continue;
+        }
+        if (strcmp(argv[i], "--engine") == 0) {
+            engine = 1;
+            continue;
+        }
+        if ((strcmp(argv[i], "--roughnesses") == 0 || strcmp(argv[i], "--absorptions") == 0) && i + 1 < argc) {
+            long n = strtol(argv[i + 1], &end, 10);
+            if (*end || n < 2 || n > 256) {
+                fprintf(stderr, "hairbsdf dual: %s: '%s' is not a count in [2, 256]\n", argv[i], argv[i + 1]);
+                return 2;
+            }
+            *(argv[i][2] == 'r' ? &roughnesses : &absorptions) = (int)n;
+            i++;
+            continue;
+        }
+        if (strcmp(argv[i], "--sampled") == 0 && i + 1 < argc) {
+            if (sscanf(argv[++i], "%d,%d%c", &sampled[0], &sampled[1], &(char){ 0 }) != 2 || sampled[0] < 1 ||
+                sampled[0] > 65536 || sampled[1] < 1 || sampled[1] > 65536) {
+                fprintf(stderr, "hairbsdf dual: --sampled: '%s' is not D,Z with counts in [1, 65536]\n", argv[i]);
+                return 2;
+            }
             continue;
         }
         if (strcmp(argv[i], "--svg") == 0 && i + 1 < argc) {
@@ -196,6 +226,13 @@ int cmd_dual(int argc, char **argv)
             fprintf(stderr, "hairbsdf dual: %s\n", r < 0 ? err : "unknown option (see hairbsdf dual --help)");
             return 2;
         }
+    }
+    if (engine) {
+        if (svg || by_lobe) {
+            fprintf(stderr, "hairbsdf dual: --engine prints or saves its nodes; --svg and --by-lobe are for one material\n");
+            return 2;
+        }
+        return cmd_dual_engine(&args, thetas < 2 ? 2 : thetas, roughnesses, absorptions, sampled, density, save);
     }
     char columns[512];
     const char *y_label = NULL;

@@ -130,7 +130,9 @@ static void eval_usage(FILE *to, int pdf)
                 "the quadrature, marschner, chiang). With a header theta_i,phi_i,theta_o,phi_o,n (the fibres between the point\n"
                 "and the light) or ...,n,v (and the light's direct visibility in [0, 1]) eval writes the far field\n"
                 "f_r,f_g,f_b and after it the dual-scattering term f_ds_r,f_ds_g,f_ds_b (hb_dual_eval, a 64-node table,\n"
-                "density factors 0.7; --dual-table FILE loads a table 'hairbsdf dual --save' wrote). An invalid sample (NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1,\n"
+                "density factors 0.7; --dual-table FILE loads a table 'hairbsdf dual --save' wrote, --dual-engine FILE\n"
+                "the material's from an engine-wide table 'hairbsdf dual --engine --save' wrote). An invalid sample\n"
+                "(NaN or Inf angle, |theta| > pi/2, |phi| > 1e4, |h| > 1,\n"
                 "a negative absorption) gives %s and is reported with its line; with --strict it is an error.\n%s%s",
             pdf ? "pdf" : "eval", pdf ? "" : " [--wavelengths L1,L2,...]",
             pdf ? "the solid-angle pdf with which 'hairbsdf sample' draws w_i given w_o" : "f_r,f_g,f_b",
@@ -141,25 +143,51 @@ static void eval_usage(FILE *to, int pdf)
             cli_model_options_help);
 }
 
-/* The dual-scattering table of the rows with n: the file at path (hairbsdf dual --save), or the plan's
- * own at 64 nodes with the density factors 0.7. */
-static hb_status dual_table_of(const hb_plan *plan, const char *path, hb_dual_table **table, char *why,
+/* Where the rows' dual-scattering table comes from: --dual-table FILE (hairbsdf dual --save), or
+ * --dual-engine FILE (hairbsdf dual --engine --save: the family's table looked up for the plan's
+ * material), else the plan's own at 64 nodes; the density factors 0.7 where the file has none. */
+typedef struct dual_source {
+    const char *table_path, *engine_path;
+    const cli_model_args *args;
+} dual_source;
+
+/* The plan's table from the engine-wide table at path, loaded for the family of the plan's material. */
+static hb_status engine_table(const hb_plan *plan, const dual_source *source, const void *bytes, size_t size,
+                              hb_dual_table **table, hb_error *error)
+{
+    hb_material material;
+    hb_dual_engine *engine = NULL;
+    hb_status st = cli_material(source->args, &material, error);
+    if (st == HB_OK)
+        st = hb_dual_engine_load(&material, &source->args->options, bytes, size, &engine, error);
+    if (st == HB_OK && (st = hb_dual_engine_table(engine, plan, HB_DUAL_DENSITY, table)) != HB_OK)
+        *error = *hb_last_error();
+    hb_dual_engine_destroy(engine);
+    return st;
+}
+
+static hb_status dual_table_of(const hb_plan *plan, const dual_source *source, hb_dual_table **table, char *why,
                                size_t why_size)
 {
-    hb_status st;
-    FILE *f = path ? fopen(path, "rb") : NULL;
+    const char *path = source->engine_path ? source->engine_path : source->table_path;
     if (!path) {
-        st = hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL, table);
-    } else if (!f) {
-        snprintf(why, why_size, "--dual-table: cannot open %s: %s", path, strerror(errno));
-        return HB_ERR_FILE;
-    } else {
-        static unsigned char bytes[1 << 20]; /* a table of 4096 nodes is 0.9 MiB */
-        size_t size = fread(bytes, 1, sizeof bytes, f);
-        fclose(f);
-        st = hb_dual_table_load(plan, bytes, size, table);
+        hb_status st = hb_dual_table_create(plan, 64, HB_DUAL_DENSITY, HB_DUAL_DENSITY, NULL, NULL, NULL, NULL, table);
+        snprintf(why, why_size, "%s", st == HB_OK ? "" : hb_last_error()->message);
+        return st;
     }
-    snprintf(why, why_size, "%s", st == HB_OK ? "" : hb_last_error()->message);
+    const char *unreadable;
+    size_t size = 0;
+    void *bytes = cli_read_table_file(path, &size, &unreadable);
+    if (!bytes) {
+        snprintf(why, why_size, "%s: cannot read %s: %s", source->engine_path ? "--dual-engine" : "--dual-table", path,
+                 unreadable);
+        return HB_ERR_FILE;
+    }
+    hb_error error = { HB_OK, "" };
+    hb_status st = source->engine_path ? engine_table(plan, source, bytes, size, table, &error)
+                                       : hb_dual_table_load(plan, bytes, size, table);
+    free(bytes);
+    snprintf(why, why_size, "%s", st == HB_OK ? "" : source->engine_path ? error.message : hb_last_error()->message);
     return st;
 }
 
@@ -214,10 +242,12 @@ static int spectral_setup(const char *name, const char *list, const cli_model_ar
 int cmd_eval(int argc, char **argv, int pdf)
 {
     const char *name = pdf ? "hairbsdf pdf" : "hairbsdf eval";
-    const char *input_path = NULL, *output_path = NULL, *wavelengths_arg = NULL, *dual_path = NULL;
+    const char *input_path = NULL, *output_path = NULL, *wavelengths_arg = NULL;
+    dual_source dual = { NULL, NULL, NULL };
     int strict = 0, far = 0;
     cli_model_args args;
     cli_model_args_default(&args);
+    dual.args = &args;
     char err[256];
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
@@ -237,7 +267,11 @@ int cmd_eval(int argc, char **argv, int pdf)
             continue;
         }
         if (strcmp(argv[i], "--dual-table") == 0 && i + 1 < argc && !pdf) {
-            dual_path = argv[++i];
+            dual.table_path = argv[++i];
+            continue;
+        }
+        if (strcmp(argv[i], "--dual-engine") == 0 && i + 1 < argc && !pdf) {
+            dual.engine_path = argv[++i];
             continue;
         }
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
@@ -316,7 +350,7 @@ int cmd_eval(int argc, char **argv, int pdf)
             }
             if ((header == ROW_FIBRES || header == ROW_FIBRES_VISIBLE) && !batch.dual) {
                 char why[300] = "pdf has no dual-scattering term (use eval)";
-                hb_status st = pdf ? HB_ERR_UNSUPPORTED : dual_table_of(plan, dual_path, &batch.dual, why, sizeof why);
+                hb_status st = pdf ? HB_ERR_UNSUPPORTED : dual_table_of(plan, &dual, &batch.dual, why, sizeof why);
                 if (st != HB_OK) {
                     fprintf(stderr, "%s: the n column: %s\n", name, why);
                     status = 2;

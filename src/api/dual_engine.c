@@ -12,10 +12,12 @@
 #include "checks.h"
 #include "math/dual_scattering.h"
 #include "models/build/build_tasks.h"
+#include "models/file/dual_file.h"
 #include "models/interface/model.h"
 #include "plan/creation.h"
 
-enum { PRIMARY = 6, CHANNELS = 3 }; /* a_f, a_b, alpha_f, beta_f2, alpha_b, beta_b2 per node */
+enum { PRIMARY = HB_DUAL_ENGINE_TERMS, CHANNELS = 3 }; /* a_f, a_b, alpha_f, beta_f2, alpha_b, beta_b2 per node */
+#define FAMILY_ROUGHNESS 0.3 /* the base's R roughness as its file records it (radians) */
 
 struct hb_dual_engine {
     hb_material base;  /* the family's material, its own absorption and roughness unused */
@@ -25,6 +27,8 @@ struct hb_dual_engine {
     double *nodes; /* [roughness][absorption][theta][PRIMARY] */
     float *floats; /* the same, HB_DUAL_ENGINE_NODE_FLOATS a node, for the shaders */
     size_t node_count;
+    unsigned char *fields; /* the base plan's fields section, for its file */
+    size_t fields_size;
 };
 
 void hb_dual_engine_axes_default(hb_dual_engine_axes *axes)
@@ -99,9 +103,8 @@ static void build_task(void *context, int index)
     b->status[index] = st;
 }
 
-static hb_status check_axes(const hb_dual_engine_axes *a, hb_error *error)
+static hb_status check_axes(const char *call, const hb_dual_engine_axes *a, hb_error *error)
 {
-    const char *call = "hb_dual_engine_create";
     if (a->struct_size != sizeof *a)
         return hb_plan_fail(error, HB_ERR_VERSION, "%s: axes->struct_size = %zu; this release's is %zu", call,
                             a->struct_size, sizeof *a);
@@ -132,7 +135,63 @@ void hb_dual_engine_destroy(hb_dual_engine *engine)
         return;
     free(engine->nodes);
     free(engine->floats);
+    free(engine->fields);
     free(engine);
+}
+
+/* An engine of the base plan's family with these axes and d_b, its nodes still to be filled. */
+static hb_status engine_alloc(const char *call, const hb_plan *probe, const hb_dual_engine_axes *axes, double d_b,
+                              hb_dual_engine **engine, hb_error *error)
+{
+    hb_dual_engine *e = calloc(1, sizeof *e);
+    if (e) {
+        e->node_count = (size_t)axes->roughnesses * (size_t)axes->absorptions * (size_t)axes->thetas;
+        e->nodes = malloc(e->node_count * PRIMARY * sizeof *e->nodes);
+        e->floats = calloc(e->node_count * HB_DUAL_ENGINE_NODE_FLOATS, sizeof *e->floats);
+        e->fields_size = hb_table_file_fields_write(probe, NULL);
+        e->fields = malloc(e->fields_size);
+    }
+    if (!e || !e->nodes || !e->floats || !e->fields) {
+        hb_dual_engine_destroy(e);
+        return hb_plan_fail(error, HB_ERR_NOMEM, "%s: no memory for the table", call);
+    }
+    hb_table_file_fields_write(probe, e->fields);
+    e->base = probe->material, e->options = probe->options, e->axes = *axes, e->d_b = d_b;
+    e->options.tolerance = 0.0, e->options.budget_ns = 0.0;
+    e->options.progress = NULL, e->options.parallel = NULL;
+    e->options.table_file = NULL, e->options.table_file_size = 0;
+    *engine = e;
+    return HB_OK;
+}
+
+/* The shaders' floats from the nodes. */
+static void engine_floats(hb_dual_engine *e)
+{
+    for (size_t k = 0; k < e->node_count; k++)
+        for (int q = 0; q < PRIMARY; q++)
+            e->floats[k * HB_DUAL_ENGINE_NODE_FLOATS + (size_t)q] = (float)e->nodes[k * PRIMARY + (size_t)q];
+}
+
+/* The plan of the family's base (its checks, the concrete options every node plan uses and the
+ * fields its file holds): the base without absorption, at the look's roughness FAMILY_ROUGHNESS,
+ * since the axes replace both. */
+static hb_status probe_create(const char *call, const hb_material *base, const hb_options *options, hb_plan **probe,
+                              hb_error *error)
+{
+    hb_material m;
+    hb_status st = hb_material_upgrade(base, &m, error);
+    m.eumelanin = m.pheomelanin = 0.0;
+    m.sigma_a[0] = m.sigma_a[1] = m.sigma_a[2] = 0.0;
+    const hb_model_ops *ops = (unsigned)options->model <= HB_MODEL_CHIANG ? hb_model_ops_of(options->model) : NULL;
+    if (st == HB_OK && ops) /* an unknown model is plan creation's to refuse */
+        st = set_roughness(ops, &m, FAMILY_ROUGHNESS, error);
+    if (st == HB_OK)
+        st = hb_plan_create(&m, options, probe, error);
+    if (st != HB_OK) {
+        hb_error last = *hb_last_error();
+        hb_plan_fail(error, st, "%s: %s", call, last.message);
+    }
+    return st;
 }
 
 hb_status hb_dual_engine_create(const hb_material *base, const hb_options *options, const hb_dual_engine_axes *axes,
@@ -142,33 +201,26 @@ hb_status hb_dual_engine_create(const hb_material *base, const hb_options *optio
         return hb_plan_fail(error, HB_ERR_NULL, "%s: %s is NULL", __func__,
                             !base ? "base" : !options ? "options" : !axes ? "axes" : "engine");
     *engine = NULL;
-    hb_status st = check_axes(axes, error);
+    hb_status st = check_axes(__func__, axes, error);
     if (st == HB_OK && !(d_b >= 0.0 && d_b <= 1.0))
         st = hb_plan_fail(error, HB_ERR_PARAM, "%s: d_b = %g is outside [0, 1]", __func__, d_b);
-    hb_plan *probe = NULL; /* the base's plan: its checks, and the concrete options every node plan uses */
+    hb_plan *probe = NULL;
     if (st == HB_OK)
-        st = hb_plan_create(base, options, &probe, error);
+        st = probe_create(__func__, base, options, &probe, error);
+    hb_dual_engine *e = NULL;
+    if (st == HB_OK)
+        st = engine_alloc(__func__, probe, axes, d_b, &e, error);
+    hb_plan_destroy(probe);
     if (st != HB_OK)
         return st;
-    hb_dual_engine *e = calloc(1, sizeof *e);
     size_t tasks = (size_t)axes->roughnesses * (size_t)((axes->absorptions + CHANNELS - 1) / CHANNELS);
     hb_status *status = calloc(tasks, sizeof *status);
     hb_error *errors = calloc(tasks, sizeof *errors);
-    if (e) {
-        e->node_count = (size_t)axes->roughnesses * (size_t)axes->absorptions * (size_t)axes->thetas;
-        e->nodes = malloc(e->node_count * PRIMARY * sizeof *e->nodes);
-        e->floats = calloc(e->node_count * HB_DUAL_ENGINE_NODE_FLOATS, sizeof *e->floats);
-    }
-    if (!e || !e->nodes || !e->floats || !status || !errors) {
-        hb_plan_destroy(probe);
+    if (!status || !errors) {
         hb_dual_engine_destroy(e);
         free(status), free(errors);
         return hb_plan_fail(error, HB_ERR_NOMEM, "%s: no memory for the table", __func__);
     }
-    e->base = probe->material, e->options = probe->options, e->axes = *axes, e->d_b = d_b;
-    hb_plan_destroy(probe);
-    e->options.tolerance = 0.0, e->options.budget_ns = 0.0;
-    e->options.progress = NULL, e->options.parallel = NULL;
     build b = { e, status, errors };
     st = hb_build_tasks(options, (int)tasks, hb_build_part((int)tasks), build_task, &b, 0.0, 1.0, error);
     for (size_t k = 0; k < tasks && st == HB_OK; k++)
@@ -181,9 +233,52 @@ hb_status hb_dual_engine_create(const hb_material *base, const hb_options *optio
         hb_dual_engine_destroy(e);
         return st;
     }
-    for (size_t k = 0; k < e->node_count; k++)
-        for (int q = 0; q < PRIMARY; q++)
-            e->floats[k * HB_DUAL_ENGINE_NODE_FLOATS + (size_t)q] = (float)e->nodes[k * PRIMARY + (size_t)q];
+    engine_floats(e);
+    *engine = e;
+    return HB_OK;
+}
+
+hb_status hb_dual_engine_save(const hb_dual_engine *engine, void *bytes, size_t capacity, size_t *size)
+{
+    if (!engine || !size)
+        return hb_fail_null(__func__, !engine ? "engine" : "size");
+    const hb_dual_engine *e = engine;
+    *size = hb_dual_engine_file_write(e->options.model, &e->axes, e->d_b, e->fields, e->fields_size, NULL, NULL);
+    if (!bytes)
+        return HB_OK;
+    if (capacity < *size)
+        return hb_fail(HB_ERR_BUFFER, "%s: the table file takes %zu bytes, capacity is %zu (*size has the length)",
+                       __func__, *size, capacity);
+    hb_dual_engine_file_write(e->options.model, &e->axes, e->d_b, e->fields, e->fields_size, e->nodes, bytes);
+    return HB_OK;
+}
+
+hb_status hb_dual_engine_load(const hb_material *base, const hb_options *options, const void *bytes, size_t size,
+                              hb_dual_engine **engine, hb_error *error)
+{
+    if (!base || !options || !bytes || !engine)
+        return hb_plan_fail(error, HB_ERR_NULL, "%s: %s is NULL", __func__,
+                            !base ? "base" : !options ? "options" : !bytes ? "bytes" : "engine");
+    *engine = NULL;
+    hb_plan *probe = NULL;
+    hb_status st = probe_create(__func__, base, options, &probe, error);
+    hb_dual_engine_axes axes;
+    double d_b = 0.0;
+    const unsigned char *values = NULL;
+    hb_error why;
+    if (st == HB_OK && (st = hb_dual_engine_file_read(probe, bytes, size, &axes, &d_b, &values, &why)) != HB_OK)
+        hb_plan_fail(error, st, "%s: %s", __func__, why.message);
+    if (st == HB_OK && check_axes(__func__, &axes, &why) != HB_OK)
+        st = hb_plan_fail(error, HB_ERR_FILE, "%s (the file's axes)", why.message);
+    hb_dual_engine *e = NULL;
+    if (st == HB_OK)
+        st = engine_alloc(__func__, probe, &axes, d_b, &e, error);
+    hb_plan_destroy(probe);
+    if (st != HB_OK)
+        return st;
+    for (size_t k = 0; k < e->node_count * PRIMARY; k++)
+        e->nodes[k] = hb_dual_file_value(values, k);
+    engine_floats(e);
     *engine = e;
     return HB_OK;
 }
