@@ -31,6 +31,13 @@ typedef struct pending {
     int count;
 } pending;
 
+/* The Gauss-Legendre rule (x1, w1) on [0, 1] moved to the panel [start, start + width]. */
+static void panel_rule(const double *x1, const double *w1, double start, double width, double *x, double *w)
+{
+    for (int k = 0; k < RULE; k++)
+        x[k] = start + width * x1[k], w[k] = width * w1[k];
+}
+
 /* Evaluates the pending directions and adds them to the sums. */
 static void flush(const hb_plan *plan, pending *q, hb_dual_sums *s)
 {
@@ -61,7 +68,8 @@ static void hemispheres(const hb_plan *rule, const hb_plan *evaluated, double th
     ops->furnace_rule(rule, &beta_m, &azimuths, &passes);
     int theta_panels = (int)ceil(M_PI / (2.0 * fmin(beta_m, 0.5)));
     int phi_panels = (azimuths + QUARTERS * RULE - 1) / (QUARTERS * RULE); /* per quarter */
-    double xt[RULE], wt[RULE], xp[RULE], wp[RULE];
+    double xt[RULE], wt[RULE], xp[RULE], wp[RULE], x1[RULE], w1[RULE];
+    hb_gauss_legendre(RULE, 0.0, 1.0, x1, w1); /* the rule on [0, 1], scaled to each panel */
     *sums = (hb_dual_sums){ { { 0 } }, { { 0 } }, { { 0 } } };
     pending q;
     q.count = 0;
@@ -69,11 +77,11 @@ static void hemispheres(const hb_plan *rule, const hb_plan *evaluated, double th
         int side = pass % sides;
         double psi = orientations > 1 ? M_PI * (pass / sides + 0.5) / orientations : 0.0;
         for (int a = 0; a < theta_panels; a++) {
-            hb_gauss_legendre(RULE, -M_PI_2 + M_PI * a / theta_panels, -M_PI_2 + M_PI * (a + 1) / theta_panels, xt, wt);
+            panel_rule(x1, w1, -M_PI_2 + M_PI * a / theta_panels, M_PI / theta_panels, xt, wt);
             for (int j = 0; j < RULE; j++) {
                 double cos_o = cos(xt[j]);
                 for (int b = 0; b < HALF * phi_panels; b++) {
-                    hb_gauss_legendre(RULE, M_PI_2 * b / phi_panels, M_PI_2 * (b + 1) / phi_panels, xp, wp);
+                    panel_rule(x1, w1, M_PI_2 * b / phi_panels, M_PI_2 / phi_panels, xp, wp);
                     for (int l = 0; l < RULE; l++) {
                         q.ti[q.count] = (float)theta, q.pi[q.count] = (float)psi;
                         q.to[q.count] = (float)xt[j], q.po[q.count] = (float)(psi + (side ? -xp[l] : xp[l]));
