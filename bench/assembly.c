@@ -32,5 +32,5 @@ void bench_assembly(const hb_material *m, FILE *report)
     fprintf(report, "Fibre-assembly reference (hb_assembly_trace: %d paths through the default slab, %g layers at packing %g, "
                     "batches of %d paths, one core, balanced, the bench material):\n",
             PATHS, a.layers, a.packing, HB_ASSEMBLY_BATCH);
-    bench_each_model(m, assembly_line, &a, report);
+    bench_each_model(m, HB_ISA_AUTO, assembly_line, &a, report);
 }

@@ -6,9 +6,10 @@
 
 #include "hairbsdf.h"
 
-/* Calls line(plan, name, context, report) for each model's plan at balanced quality (a model whose
- * plan cannot be made is left out), and destroys the plan after. */
-void bench_each_model(const hb_material *m, void (*line)(const hb_plan *plan, const char *name, void *context, FILE *report),
-                      void *context, FILE *report);
+/* Calls line(plan, name, context, report) for each model's plan at balanced quality in the ISA isa
+ * (HB_ISA_AUTO: the best; a model whose plan cannot be made is left out), and destroys the plan after. */
+void bench_each_model(const hb_material *m, hb_isa isa,
+                      void (*line)(const hb_plan *plan, const char *name, void *context, FILE *report), void *context,
+                      FILE *report);
 
 #endif
