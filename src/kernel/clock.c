@@ -1,16 +1,18 @@
-/* The calling core's clock, measured: a dependent chain of integer additions runs one addition
- * per cycle on every x86-64 and AArch64 core, so additions per nanosecond are cycles per
- * nanosecond, at whatever frequency the core runs now. The bench writes costs in cycles with it,
- * and budget plans convert a calibration's cycles to this machine's nanoseconds with it. */
+/* The calling core's clock, measured: a dependent chain of register-to-register integer additions
+ * runs one addition per cycle on every x86-64 and AArch64 core, so additions per nanosecond are
+ * cycles per nanosecond, at whatever frequency the core runs now. The addend is a register, not an
+ * immediate: cores from Intel's Golden Cove on fold chains of immediate additions at rename, several
+ * a cycle, which would read as several times the core's clock. The bench writes costs in cycles with it, and
+ * budget plans convert a calibration's cycles to this machine's nanoseconds with it. */
 #include "isas.h"
 
 #define ADD8(op) op op op op op op op op
 #define ADDS_PER_STEP 64
 
 #if defined(__GNUC__) && defined(__x86_64__)
-#define CHAIN_STEP(x) __asm__ volatile(ADD8(ADD8("add $1, %0\n\t")) : "+r"(x))
+#define CHAIN_STEP(x, one) __asm__ volatile(ADD8(ADD8("add %1, %0\n\t")) : "+r"(x) : "r"(one))
 #elif defined(__GNUC__) && defined(__aarch64__)
-#define CHAIN_STEP(x) __asm__ volatile(ADD8(ADD8("add %0, %0, #1\n\t")) : "+r"(x))
+#define CHAIN_STEP(x, one) __asm__ volatile(ADD8(ADD8("add %0, %0, %1\n\t")) : "+r"(x) : "r"(one))
 #endif
 
 #ifdef CHAIN_STEP
@@ -40,10 +42,10 @@ enum { STEPS = 8192, TRIALS = 8 };
 /* ns for STEPS chain steps; the loop's own counter runs beside the chain, off its critical path. */
 static double chain_ns(unsigned long long *sink)
 {
-    unsigned long long x = *sink;
+    unsigned long long x = *sink, one = 1;
     double t0 = now_ns();
     for (int k = 0; k < STEPS; k++)
-        CHAIN_STEP(x);
+        CHAIN_STEP(x, one);
     double t = now_ns() - t0;
     *sink = x;
     return t;
