@@ -456,6 +456,9 @@ static const config configs[] = {
     { "deon", "near", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_EVAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "dFH11 near field at h, balanced", 0 },
+    { "deon", "near-spectral4", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
+      HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SPECTRAL_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
+      "dFH11 near field at h at pbrt-v4's 4 wavelengths, balanced", 0 },
     { "deon", "sample-near", "balanced", HB_MODEL_DEON, HB_TERM_FULL, HB_QUALITY_BALANCED, 0, HB_I0_ABRAMOWITZ,
       HB_SHADOWING_SMITH, HB_R_INTEGRATION_AUTO, 0.0, OP_SAMPLE_NEAR, 0, HB_TT_TRT_MC, HB_AZIMUTHAL_QUADRATURE, 0, 0.0,
       "dFH11 sampling at h (direction, pdf and f / pdf), balanced", 0 },
@@ -793,6 +796,7 @@ static void write_effects(const char *path, const row *rows, int nrows)
         { "CBTB16 near field, balanced: TT, TRT and the residual (R alone)", "chiang/near/balanced", "chiang/effects/R" },
         { "CBTB16 near field, balanced: pbrt-v4's 4 wavelengths (RGB)", "chiang/near-spectral4/balanced", "chiang/near/balanced" },
         { "dFH11 balanced: pbrt-v4's 4 wavelengths (RGB)", "deon/full-spectral4/balanced", "deon/full/balanced" },
+        { "dFH11 near field, balanced: pbrt-v4's 4 wavelengths (RGB)", "deon/near-spectral4/balanced", "deon/near/balanced" },
         { "CBTB16 per hit: pbrt-v4's 4 wavelengths (RGB)", "chiang/per-hit/near-spectral4", "chiang/per-hit/near-balanced" },
     };
     region r;

@@ -566,10 +566,11 @@ HB_API hb_status hb_sample_near_vectors(const hb_plan *plan, size_t n, const hb_
  * field (hb_eval_angles_spectral), the near field at h, its sampler and its pdf, by the plan's kernels
  * or, for a reference plan, in double. The sampler chooses the lobe by A_p's mean over the sample's k
  * wavelengths, as pbrt-v4's HairBxDF::Sample_f does, so the pdf depends on the absorptions; weight[j]
- * is f / pdf at wavelength j. dFH11's standard quadrature plans evaluate the far field by their own
- * spectral kernels; the other dFH11 and MJC03 plans whose per-sample absorption calls work evaluate f
- * (hb_eval_angles_spectral, and dFH11's hb_eval_near_spectral) through them, three wavelengths a call;
- * their sampling, their reference plans and HHH22 return HB_ERR_UNSUPPORTED. */
+ * is f / pdf at wavelength j. dFH11 plans: the same calls, its near-field sampler choosing the lobe
+ * the same way; its standard quadrature plans evaluate the far field by their own spectral kernels.
+ * The other dFH11 far fields and MJC03's, where their per-sample absorption calls work, evaluate f
+ * (hb_eval_angles_spectral) through them, three wavelengths a call; MJC03's sampling and HHH22
+ * return HB_ERR_UNSUPPORTED. */
 #define HB_WAVELENGTHS_MAX 8
 typedef struct hb_spectral_absorption {
     int wavelengths;             /* k */

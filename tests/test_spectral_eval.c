@@ -9,15 +9,15 @@ enum { N = 512, K = HB_WAVELENGTHS_MAX };
 
 static float ti[N], pi[N], to[N], po[N], h[N], sigma[2 * K][N], f[K][N], g[K][N], pdf[N], pdf2[N];
 
-/* A CBTB16 plan of the melanin (or, with eumelanin 0, of a grey sigma_a grey). */
-static hb_plan *absorbing_plan(hb_test_ctx *t, double eumelanin, double grey, double beta_n, hb_quality quality,
-                               hb_isa isa)
+/* A plan of the model (CBTB16 or dFH11) of the melanin (or, with eumelanin 0, of a grey sigma_a grey). */
+static hb_plan *model_plan(hb_test_ctx *t, hb_model model, double eumelanin, double grey, double beta_n,
+                           hb_quality quality, hb_isa isa)
 {
     hb_material m;
     hb_options o;
     hb_material_default(&m);
     hb_options_default(&o);
-    o.model = HB_MODEL_CHIANG;
+    o.model = model;
     o.quality = quality;
     o.isa = isa;
     m.beta_m = 0.3;
@@ -31,10 +31,18 @@ static hb_plan *absorbing_plan(hb_test_ctx *t, double eumelanin, double grey, do
     return plan;
 }
 
+static hb_plan *absorbing_plan(hb_test_ctx *t, double eumelanin, double grey, double beta_n, hb_quality quality,
+                               hb_isa isa)
+{
+    return model_plan(t, HB_MODEL_CHIANG, eumelanin, grey, beta_n, quality, isa);
+}
+
 static hb_plan *spectral_plan(hb_test_ctx *t, double eumelanin, double beta_n, hb_quality quality, hb_isa isa)
 {
     return absorbing_plan(t, eumelanin, 0.0, beta_n, quality, isa);
 }
+
+static const char *model_name(hb_model model) { return model == HB_MODEL_DEON ? "dFH11" : "CBTB16"; }
 
 /* A plan of the model's default material with absorption sigma_a alone, on the test's ISA. */
 static hb_plan *default_plan(hb_test_ctx *t, hb_model model, const double sigma_a[3], hb_quality quality)
@@ -145,16 +153,19 @@ static void test_spectral_rgb_bits(hb_test_ctx *t)
 }
 
 /* 16 wavelengths from 380 to 780 nm (two calls of 8) of a blond and a brown fibre at melanin's
- * spectral absorption: the kernels against the reference plan's double path, near field and pdf within
- * 1e-5 of the peak (measured: 5e-6, float M_p and the float azimuth's rounding, as for RGB), and far
- * field within the quality's target; 4 and 1 wavelengths agree with 8. */
+ * spectral absorption, CBTB16 and dFH11: the kernels against the reference plan's double path, near
+ * field and pdf within 1e-5 of the peak (measured: 5e-6, float M_p and the float azimuth's rounding,
+ * as for RGB), and far field within the quality's target; 4 and 1 wavelengths agree with 8. */
 static void test_spectral_reference(hb_test_ctx *t)
 {
-    static const double eumelanin[] = { 0.3, 1.3 };
-    int n = t->quick ? N / 4 : N, n_far = t->quick ? 64 : N;
-    for (int mc = 0; mc < 2; mc++) {
-        hb_plan *plan = spectral_plan(t, eumelanin[mc], 0.3, HB_QUALITY_BALANCED, t->isa);
-        hb_plan *reference = spectral_plan(t, eumelanin[mc], 0.3, HB_QUALITY_REFERENCE, HB_ISA_AUTO);
+    static const struct { hb_model model; double eumelanin; } cases[] = {
+        { HB_MODEL_CHIANG, 0.3 }, { HB_MODEL_CHIANG, 1.3 }, { HB_MODEL_DEON, 0.3 }, { HB_MODEL_DEON, 1.3 } };
+    int n = t->quick ? N / 4 : N;
+    for (int mc = 0; mc < 4; mc++) {
+        hb_model model = cases[mc].model;
+        int n_far = model == HB_MODEL_DEON ? 16 : t->quick ? 64 : N; /* dFH11's reference converges N_p per sample */
+        hb_plan *plan = model_plan(t, model, cases[mc].eumelanin, 0.0, 0.3, HB_QUALITY_BALANCED, t->isa);
+        hb_plan *reference = model_plan(t, model, cases[mc].eumelanin, 0.0, 0.3, HB_QUALITY_REFERENCE, HB_ISA_AUTO);
         if (!plan || !reference)
             return;
         random_directions(t);
@@ -162,7 +173,7 @@ static void test_spectral_reference(hb_test_ctx *t)
         for (int half = 0; half < 2; half++) {
             for (int j = 0; j < K; j++) {
                 double lambda = 380.0 + 400.0 * (half * K + j) / 15.0, s;
-                hb_melanin_absorption_spectral(eumelanin[mc], 0.0, lambda, &s);
+                hb_melanin_absorption_spectral(cases[mc].eumelanin, 0.0, lambda, &s);
                 for (int k = 0; k < N; k++)
                     sigma[j][k] = (float)(s * (1.0 + 0.2 * (k % 5))); /* per-strand variation */
             }
@@ -189,27 +200,28 @@ static void test_spectral_reference(hb_test_ctx *t)
             hb_eval_angles_spectral(reference, (size_t)n_far, angles, a, planes(g, gp, K), NULL);
             far = fmax(far, planes_error(f, g, K, n_far));
         }
-        hb_test_note(t, "eumelanin %.1f, 16 wavelengths: near field %.2e, its pdf %.2e, far field %.2e of the peak; "
-                        "4 and 1 wavelengths against 8: %.2e", eumelanin[mc], near, pdf_error, far, narrow);
-        CHECK(t, near <= 1e-5, "near field off the reference by %.3g", near);
-        CHECK(t, pdf_error <= 1e-5, "pdf off the reference by %.3g", pdf_error);
-        CHECK(t, far <= 1e-3, "far field off the reference by %.3g (balanced: 1e-3)", far);
-        CHECK(t, narrow <= 1e-6, "fewer wavelengths differ by %.3g", narrow);
+        hb_test_note(t, "%s, eumelanin %.1f, 16 wavelengths: near field %.2e, its pdf %.2e, far field %.2e of the "
+                        "peak; 4 and 1 wavelengths against 8: %.2e",
+                     model_name(model), cases[mc].eumelanin, near, pdf_error, far, narrow);
+        CHECK(t, near <= 1e-5, "%s: near field off the reference by %.3g", model_name(model), near);
+        CHECK(t, pdf_error <= 1e-5, "%s: pdf off the reference by %.3g", model_name(model), pdf_error);
+        CHECK(t, far <= 1e-3, "%s: far field off the reference by %.3g (balanced: 1e-3)", model_name(model), far);
+        CHECK(t, narrow <= 1e-6, "%s: fewer wavelengths differ by %.3g", model_name(model), narrow);
         hb_plan_destroy(plan);
         hb_plan_destroy(reference);
     }
 }
 
-/* The sampler at 4 wavelengths: the sampled pdf is hb_pdf_near_spectral's at the sampled direction
- * bit for bit, the weights are f / pdf; with grey absorption the pdf is the RGB sampler's; and each
- * wavelength's mean weight (the fibre's albedo at w_o and h) equals the RGB sampler's for a plan of
- * that absorption within 4 standard errors of the difference. */
-static void test_spectral_sampling(hb_test_ctx *t)
+/* The sampler at 4 wavelengths, CBTB16's and dFH11's: the sampled pdf is hb_pdf_near_spectral's at the
+ * sampled direction bit for bit, the weights are f / pdf; with grey absorption the pdf is the RGB
+ * sampler's; and each wavelength's mean weight (the fibre's albedo at w_o and h) equals the RGB
+ * sampler's for a plan of that absorption within 4 standard errors of the difference. */
+static void spectral_sampling_of(hb_test_ctx *t, hb_model model)
 {
     enum { S = 4096, M = 40000 };
     int m_samples = t->quick ? M / 4 : M;
     static float so[S], sph[S], sh[S], u[HB_SAMPLE_DIMENSIONS][S], sti[S], spi[S], sw[K][S], sf[K][S], p2[S];
-    hb_plan *plan = spectral_plan(t, 0.3, 0.3, HB_QUALITY_BALANCED, t->isa);
+    hb_plan *plan = model_plan(t, model, 0.3, 0.0, 0.3, HB_QUALITY_BALANCED, t->isa);
     if (!plan)
         return;
     float *streams[HB_SAMPLE_DIMENSIONS];
@@ -248,10 +260,11 @@ static void test_spectral_sampling(hb_test_ctx *t)
                 worst_weight = fmax(worst_weight, fabs(sw[j][k] - sf[j][k] / p2[k]) / fmax(sw[j][k], 1e-30f));
         }
     }
-    CHECK(t, pdf_differs == 0 && bad == 0, "%d pdfs off hb_pdf_near_spectral, %d weights not finite", pdf_differs, bad);
-    CHECK(t, worst_weight <= 1e-5, "weights differ from f / pdf by %.3g", worst_weight);
+    CHECK(t, pdf_differs == 0 && bad == 0, "%s: %d pdfs off hb_pdf_near_spectral, %d weights not finite",
+          model_name(model), pdf_differs, bad);
+    CHECK(t, worst_weight <= 1e-5, "%s: weights differ from f / pdf by %.3g", model_name(model), worst_weight);
     /* grey absorption: the lobe probabilities are the RGB sampler's */
-    hb_plan *grey = absorbing_plan(t, 0.0, 0.4, 0.3, HB_QUALITY_BALANCED, t->isa);
+    hb_plan *grey = model_plan(t, model, 0.0, 0.4, 0.3, HB_QUALITY_BALANCED, t->isa);
     if (!grey)
         return;
     for (int k = 0; k < S; k++)
@@ -261,7 +274,7 @@ static void test_spectral_sampling(hb_test_ctx *t)
     double grey_pdf = 0.0;
     for (int k = 0; k < S; k++)
         grey_pdf = fmax(grey_pdf, fabs(p2[k] - pdf_at[k]) / fmax(pdf_at[k], 1e-30f));
-    CHECK(t, grey_pdf <= 1e-6, "grey absorption: pdf %.3g off the RGB sampler's", grey_pdf);
+    CHECK(t, grey_pdf <= 1e-6, "%s, grey absorption: pdf %.3g off the RGB sampler's", model_name(model), grey_pdf);
     hb_plan_destroy(grey);
     /* unbiasedness at one w_o and h, each wavelength against an RGB plan of its absorption */
     static float mo[M], mp[M], mh[M], mu[4][M], mti[M], mpi[M], mpdf[M], mw[4][M], rw[3][M];
@@ -282,7 +295,7 @@ static void test_spectral_sampling(hb_test_ctx *t)
                             NULL);
     double worst_z = 0.0;
     for (int j = 0; j < 4; j++) {
-        hb_plan *rgb = absorbing_plan(t, 0.0, s_of[j], 0.3, HB_QUALITY_BALANCED, t->isa);
+        hb_plan *rgb = model_plan(t, model, 0.0, s_of[j], 0.3, HB_QUALITY_BALANCED, t->isa);
         if (!rgb)
             break;
         float *rstreams[4] = { mu[0], mu[1], mu[2], mu[3] };
@@ -299,17 +312,24 @@ static void test_spectral_sampling(hb_test_ctx *t)
             mean[e] = sum[e] / m_samples, var[e] = (sum2[e] / m_samples - mean[e] * mean[e]) / (m_samples - 1);
         double z = fabs(mean[0] - mean[1]) / sqrt(var[0] + var[1]);
         worst_z = fmax(worst_z, z);
-        hb_test_note(t, "%.0f nm: spectral sampler's mean weight %.5f, RGB sampler's %.5f (z %.2f)", lambda[j],
-                     mean[0], mean[1], z);
+        hb_test_note(t, "%s, %.0f nm: spectral sampler's mean weight %.5f, RGB sampler's %.5f (z %.2f)",
+                     model_name(model), lambda[j], mean[0], mean[1], z);
         hb_plan_destroy(rgb);
     }
-    CHECK(t, worst_z <= 4.0, "a wavelength's mean weight is %.2f standard errors off", worst_z);
+    CHECK(t, worst_z <= 4.0, "%s: a wavelength's mean weight is %.2f standard errors off", model_name(model), worst_z);
     hb_plan_destroy(plan);
 }
 
-/* The sampler at 4 wavelengths (a blond fibre's melanin at 450, 550, 650 and 700 nm) by chi-square
- * against hb_pdf_near_spectral's integrals over equal-area cells, which sum to 1 within 2e-3. */
-static void test_spectral_chi_square(hb_test_ctx *t)
+static void test_spectral_sampling(hb_test_ctx *t)
+{
+    spectral_sampling_of(t, HB_MODEL_CHIANG);
+    spectral_sampling_of(t, HB_MODEL_DEON);
+}
+
+/* The samplers of CBTB16 and dFH11 at 4 wavelengths (a blond fibre's melanin at 450, 550, 650 and 700
+ * nm) by chi-square against hb_pdf_near_spectral's integrals over equal-area cells, which sum to 1
+ * within 2e-3. */
+static void spectral_chi_square_of(hb_test_ctx *t, hb_model model)
 {
     enum { NT = 24, NP = 48, GL = 6 };
     static const struct { double theta_o, h; } cases[] = { { 0.5, 0.2 }, { -1.2, -0.9 }, { 0.1, 0.95 } };
@@ -321,7 +341,7 @@ static void test_spectral_chi_square(hb_test_ctx *t)
         hb_melanin_absorption_spectral(0.3, 0.1, lambda[j], &s);
         w.sigma_a[j] = (float)s;
     }
-    hb_plan *plan = spectral_plan(t, 0.3, 0.3, HB_QUALITY_BALANCED, HB_ISA_AUTO);
+    hb_plan *plan = model_plan(t, model, 0.3, 0.0, 0.3, HB_QUALITY_BALANCED, HB_ISA_AUTO);
     if (!plan)
         return;
     size_t n = t->quick ? 20000 : HB_TEST_MAX_SAMPLES;
@@ -348,12 +368,19 @@ static void test_spectral_chi_square(hb_test_ctx *t)
         double chi2;
         int cells;
         double p_value = hb_test_chi_square(n, prob, integral, NT, NP, &chi2, &cells);
-        hb_test_note(t, "theta_o %g, h %g (seed %llu): integral of pdf %.6f, chi2 %.1f over %d cells, p = %.3f",
-                     cases[c].theta_o, cases[c].h, seed, integral, chi2, cells, p_value);
-        CHECK(t, fabs(integral - 1.0) <= 2e-3, "case %zu: pdf integrates to %.6f", c, integral);
-        CHECK(t, p_value >= 1e-3, "case %zu: chi-square p-value %.2e below the 1e-3 significance", c, p_value);
+        hb_test_note(t, "%s, theta_o %g, h %g (seed %llu): integral of pdf %.6f, chi2 %.1f over %d cells, p = %.3f",
+                     model_name(model), cases[c].theta_o, cases[c].h, seed, integral, chi2, cells, p_value);
+        CHECK(t, fabs(integral - 1.0) <= 2e-3, "%s, case %zu: pdf integrates to %.6f", model_name(model), c, integral);
+        CHECK(t, p_value >= 1e-3, "%s, case %zu: chi-square p-value %.2e below the 1e-3 significance",
+              model_name(model), c, p_value);
     }
     hb_plan_destroy(plan);
+}
+
+static void test_spectral_chi_square(hb_test_ctx *t)
+{
+    spectral_chi_square_of(t, HB_MODEL_CHIANG);
+    spectral_chi_square_of(t, HB_MODEL_DEON);
 }
 
 /* dFH11's far field (its spectral kernels), its near field and MJC03's far field (their per-sample
@@ -457,6 +484,59 @@ static void test_spectral_reference_plans(hb_test_ctx *t)
     }
 }
 
+/* The reference plans' spectral samplers (double) against the kernels', CBTB16's and dFH11's, from the
+ * same numbers at 4 wavelengths of a brown fibre: the same direction within 1e-4 radians but where a
+ * number falls on a lobe's edge (at most 1% of the samples), and there the same weights within 1e-5
+ * (measured: 4.8e-6, as the near field's f and pdf against the reference). */
+static void test_spectral_reference_sampler(hb_test_ctx *t)
+{
+    enum { S = 512 };
+    static float so[S], sph[S], sh[S], u[4][S], sa[4][S], ti2[2][S], pi2[2][S], p2[2][S], w2[2][4][S];
+    static const hb_model models[] = { HB_MODEL_CHIANG, HB_MODEL_DEON };
+    for (int k = 0; k < S; k++) {
+        so[k] = (float)hb_test_range(t, -1.5, 1.5), sph[k] = (float)hb_test_range(t, -M_PI, M_PI);
+        sh[k] = (float)hb_test_range(t, -1.0, 1.0);
+        for (int j = 0; j < 4; j++) {
+            double s;
+            hb_melanin_absorption_spectral(1.3, 0.2, 450.0 + 80.0 * j, &s);
+            sa[j][k] = (float)s;
+        }
+    }
+    float *streams[4] = { u[0], u[1], u[2], u[3] };
+    hb_uniforms(hb_test_next_seed(t), 0, S, 4, streams);
+    for (int mc = 0; mc < 2; mc++) {
+        for (int r = 0; r < 2; r++) {
+            hb_plan *plan = model_plan(t, models[mc], 1.3, 0.0, 0.3, r ? HB_QUALITY_REFERENCE : HB_QUALITY_BALANCED,
+                                       t->isa);
+            if (!plan)
+                return;
+            hb_sample_near_in in = { so, sph, sh, (const float *const *)streams };
+            hb_spectral_absorption a = { 4, (const float *const[]){ sa[0], sa[1], sa[2], sa[3] } };
+            hb_sample_spectral_out out = { ti2[r], pi2[r], p2[r], (float *const[]){ w2[r][0], w2[r][1], w2[r][2], w2[r][3] } };
+            hb_eval_report report;
+            CHECK(t, hb_sample_near_spectral(plan, S, &in, a, &out, &report) == HB_OK && !report.invalid, "%s",
+                  hb_last_error()->message);
+            hb_plan_destroy(plan);
+        }
+        int apart = 0;
+        double weight = 0.0;
+        for (int k = 0; k < S; k++) {
+            double d = fmax(fabs(ti2[0][k] - ti2[1][k]), fabs(remainder(pi2[0][k] - pi2[1][k], 2.0 * M_PI)));
+            if (d > 1e-4) {
+                apart++;
+                continue;
+            }
+            for (int j = 0; j < 4; j++)
+                weight = fmax(weight, fabs(w2[0][j][k] - w2[1][j][k]) / fmax(fabs(w2[1][j][k]), 1e-3));
+        }
+        hb_test_note(t, "%s: %d of %d directions apart from the reference sampler's, weights within %.2e",
+                     model_name(models[mc]), apart, S, weight);
+        CHECK(t, apart <= S / 100, "%s: %d directions apart from the reference sampler's", model_name(models[mc]),
+              apart);
+        CHECK(t, weight <= 1e-5, "%s: weights off the reference sampler's by %.3g", model_name(models[mc]), weight);
+    }
+}
+
 /* Refusals name the problem; an invalid absorption makes an invalid sample with zeros. */
 static void test_spectral_api(hb_test_ctx *t)
 {
@@ -489,9 +569,19 @@ static void test_spectral_api(hb_test_ctx *t)
     hb_options_default(&o);
     hb_error err;
     CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "%s", err.message);
+    o.model = HB_MODEL_HUANG;
+    hb_plan *huang = NULL;
+    CHECK(t, hb_plan_create(&m, &o, &huang, &err) == HB_OK, "%s", err.message);
+    CHECK(t, hb_eval_angles_spectral(huang, 4, (hb_angles_soa){ x, x, x, x },
+                                     (hb_spectral_absorption){ 1, (const float *const[]){ s0 } }, fo, NULL) ==
+                     HB_ERR_UNSUPPORTED &&
+                 strstr(hb_last_error()->message, "spectral"),
+          "HHH22's f: %s", hb_last_error()->message);
+    hb_plan_destroy(huang);
+    o.model = HB_MODEL_DEON;
     CHECK(t, hb_pdf_near_spectral(plan, 4, in, (hb_spectral_absorption){ 1, (const float *const[]){ s0 } }, out0,
-                                  NULL) == HB_ERR_UNSUPPORTED && strstr(hb_last_error()->message, "spectral"),
-          "dFH11's pdf: %s", hb_last_error()->message);
+                                  &report) == HB_OK && report.invalid == 3 && out0[0] > 0.0f && out0[3] == 0.0f,
+          "dFH11's pdf, invalid absorptions: %zu counted, %s", report.invalid, hb_last_error()->message);
     hb_plan_destroy(plan);
     /* a plan whose path has no per-sample absorption answers so for an empty batch too */
     o.azimuthal = HB_AZIMUTHAL_TABLE;
@@ -518,6 +608,7 @@ const hb_test hb_tests_spectral_eval[] = {
     { "spectral_reference", test_spectral_reference, 1 },
     { "spectral_sampling", test_spectral_sampling, 1 },
     { "spectral_chi_square", test_spectral_chi_square, 0 },
+    { "spectral_reference_sampler", test_spectral_reference_sampler, 1 },
     { "spectral_other_models", test_spectral_other_models, 1 },
     { "spectral_api", test_spectral_api, 0 },
     { NULL, NULL, 0 },

@@ -299,6 +299,18 @@ HB_INLINE vm load_sample_near(hb_sample_streams in, int dims, size_t i, size_t l
     return vm_and(valid, h_valid);
 }
 
+/* A spectral near-field sampling batch: load_sample_near's streams, then the wavelengths'
+ * absorptions after h (load_absorption); invalid lanes get zero absorptions. */
+HB_INLINE vm load_sample_near_spectral(const hb_spectral_sample_batch *b, int dims, size_t i, size_t lanes, vf *a)
+{
+    vm valid = load_sample_near(b->in, dims, i, lanes, a);
+    vf *absorption = a + 3 + dims;
+    valid = load_absorption(b->sigma_a, b->wavelengths, i, lanes, valid, absorption);
+    for (int k = 0; k < b->wavelengths; k++)
+        absorption[k] = vf_keep(valid, absorption[k]);
+    return valid;
+}
+
 /* `planes` planes of a spectral result; invalid lanes get 0. */
 HB_INLINE void store_planes(float *const *out, int planes, size_t i, size_t lanes, vm valid, const vf *f)
 {

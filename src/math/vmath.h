@@ -431,12 +431,17 @@ HB_INLINE vf azimuth_difference(const vf wi[3], const vf wo[3])
 }
 
 /* A sampler's weights f / pdf per channel, 0 where the pdf is 0. */
-HB_INLINE void sample_weights(vf pdf, const vf f[3], vf weight[3])
+HB_INLINE void sample_weights_of(vf pdf, const vf *f, vf *weight, int channels)
 {
     vm positive = vf_gt(pdf, vf_set1(0.0f));
     vf inv_pdf = vf_div(vf_set1(1.0f), vf_select(positive, pdf, vf_set1(1.0f)));
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < channels; k++)
         weight[k] = vf_keep(positive, vf_mul(f[k], inv_pdf));
+}
+
+HB_INLINE void sample_weights(vf pdf, const vf f[3], vf weight[3])
+{
+    sample_weights_of(pdf, f, weight, 3);
 }
 
 /* An azimuth |x| <= HB_PHI_LIMIT past 2 pi reduced to x - 2 pi k in [-pi, pi], the same on every

@@ -172,15 +172,9 @@ static void spectral_kernel(const hb_chiang *c, size_t n, const hb_spectral_batc
         spectral_blocks(c, b->wavelengths, n, b, invalid);
 }
 
-/* A near-field sampling batch (load_chiang_sample_near) and its wavelengths' absorptions after h. */
 HB_INLINE vm load_spectral_sample(const hb_spectral_sample_batch *b, size_t i, size_t lanes, vf *a)
 {
-    vm valid = load_chiang_sample_near(b->in, i, lanes, a);
-    vf *absorption = a + 3 + HB_CHIANG_NEAR_DIMENSIONS;
-    valid = load_absorption(b->sigma_a, b->wavelengths, i, lanes, valid, absorption);
-    for (int k = 0; k < b->wavelengths; k++)
-        absorption[k] = vf_keep(valid, absorption[k]);
-    return valid;
+    return load_sample_near_spectral(b, HB_CHIANG_NEAR_DIMENSIONS, i, lanes, a);
 }
 
 HB_INLINE void spectral_sample_blocks(const hb_chiang *c, int k, size_t n, const hb_spectral_sample_batch *b,

@@ -75,6 +75,19 @@ HB_INLINE vf channel_mean(const vf rgb[3])
     return vf_mul(vf_add(vf_add(rgb[0], rgb[1]), rgb[2]), vf_set1(1.0f / 3.0f));
 }
 
+/* The mean over a shape's channels: RGB's three (a grey fibre's copies among them), or a spectral
+ * call's k wavelengths. */
+HB_INLINE vf deon_channel_mean(const vf *A, int channels)
+{
+    if (channels == 1 || channels == 3)
+        return channel_mean(A);
+    vf sum = A[0];
+    HB_UNROLL
+    for (int c = 1; c < HB_DEON_CHANNELS; c++)
+        sum = c < channels ? vf_add(sum, A[c]) : sum;
+    return vf_mul(sum, vf_set1(1.0f / (float)channels));
+}
+
 /* Per-sample geometry the azimuthal part needs. */
 typedef struct deon_geometry {
     vf phi;          /* phi_o - phi_i in [-pi, pi] */
@@ -91,6 +104,15 @@ HB_INLINE void deon_plan_absorption(const hb_deon *d, deon_geometry *g)
     for (int c = 0; c < 3; c++)
         g->absorption[c] = vf_set1(d->sigma_a_log2e[c]);
     g->grey = d->channels == 1;
+}
+
+/* A spectral call's absorptions (sigma_a log2(e) per wavelength) into a sample's geometry. */
+HB_INLINE void deon_spectral_absorption(deon_geometry *g, int channels, const vf *absorption)
+{
+    HB_UNROLL
+    for (int c = 0; c < HB_DEON_CHANNELS; c++)
+        g->absorption[c] = c < channels ? absorption[c] : vf_set1(0.0f);
+    g->grey = 0;
 }
 
 /* What every node of the h quadrature needs from a sample: eta' (sec. 5) and mu_a' (sec. 6). */
@@ -116,11 +138,11 @@ HB_INLINE void deon_medium_of(const hb_deon *d, const deon_geometry *g, deon_med
 }
 
 /* What the paths through one offset h = sin(gamma_i) share across channels: the Fresnel factor f
- * (eq. 14), the per-traversal transmittance T (RGB), the exit azimuths Phi(p, h) (eq. 8) and the
+ * (eq. 14), the per-traversal transmittance T (per channel), the exit azimuths Phi(p, h) (eq. 8) and the
  * channel-free part of A(p, h) (eq. 13): A_f[0] = f, A_f[p] = (1 - f)^2 f^(p-1) up to p = pmax + 1
  * (the residual's first order); A(p, h) = A_f[p] T^p. */
 typedef struct deon_paths {
-    vf f, one_minus_f, T[3];
+    vf f, one_minus_f, T[HB_DEON_CHANNELS];
     vf A_f[HB_MAX_LOBES + 1];
     vf Phi[HB_MAX_LOBES];
 } deon_paths;
@@ -141,9 +163,9 @@ HB_INLINE void deon_node_paths(const hb_deon *d, const deon_medium *m, vf h, vf 
     /* path length per traversal: 2 cos(gamma_t), or the printed 2 (1 + cos 2 gamma_t) (docs/conventions.md) */
     vf path = !shape.standard && d->absorption_paper ? vf_mul(vf_set1(4.0f), vf_mul(cos_gamma_t, cos_gamma_t))
                                                      : vf_add(cos_gamma_t, cos_gamma_t);
-    HB_UNROLL
-    for (int c = 0; c < shape.channels; c++)
-        out->T[c] = vf_exp2_neg(vf_mul(m->mu_log2e[c], path));
+    HB_UNROLL /* to the most channels, each guarded by the count, as deon_medium_of's */
+    for (int c = 0; c < HB_DEON_CHANNELS; c++)
+        out->T[c] = c < shape.channels ? vf_exp2_neg(vf_mul(m->mu_log2e[c], path)) : vf_set1(1.0f);
     out->Phi[0] = vf_mul(vf_set1(-2.0f), gamma_i); /* eq. 8, p = 0 */
     out->A_f[0] = f;
     out->one_minus_f = one_minus_f;
@@ -168,12 +190,12 @@ HB_INLINE vf residual_series(vf f, vf one_minus_f, vf T)
     return vf_div(one, vf_max(denominator, vf_set1(1e-30f)));
 }
 
-/* Attenuation A(p, h) (eqs. 12-14, RGB) and exit azimuth Phi(p, h) (eq. 8) of every lobe of the
+/* Attenuation A(p, h) (eqs. 12-14, per channel) and exit azimuth Phi(p, h) (eq. 8) of every lobe of the
  * plan at one offset h = sin(gamma_i). A[HB_LOBE_RESIDUAL] = sum_{p > pmax} A(p, h). Without
  * the offset Fresnel option, A[R] = 1 and eq. 12's factor is applied by the caller. */
 typedef struct deon_node {
     deon_paths paths; /* Phi among them */
-    vf A[HB_MAX_LOBES + 1][3];
+    vf A[HB_MAX_LOBES + 1][HB_DEON_CHANNELS];
 } deon_node;
 
 HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf gamma_i, vf cos_gamma_i,
@@ -183,13 +205,15 @@ HB_INLINE void deon_node_lobes(const hb_deon *d, const deon_medium *m, vf h, vf 
     const int pmax = deon_pmax(d, shape);
     const deon_paths *paths = &node->paths;
     deon_node_paths(d, m, h, gamma_i, cos_gamma_i, &node->paths, shape);
-    vf T_power[3];
+    vf T_power[HB_DEON_CHANNELS];
     HB_UNROLL
-    for (int c = 0; c < channels; c++)
+    for (int c = 0; c < HB_DEON_CHANNELS; c++)
         T_power[c] = paths->T[c];
-    if (deon_lobe_on(d, 0, shape)) {
-        node->A[0][0] = node->A[0][1] = node->A[0][2] = r_fresnel_offset ? paths->f : vf_set1(1.0f);
-    }
+    if (deon_lobe_on(d, 0, shape))
+        HB_UNROLL
+        for (int c = 0; c < HB_DEON_CHANNELS; c++)
+            if (c < 3 || c < channels)
+                node->A[0][c] = r_fresnel_offset ? paths->f : vf_set1(1.0f);
     HB_UNROLL
     for (int p = 1; p <= pmax; p++) {
         if (deon_lobe_on(d, p, shape)) {
@@ -664,12 +688,9 @@ HB_INLINE void deon_fused_one(const hb_deon *d, const deon_geometry *g, const vf
 /* f by quadrature from M per group leader (longitudinal_deon_groups_*): the standard shape folds M_p
  * into the node sum (above), any other sums N_p per lobe first and adds the lobes of equal M_p before
  * multiplying, so each distinct M_p is evaluated once. */
-HB_STAGE void deon_quadrature(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
+HB_STAGE void deon_quadrature_general(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1],
+                                      vf out[3])
 {
-    if (d->standard) {
-        deon_fused(d, g, M, out, NULL);
-        return;
-    }
     vf N[HB_MAX_LOBES + 1][3];
     azimuthal_deon(d, g, N, NULL);
     out[0] = out[1] = out[2] = vf_set1(0.0f);
@@ -685,6 +706,16 @@ HB_STAGE void deon_quadrature(const hb_deon *d, const deon_geometry *g, const vf
         for (int c = 0; c < 3; c++)
             out[c] = vf_fma(M[p], N[p][c], out[c]);
     }
+}
+
+/* The standard shape's fused sum, or the general node loop as its own stage (its per-node lobes
+ * would crowd the fused loop's registers in one function). */
+HB_STAGE void deon_quadrature(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf out[3])
+{
+    if (d->standard)
+        deon_fused(d, g, M, out, NULL);
+    else
+        deon_quadrature_general(d, g, M, out);
 }
 
 /* f for the plan's shape: a table plan looks N up per M_p group (inline: a few dozen operations), the

@@ -14,6 +14,11 @@ HB_INLINE vm load_deon_sample_near(hb_sample_streams in, size_t i, size_t lanes,
     return load_sample_near(in, HB_DEON_NEAR_DIMENSIONS, i, lanes, a);
 }
 
+HB_INLINE vm load_deon_sample_spectral(const hb_spectral_sample_batch *b, size_t i, size_t lanes, vf *a)
+{
+    return load_sample_near_spectral(b, HB_DEON_NEAR_DIMENSIONS, i, lanes, a);
+}
+
 /* The near field at a[4] = h: f, and the pdf where pdf is not NULL. */
 HB_INLINE void deon_near_angles(const hb_deon *d, const vf a[5], hb_i0 i0, vf f[3], vf *pdf)
 {
@@ -67,23 +72,39 @@ HB_INLINE void deon_near_absorbing_angles(const hb_deon *d, const vf a[8], hb_i0
     deon_near(d, &g, M, a[4], f, NULL);
 }
 
-/* f at k wavelengths, each sample's absorptions a[5..5 + k) (load_spectral; the far field): the
- * standard shape's fused sum, whose node work is shared but for each wavelength's transmittance and
- * residual series. */
+/* M and the geometry of a spectral sample a[0..3] at its absorptions a[5..5 + k) (load_spectral). */
+HB_INLINE void deon_spectral_setup(const hb_deon *d, int channels, const vf *a, hb_i0 i0, vf M[HB_MAX_LOBES + 1],
+                                   deon_geometry *g)
+{
+    deon_longitudinal_groups(d, a[0], a[2], i0, M);
+    deon_geometry_angles(d, a[0], a[1], a[2], a[3], g);
+    deon_spectral_absorption(g, channels, a + 5);
+}
+
+/* f at k wavelengths (the far field): the standard shape's fused sum, whose node work is shared but
+ * for each wavelength's transmittance and residual series. */
 HB_INLINE void deon_spectral_angles(const hb_deon *d, int channels, const vf *a, hb_i0 i0, vf *f)
 {
     vf M[HB_MAX_LOBES + 1];
     deon_geometry g;
-    deon_longitudinal_groups(d, a[0], a[2], i0, M);
-    deon_geometry_angles(d, a[0], a[1], a[2], a[3], &g);
-    HB_UNROLL
-    for (int c = 0; c < HB_DEON_CHANNELS; c++)
-        g.absorption[c] = c < channels ? a[5 + c] : vf_set1(0.0f);
-    g.grey = 0;
+    deon_spectral_setup(d, channels, a, i0, M, &g);
     if (d->lobes == HB_STANDARD_LOBES)
         deon_fused_shaped(d, &g, M, f, NULL, (deon_shape){ 1, channels, 1 });
     else
         deon_fused_shaped(d, &g, M, f, NULL, (deon_shape){ 1, channels, 0 });
+}
+
+/* The near field at k wavelengths and each sample's h a[4]: f, and the sampler's pdf (the lobes
+ * weighted by their attenuations' mean over the k) where pdf is not NULL. */
+HB_INLINE void deon_near_spectral_angles(const hb_deon *d, int channels, const vf *a, hb_i0 i0, vf *f, vf *pdf)
+{
+    vf M[HB_MAX_LOBES + 1];
+    deon_geometry g;
+    deon_spectral_setup(d, channels, a, i0, M, &g);
+    if (pdf)
+        *pdf = deon_near_f_pdf_spectral(d, M, &g, a[2], a[4], channels, f);
+    else
+        deon_near_spectral(d, &g, M, a[4], channels, f, NULL);
 }
 
 /* How many samples a call may have for the kernels to take them one at a time, the far field's
@@ -168,5 +189,6 @@ const hb_deon_kernels HB_ISA_SYMBOL(deon_kernels) = {
     .near_few_max = HB_DEON_NEAR_FEW_MAX,
     .pdf_near = { deon_pdf_near_abramowitz, deon_pdf_near_paper },
     .sample_near = { deon_sample_near_abramowitz, deon_sample_near_paper },
+    .sample_spectral = { deon_sample_spectral_abramowitz, deon_sample_spectral_paper },
     .np_row = np_row,
 };

@@ -34,6 +34,9 @@ typedef void (*hb_deon_pdf_near_fn)(const hb_deon *deon, size_t n, hb_near_soa i
 typedef void (*hb_deon_sample_near_fn)(const hb_deon *deon, size_t n, hb_sample_streams in, hb_sample_out out,
                                        size_t *invalid);
 
+typedef void (*hb_deon_sample_spectral_fn)(const hb_deon *deon, size_t n, const hb_spectral_sample_batch *b,
+                                           size_t *invalid);
+
 typedef void (*hb_deon_np_row_fn)(const hb_deon *deon, float cos_theta_d, size_t n, const float *phi, float *out);
 
 typedef struct hb_deon_kernels {
@@ -54,10 +57,12 @@ typedef struct hb_deon_kernels {
     hb_deon_near_fn near[2];   /* at each sample's offset h (near.h) */
     hb_deon_near_fn near_few[2]; /* at most near_few_max samples, each alone with its lobes across the lanes */
     hb_deon_near_absorbing_fn near_absorbing[2]; /* at each sample's h and absorption */
-    hb_deon_spectral_fn spectral[2]; /* f at k wavelengths, standard quadrature plans, the far field */
+    /* k wavelengths: the near field's f and pdf (every plan), the far field's f (standard quadrature plans) */
+    hb_deon_spectral_fn spectral[2];
     int near_few_max;
     hb_deon_pdf_near_fn pdf_near[2];
     hb_deon_sample_near_fn sample_near[2];
+    hb_deon_sample_spectral_fn sample_spectral[2]; /* the near-field sampler at k wavelengths */
     hb_deon_np_row_fn np_row; /* one row of the N_p table, out[(k * slots + s) * 3 + c] */
 } hb_deon_kernels;
 

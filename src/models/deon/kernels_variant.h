@@ -84,19 +84,36 @@ static void HB_DEON_VARIANT(deon_absorbing)(const hb_deon *deon, size_t n, const
              (deon_absorbing_angles(deon, a, HB_DEON_I0, f), store_rgb(out, i, lanes, valid, f)));
 }
 
-/* k wavelengths per sample (standard quadrature plans, the far field): pbrt-v4's four with the channel
- * loops straight, any other count as it comes. */
+/* k wavelengths per sample, pbrt-v4's four with the channel loops straight, any other count as it
+ * comes: the near field at h, f and the pdf where the batch asks (every plan), or the far field's f
+ * (standard quadrature plans). */
+#define HB_DEON_SPECTRAL_BLOCKS(k)                                                                              \
+    (b->near.h ? deon_near_spectral_angles(deon, k, a, HB_DEON_I0, f, b->pdf ? &p : NULL)                    \
+               : deon_spectral_angles(deon, k, a, HB_DEON_I0, f),                                             \
+     b->f ? store_planes(b->f, k, i, lanes, valid, f) : (void)0,                                             \
+     b->pdf ? store_block(b->pdf, i, lanes, vf_keep(valid, p)) : (void)0)
 static void HB_DEON_VARIANT(deon_spectral)(const hb_deon *deon, size_t n, const hb_spectral_batch *b,
                                    size_t *invalid)
 {
-    vf f[HB_DEON_CHANNELS];
+    vf f[HB_DEON_CHANNELS], p = vf_set1(0.0f);
     if (b->wavelengths == 4)
-        HB_BATCH(load_spectral, 5 + HB_DEON_CHANNELS, b, n, invalid,
-                 (deon_spectral_angles(deon, 4, a, HB_DEON_I0, f), store_planes(b->f, 4, i, lanes, valid, f)));
+        HB_BATCH(load_spectral, 5 + HB_DEON_CHANNELS, b, n, invalid, HB_DEON_SPECTRAL_BLOCKS(4));
     else
-        HB_BATCH(load_spectral, 5 + HB_DEON_CHANNELS, b, n, invalid,
-                 (deon_spectral_angles(deon, b->wavelengths, a, HB_DEON_I0, f),
-                  store_planes(b->f, b->wavelengths, i, lanes, valid, f)));
+        HB_BATCH(load_spectral, 5 + HB_DEON_CHANNELS, b, n, invalid, HB_DEON_SPECTRAL_BLOCKS(b->wavelengths));
+}
+#undef HB_DEON_SPECTRAL_BLOCKS
+
+/* The near-field sampler at k wavelengths (load_deon_sample_spectral): the lobe by the attenuations' mean
+ * over the k, f / pdf per wavelength. */
+static void HB_DEON_VARIANT(deon_sample_spectral)(const hb_deon *deon, size_t n, const hb_spectral_sample_batch *b,
+                                          size_t *invalid)
+{
+    enum { FIRST = 3 + HB_DEON_NEAR_DIMENSIONS };
+    vf theta_i, phi_i, pdf, weight[HB_DEON_CHANNELS];
+    HB_BATCH(load_deon_sample_spectral, FIRST + HB_DEON_CHANNELS, b, n, invalid,
+             (deon_sample_near_of(deon, b->wavelengths, a + FIRST, a[0], a[1], a[FIRST - 1], a + 2, HB_DEON_I0,
+                                  &theta_i, &phi_i, &pdf, weight),
+              store_sample_spectral(&b->out, b->wavelengths, i, lanes, valid, theta_i, phi_i, pdf, weight)));
 }
 
 static void HB_DEON_VARIANT(deon_near)(const hb_deon *deon, size_t n, hb_near_soa in, hb_rgb_soa out,

@@ -142,15 +142,21 @@ static hb_status eval_near_absorption(const hb_plan *plan, size_t n, const hb_ab
     return HB_OK;
 }
 
-/* f at k wavelengths by the standard quadrature's fused sum (the far field); HB_ERR_UNSUPPORTED for the
- * others, which the spectral calls then evaluate through eval_absorption three wavelengths a call. */
+/* k wavelengths: the near field's f and pdf for every plan, the far field's f by the standard
+ * quadrature's fused sum; HB_ERR_UNSUPPORTED for the other far fields, which the spectral calls then
+ * evaluate through eval_absorption three wavelengths a call. */
 static hb_status spectral(const hb_plan *plan, size_t n, const hb_spectral_batch *b, size_t *invalid)
 {
     const hb_deon *d = &hb_deon_of(plan)->kernel;
-    if (b->near.h || b->pdf || !d->standard || d->np_table || plan->options.term != HB_TERM_FULL)
+    if (plan->options.term != HB_TERM_FULL || (!b->near.h && (b->pdf || !d->standard || d->np_table)))
         return HB_ERR_UNSUPPORTED;
     deon_kernels_for(plan, n)->spectral[plan->options.i0](d, n, b, invalid);
     return HB_OK;
+}
+
+static void sample_spectral(const hb_plan *plan, size_t n, const hb_spectral_sample_batch *b, size_t *invalid)
+{
+    deon_kernels_for(plan, n)->sample_spectral[plan->options.i0](&hb_deon_of(plan)->kernel, n, b, invalid);
 }
 
 static void sample_near(const hb_plan *plan, size_t n, hb_sample_streams in, hb_sample_out out, size_t *invalid)
@@ -262,6 +268,7 @@ const hb_model_ops hb_deon_model = {
     .sample_near = sample_near,
     .eval_near_absorption = eval_near_absorption,
     .spectral = spectral,
+    .sample_spectral = sample_spectral,
     .pdf_near = pdf_near,
     .table = hb_deon_table_view,
     .shader_constants = hb_deon_shader_constants,

@@ -47,10 +47,11 @@ HB_INLINE void deon_near_node(const hb_deon *d, const deon_medium *medium, vf h,
     deon_node_lobes(d, medium, a, vf_asin(a), cos_gamma_i, node, shape);
 }
 
-/* f at h (eq. 10's integrand per lobe, times M_p); with pdf, the sampler's azimuthal density at h,
- * sum_p m_p D_p / sum_p m_p with m_p = M_p A(p, h) averaged over the channels (sample.h). */
+/* f at h (eq. 10's integrand per lobe, times M_p) in the shape's channels (out: at least three);
+ * with pdf, the sampler's azimuthal density at h, sum_p m_p D_p / sum_p m_p with m_p = M_p A(p, h)
+ * averaged over the channels (sample.h). */
 HB_INLINE void deon_near_shaped(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf h,
-                                vf out[3], vf *pdf, deon_shape shape)
+                                vf *out, vf *pdf, deon_shape shape)
 {
     deon_medium medium;
     deon_medium_of(d, g, &medium, shape.channels);
@@ -60,8 +61,9 @@ HB_INLINE void deon_near_shaped(const hb_deon *d, const deon_geometry *g, const 
     vf fresnel_r = d->r_fresnel_offset ? vf_set1(1.0f) : fresnel_dielectric(g->cos_half_io, &d->ior); /* eq. 12 */
     vf mass = vf_set1(0.0f), detected = vf_set1(0.0f);
     HB_UNROLL
-    for (int c = 0; c < 3; c++)
-        out[c] = vf_set1(0.0f);
+    for (int c = 0; c < HB_DEON_CHANNELS; c++)
+        if (c < 3 || c < shape.channels)
+            out[c] = vf_set1(0.0f);
     HB_UNROLL
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         if (!deon_lobe_on(d, p, shape))
@@ -73,7 +75,7 @@ HB_INLINE void deon_near_shaped(const hb_deon *d, const deon_geometry *g, const 
         for (int c = 0; c < shape.channels; c++)
             out[c] = vf_fma(MD, node.A[p][c], out[c]);
         if (pdf) {
-            vf m = vf_mul(M[d->m_group[p]], channel_mean(node.A[p]));
+            vf m = vf_mul(M[d->m_group[p]], deon_channel_mean(node.A[p], shape.channels));
             mass = vf_add(mass, m);
             detected = vf_fma(m, D, detected);
         }
@@ -143,6 +145,16 @@ HB_INLINE void deon_near(const hb_deon *d, const deon_geometry *g, const vf M[HB
         deon_near_shaped(d, g, M, h, out, pdf, (deon_shape){ 1, 3, 0 });
     else
         deon_near_shaped(d, g, M, h, out, pdf, (deon_shape){ 0, 3, 0 });
+}
+
+/* The same at a spectral call's k wavelengths, g's absorptions (out: k planes, at least three). */
+HB_INLINE void deon_near_spectral(const hb_deon *d, const deon_geometry *g, const vf M[HB_MAX_LOBES + 1], vf h,
+                                  int channels, vf *out, vf *pdf)
+{
+    if (d->standard)
+        deon_near_shaped(d, g, M, h, out, pdf, (deon_shape){ 1, channels, 0 });
+    else
+        deon_near_shaped(d, g, M, h, out, pdf, (deon_shape){ 0, channels, 0 });
 }
 
 #endif

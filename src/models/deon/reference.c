@@ -174,6 +174,6 @@ void hb_ref_deon_spectral(const hb_plan *plan, double theta_i, double phi_i, dou
         far_field(plan, k, sigma_a, theta_i, phi_i, theta_o, phi_o, f);
     else
         near_field(plan, k, sigma_a, theta_i, phi_i, theta_o, phi_o, h, f);
-    if (pdf)
-        *pdf = 0.0; /* no spectral sampler: the spectral calls ask for f alone */
+    if (pdf) /* the spectral sampler is the near field's */
+        *pdf = isnan(h) ? 0.0 : hb_ref_deon_pdf_spectral(plan, theta_i, phi_i, theta_o, phi_o, h, k, sigma_a);
 }

@@ -41,8 +41,14 @@ void hb_ref_deon_sample_near(const hb_plan *plan, double theta_o, double phi_o, 
 double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h);
 
 /* f at k wavelengths of absorptions sigma_a (hb_*_spectral on a reference plan): the near field at h,
- * or the far field where h is NaN; *pdf (may be NULL) 0, for dFH11 has no spectral sampler. */
+ * or the far field where h is NaN; *pdf (may be NULL) the near-field sampler's, 0 for the far field. */
 void hb_ref_deon_spectral(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h,
                           int k, const double *sigma_a, double *f, double *pdf);
+
+/* The near-field sampler at k wavelengths and its pdf: the lobe by A(p, h) averaged over the k. */
+void hb_ref_deon_sample_spectral(const hb_plan *plan, double theta_o, double phi_o, double h, const double *u, int k,
+                                 const double *sigma_a, double *theta_i, double *phi_i);
+double hb_ref_deon_pdf_spectral(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                                double h, int k, const double *sigma_a);
 
 #endif

@@ -29,15 +29,26 @@ static void longitudinal_groups(const hb_plan *plan, double theta_i, double thet
                                   : 0.0;
 }
 
-/* m_p = M_p A(p, h) (channel mean) at h = sin(gamma_i); returns their sum. */
-static double lobe_masses(const hb_plan *plan, const double M[HB_MAX_LOBES + 1], double sin2_theta_d, double gamma_i,
-                          double mass[HB_MAX_LOBES + 1], double Phi[HB_MAX_LOBES])
+/* The channels a sampler weighs its lobes by: the plan's RGB, or a spectral call's k wavelengths. */
+typedef struct channels {
+    int k;
+    const double *sigma_a;
+} channels;
+
+static channels rgb_of(const hb_plan *plan) { return (channels){ 3, plan->sigma_a }; }
+
+/* m_p = M_p A(p, h) (the mean over the channels) at h = sin(gamma_i); returns their sum. */
+static double lobe_masses(const hb_plan *plan, channels ch, const double M[HB_MAX_LOBES + 1], double sin2_theta_d,
+                          double gamma_i, double mass[HB_MAX_LOBES + 1], double Phi[HB_MAX_LOBES])
 {
     const hb_deon *d = &hb_deon_of(plan)->kernel;
     double A[HB_MAX_LOBES + 1][HB_REF_DEON_CHANNELS], total = 0.0;
-    hb_ref_deon_node(plan, 3, plan->sigma_a, sin2_theta_d, gamma_i, A, Phi);
+    hb_ref_deon_node(plan, ch.k, ch.sigma_a, sin2_theta_d, gamma_i, A, Phi);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
-        mass[p] = hb_deon_lobe_on(d, p) ? M[d->m_group[p]] * (A[p][0] + A[p][1] + A[p][2]) / 3.0 : 0.0;
+        double sum = 0.0;
+        for (int c = 0; c < ch.k; c++)
+            sum += A[p][c];
+        mass[p] = hb_deon_lobe_on(d, p) ? M[d->m_group[p]] * sum / ch.k : 0.0;
         total += mass[p];
     }
     return total;
@@ -57,7 +68,7 @@ double hb_ref_deon_pdf(const hb_plan *plan, double theta_i, double phi_i, double
         weight_total += d->weight[j];
     for (int j = 0; j < d->nodes; j++) {
         double mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES], detected = 0.0;
-        double total = lobe_masses(plan, M, sin_td * sin_td, d->gamma_i[j], mass, Phi);
+        double total = lobe_masses(plan, rgb_of(plan), M, sin_td * sin_td, d->gamma_i[j], mass, Phi);
         if (total <= 0.0)
             continue;
         for (int p = 0; p <= d->pmax; p++)
@@ -123,7 +134,7 @@ void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const
     double M[HB_MAX_LOBES + 1], mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES];
     longitudinal_groups(plan, *theta_i, theta_o, M);
     double sin_td = sin(0.5 * (theta_o - *theta_i));
-    double total = lobe_masses(plan, M, sin_td * sin_td, d->gamma_i[j], mass, Phi);
+    double total = lobe_masses(plan, rgb_of(plan), M, sin_td * sin_td, d->gamma_i[j], mass, Phi);
     double target = within * total;
     double cumulative = 0.0;
     int lobe = -1;
@@ -144,16 +155,17 @@ void hb_ref_deon_sample(const hb_plan *plan, double theta_o, double phi_o, const
     *phi_i = remainder(phi_o - phi, 2.0 * M_PI);
 }
 
-/* The near field at offset h (src/models/deon/sample.h, deon_sample_near): theta_i as in the far
- * field, u[0]'s remainder picks the lobe by M_p A(p, |h|), u[3] draws phi on h's side. */
-void hb_ref_deon_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double u[4],
-                             double *theta_i, double *phi_i)
+/* The near field at offset h (src/models/deon/sample.h, deon_sample_near_of): theta_i as in the far
+ * field, u[0]'s remainder picks the lobe by M_p A(p, |h|) averaged over the channels, u[3] draws phi
+ * on h's side. */
+static void sample_near(const hb_plan *plan, channels ch, double theta_o, double phi_o, double h, const double *u,
+                        double *theta_i, double *phi_i)
 {
     double rest, M[HB_MAX_LOBES + 1], mass[HB_MAX_LOBES + 1], Phi[HB_MAX_LOBES];
     *theta_i = sample_theta(plan, theta_o, u, &rest);
     longitudinal_groups(plan, *theta_i, theta_o, M);
     double sin_td = sin(0.5 * (theta_o - *theta_i));
-    double target = rest * lobe_masses(plan, M, sin_td * sin_td, asin(fmin(fabs(h), 1.0)), mass, Phi);
+    double target = rest * lobe_masses(plan, ch, M, sin_td * sin_td, asin(fmin(fabs(h), 1.0)), mass, Phi);
     double cumulative = 0.0;
     int lobe = -1;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
@@ -167,7 +179,8 @@ void hb_ref_deon_sample_near(const hb_plan *plan, double theta_o, double phi_o, 
     *phi_i = remainder(phi_o - remainder(h < 0.0 ? -spread : spread, 2.0 * M_PI), 2.0 * M_PI);
 }
 
-double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h)
+static double pdf_near(const hb_plan *plan, channels ch, double theta_i, double phi_i, double theta_o, double phi_o,
+                       double h)
 {
     const hb_deon *d = &hb_deon_of(plan)->kernel;
     double phi = remainder(phi_o - phi_i, 2.0 * M_PI), sin_td = sin(0.5 * (theta_o - theta_i));
@@ -176,7 +189,7 @@ double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, d
     double c_total = lobe_choice(d, theta_o, c), mixture = 0.0;
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++)
         mixture += c[p] * M[p];
-    double total = lobe_masses(plan, M, sin_td * sin_td, asin(fmin(fabs(h), 1.0)), mass, Phi), detected = 0.0;
+    double total = lobe_masses(plan, ch, M, sin_td * sin_td, asin(fmin(fabs(h), 1.0)), mass, Phi), detected = 0.0;
     if (total <= 0.0)
         return 0.0;
     double side = h < 0.0 ? -phi : phi;
@@ -185,6 +198,29 @@ double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, d
             detected += mass[p] * hb_ref_detector(hb_deon_of(plan)->beta_n[p], side - Phi[p]);
     detected += mass[HB_LOBE_RESIDUAL] * 0.5 / M_PI;
     return mixture / c_total * detected / total;
+}
+
+void hb_ref_deon_sample_near(const hb_plan *plan, double theta_o, double phi_o, double h, const double u[4],
+                             double *theta_i, double *phi_i)
+{
+    sample_near(plan, rgb_of(plan), theta_o, phi_o, h, u, theta_i, phi_i);
+}
+
+double hb_ref_deon_pdf_near(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o, double h)
+{
+    return pdf_near(plan, rgb_of(plan), theta_i, phi_i, theta_o, phi_o, h);
+}
+
+void hb_ref_deon_sample_spectral(const hb_plan *plan, double theta_o, double phi_o, double h, const double *u, int k,
+                                 const double *sigma_a, double *theta_i, double *phi_i)
+{
+    sample_near(plan, (channels){ k, sigma_a }, theta_o, phi_o, h, u, theta_i, phi_i);
+}
+
+double hb_ref_deon_pdf_spectral(const hb_plan *plan, double theta_i, double phi_i, double theta_o, double phi_o,
+                                double h, int k, const double *sigma_a)
+{
+    return pdf_near(plan, (channels){ k, sigma_a }, theta_i, phi_i, theta_o, phi_o, h);
 }
 
 /* The plan's term: eq. 7 of the R lobe alone (HB_TERM_LONGITUDINAL), or the whole of f. */
@@ -201,4 +237,5 @@ static void deon_eval(const hb_plan *plan, double theta_i, double phi_i, double 
 const hb_reference_ops hb_ref_deon_ops = {
     .eval = deon_eval, .eval_near = hb_ref_deon_near, .sample = hb_ref_deon_sample, .pdf = hb_ref_deon_pdf,
     .sample_near = hb_ref_deon_sample_near, .pdf_near = hb_ref_deon_pdf_near, .spectral = hb_ref_deon_spectral,
+    .sample_spectral = hb_ref_deon_sample_spectral,
 };

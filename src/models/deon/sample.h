@@ -75,24 +75,22 @@ HB_INLINE vf deon_sample_theta(const hb_deon *d, const vf c[HB_MAX_LOBES + 1], v
     return longitudinal_sample(v, e2, cos_shift, sin_shift, theta_o, u[1], u[2]);
 }
 
-/* Step 2 at one node (h = sin gamma_i >= 0): the lobe, in proportion to m_p = M_p A(p, h) (channel
- * mean), picked by u in [0, 1); returns u's remainder within the lobe's share, and the lobe's exit
- * azimuth Phi, detector width beta and whether it is the residual. */
-HB_STAGE vf deon_pick_lobe(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf theta_i, vf theta_o, vf h, vf gamma_i,
-                           vf cos_gamma_i, vf u, vf *Phi, vf *beta, vm *residual)
+/* Step 2 at one node (h = sin gamma_i >= 0): the lobe, in proportion to m_p = M_p A(p, h) (the mean
+ * over `channels` channels of g's absorptions; g: cos_theta_d and the absorptions), picked by u in
+ * [0, 1); returns u's remainder within the lobe's share, and the lobe's exit azimuth Phi, detector
+ * width beta and whether it is the residual. */
+HB_INLINE vf deon_pick_lobe_of(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g, int channels,
+                               vf h, vf gamma_i, vf cos_gamma_i, vf u, vf *Phi, vf *beta, vm *residual)
 {
-    deon_geometry g;
-    g.cos_theta_d = cos_half_difference(theta_o, theta_i);
-    deon_plan_absorption(d, &g);
     deon_medium medium;
-    deon_medium_of(d, &g, &medium, 3);
+    deon_medium_of(d, g, &medium, channels);
     deon_node node;
-    deon_node_lobes(d, &medium, h, gamma_i, cos_gamma_i, &node, (deon_shape){ 0, 3, 0 });
+    deon_node_lobes(d, &medium, h, gamma_i, cos_gamma_i, &node, (deon_shape){ 0, channels, 0 });
     vf mass[HB_MAX_LOBES + 1], total = vf_set1(0.0f);
     for (int p = 0; p <= HB_LOBE_RESIDUAL; p++) {
         if (!hb_deon_lobe_on(d, p))
             continue;
-        mass[p] = vf_mul(M[d->m_group[p]], channel_mean(node.A[p]));
+        mass[p] = vf_mul(M[d->m_group[p]], deon_channel_mean(node.A[p], channels));
         total = vf_add(total, mass[p]);
     }
     vf target = vf_mul(u, total), below = vf_set1(0.0f), cumulative = vf_set1(0.0f), chosen_mass = vf_set1(1.0f);
@@ -115,6 +113,16 @@ HB_STAGE vf deon_pick_lobe(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf th
         cumulative = vf_add(cumulative, mass[p]);
     }
     return vf_div(vf_sub(target, below), vf_max(chosen_mass, vf_set1(1e-37f)));
+}
+
+/* The same at the plan's own absorption (RGB). */
+HB_STAGE vf deon_pick_lobe(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], vf theta_i, vf theta_o, vf h, vf gamma_i,
+                           vf cos_gamma_i, vf u, vf *Phi, vf *beta, vm *residual)
+{
+    deon_geometry g;
+    g.cos_theta_d = cos_half_difference(theta_o, theta_i);
+    deon_plan_absorption(d, &g);
+    return deon_pick_lobe_of(d, M, &g, 3, h, gamma_i, cos_gamma_i, u, Phi, beta, residual);
 }
 
 /* Step 3: phi from the lobe's detector about its exit azimuth on the chosen side, D_p(phi - Phi)
@@ -212,23 +220,52 @@ HB_INLINE vf deon_near_f_pdf(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], con
     return vf_mul(deon_theta_density(d, M, theta_o), azimuthal);
 }
 
-HB_INLINE void deon_sample_near(const hb_deon *d, vf theta_o, vf phi_o, vf h, const vf u[4], hb_i0 i0, vf *theta_i,
-                                vf *phi_i, vf *pdf, vf weight[3])
+/* The same at a spectral call's k wavelengths, g's absorptions: m_p averages A(p, h) over the k, as
+ * pbrt-v4's HairBxDF::Sample_f chooses its lobe (f: k planes, at least three). */
+HB_INLINE vf deon_near_f_pdf_spectral(const hb_deon *d, const vf M[HB_MAX_LOBES + 1], const deon_geometry *g,
+                                      vf theta_o, vf h, int channels, vf *f)
 {
-    vf c[HB_MAX_LOBES + 1], M[HB_MAX_LOBES + 1], f[3], rest, Phi, beta;
+    vf azimuthal;
+    deon_near_spectral(d, g, M, h, channels, f, &azimuthal);
+    return vf_mul(deon_theta_density(d, M, theta_o), azimuthal);
+}
+
+/* One near-field sample: at the plan's absorption (RGB) where absorption is NULL, else at a spectral
+ * call's `channels` wavelengths of absorptions sigma_a log2(e), the lobe chosen by their mean
+ * attenuation; weight: f / pdf per channel. */
+HB_INLINE void deon_sample_near_of(const hb_deon *d, int channels, const vf *absorption, vf theta_o, vf phi_o, vf h,
+                                   const vf u[4], hb_i0 i0, vf *theta_i, vf *phi_i, vf *pdf, vf *weight)
+{
+    vf c[HB_MAX_LOBES + 1], M[HB_MAX_LOBES + 1], f[HB_DEON_CHANNELS], rest, Phi, beta, cos_gamma_i;
     vf c_total = deon_lobe_choice_at(d, theta_o, c);
     *theta_i = deon_sample_theta(d, c, c_total, theta_o, u, &rest);
     deon_longitudinal_groups(d, *theta_i, theta_o, i0, M);
-    vf a = vf_min(vf_abs(h), vf_set1(1.0f));
-    vf cos_gamma_i = vf_sqrt(vf_mul(vf_sub(vf_set1(1.0f), a), vf_add(vf_set1(1.0f), a)));
+    vf a = near_offset(h, &cos_gamma_i);
     vm residual;
-    deon_pick_lobe(d, M, *theta_i, theta_o, a, vf_asin(a), cos_gamma_i, rest, &Phi, &beta, &residual);
+    deon_geometry g;
+    if (absorption) {
+        g.cos_theta_d = cos_half_difference(theta_o, *theta_i);
+        deon_spectral_absorption(&g, channels, absorption);
+        deon_pick_lobe_of(d, M, &g, channels, a, vf_asin(a), cos_gamma_i, rest, &Phi, &beta, &residual);
+    } else {
+        deon_pick_lobe(d, M, *theta_i, theta_o, a, vf_asin(a), cos_gamma_i, rest, &Phi, &beta, &residual);
+    }
     vf phi = deon_draw_phi(Phi, beta, residual, vf_lt(h, vf_set1(0.0f)), u[3]);
     *phi_i = wrap_angle(vf_sub(phi_o, phi));
-    deon_geometry g;
     deon_geometry_angles(d, *theta_i, *phi_i, theta_o, phi_o, &g);
-    *pdf = deon_near_f_pdf(d, M, &g, theta_o, h, f);
-    sample_weights(*pdf, f, weight);
+    if (absorption) {
+        deon_spectral_absorption(&g, channels, absorption);
+        *pdf = deon_near_f_pdf_spectral(d, M, &g, theta_o, h, channels, f);
+    } else {
+        *pdf = deon_near_f_pdf(d, M, &g, theta_o, h, f);
+    }
+    sample_weights_of(*pdf, f, weight, channels);
+}
+
+HB_INLINE void deon_sample_near(const hb_deon *d, vf theta_o, vf phi_o, vf h, const vf u[4], hb_i0 i0, vf *theta_i,
+                                vf *phi_i, vf *pdf, vf weight[3])
+{
+    deon_sample_near_of(d, 3, NULL, theta_o, phi_o, h, u, i0, theta_i, phi_i, pdf, weight);
 }
 
 #endif
