@@ -158,6 +158,22 @@ HB_API hb_status hb_melanin_from_colour(const double rgb[3], double beta_n, doub
 HB_API hb_status hb_melanin_from_colour_spectral(const double rgb[3], double beta_n, double *eumelanin,
                                                  double *pheomelanin, hb_error *error);
 
+/* The spectral mode of hb_absorption_from_colour (docs/spectral.md), for any colour, dyed ones
+ * included: a smooth absorption spectrum whose colour in a spectral renderer (CBTB16 eq. 9's colour
+ * per wavelength, reduced as hb_melanin_from_colour_spectral reduces it) comes closest to rgb in log
+ * colour. Eq. 9's colour per wavelength is a sigmoid of a quadratic in wavelength (Jakob and Hanika
+ * 2019's smooth uplift), found by damped Gauss-Newton from a flat spectrum; the same ranges and
+ * refusals as hb_absorption_from_colour. hb_absorption_spectrum_at gives the absorption per unit
+ * radius at a wavelength in [300, 1000] nm, for a spectral call's sigma_a. */
+typedef struct hb_absorption_spectrum {
+    double shape[3]; /* the quadratic's coefficients in x = (lambda - 580 nm) / 200 nm */
+    double depth;    /* eq. 9's d(beta_n) */
+} hb_absorption_spectrum;
+HB_API hb_status hb_absorption_from_colour_spectral(const double rgb[3], double beta_n,
+                                                    hb_absorption_spectrum *spectrum, hb_error *error);
+HB_API hb_status hb_absorption_spectrum_at(const hb_absorption_spectrum *spectrum, double wavelength,
+                                           double *sigma_a);
+
 /* Speed/accuracy levels: error targets of about 1e-2, 1e-3 and 1e-4 relative to the
  * double reference for N_p (dFH11: the node count follows from beta_n). dFH11's M_p is
  * formed in float at FAST and BALANCED (relative error about 1e-6 on the lobe, 2e-5 far in

@@ -158,6 +158,72 @@ static void test_colour_modes(hb_test_ctx *t)
     CHECK(t, closer == 20, "the spectral mode is closer in log colour for %d of 20 colours", closer);
 }
 
+/* The colour of an absorption spectrum in a spectral renderer: eq. 9's colour per band at its
+ * absorption, reduced to linear sRGB (as spectral_colour). */
+static void spectrum_colour(const hb_absorption_spectrum *spectrum, double beta_n, double rgb[3])
+{
+    double e1[3] = { exp(-1.0), exp(-1.0), exp(-1.0) }, sigma[3], t[HB_CIE_BANDS];
+    hb_absorption_from_colour(e1, beta_n, sigma, NULL);
+    for (int b = 0; b < HB_CIE_BANDS; b++) {
+        double sigma_a;
+        hb_absorption_spectrum_at(spectrum, hb_cie_band(b), &sigma_a);
+        t[b] = exp(-sqrt(sigma_a / sigma[0]));
+    }
+    hb_srgb_of_spectrum(t, rgb);
+}
+
+/* hb_absorption_from_colour_spectral over the same 20 melanin colours and 11 dyed ones (blue, green,
+ * violet, grey, a near-white blond, a saturated red, the three primaries at 0.99 against 0.01, white,
+ * near-black and an orange with red at 1): the asked colour as a spectral renderer shows the
+ * spectrum, within 1e-12 but white, which the family's colours (each below 1) approach from below
+ * (measured 4.4e-8); every spectrum finite and non-negative from 300 to 1000 nm; refusals. */
+static void test_absorption_modes(hb_test_ctx *t)
+{
+    static const double dyed[][3] = { { 0.05, 0.12, 0.45 }, { 0.08, 0.3, 0.1 }, { 0.25, 0.06, 0.35 },
+                                      { 0.3, 0.3, 0.3 },    { 0.95, 0.9, 0.75 }, { 0.6, 0.02, 0.01 },
+                                      { 0.99, 0.01, 0.01 }, { 0.01, 0.99, 0.01 }, { 0.01, 0.01, 0.99 },
+                                      { 1.0, 1.0, 1.0 },    { 0.001, 0.001, 0.001 }, { 1.0, 0.5, 0.2 } };
+    enum { DYED = sizeof dyed / sizeof dyed[0] };
+    double sum[2] = { 0.0 }, worst[2] = { 0.0 }, white = 0.0;
+    int bad = 0;
+    for (int k = 0; k < 20 + DYED; k++) {
+        double colour[3], shown[3];
+        if (k < 20)
+            rgb_colour(0.01 * pow(80.0, (k % 10) / 9.0), k < 10 ? 0.0 : 0.04 * (k - 9) * (k % 2 ? 0.5 : 1.0), 0.3, colour);
+        else
+            memcpy(colour, dyed[k - 20], sizeof colour);
+        hb_absorption_spectrum spectrum;
+        hb_error err;
+        CHECK(t, hb_absorption_from_colour_spectral(colour, 0.3, &spectrum, &err) == HB_OK, "%s", err.message);
+        spectrum_colour(&spectrum, 0.3, shown);
+        double e = colour_error(shown, colour);
+        if (colour[0] == 1.0 && colour[1] == 1.0 && colour[2] == 1.0) { /* the family's colours are below 1 */
+            white = e;
+            continue;
+        }
+        sum[k >= 20] += e / (k < 20 ? 20.0 : DYED - 1), worst[k >= 20] = fmax(worst[k >= 20], e);
+        for (double lambda = 300.0; lambda <= 1000.0; lambda += 10.0) {
+            double s = -1.0;
+            bad += hb_absorption_spectrum_at(&spectrum, lambda, &s) != HB_OK || !(s >= 0.0 && isfinite(s));
+        }
+    }
+    hb_test_note(t, "absorption spectra of 20 melanin colours in a spectral renderer, the largest channel's relative "
+                    "error, mean / largest: %.1e / %.1e; of %d dyed colours: %.1e / %.1e; white %.1e",
+                 sum[0], worst[0], DYED - 1, sum[1], worst[1], white);
+    CHECK(t, bad == 0, "%d absorptions not finite and >= 0", bad);
+    CHECK(t, white <= 1e-7, "white is off by %.3g", white);
+    CHECK(t, worst[0] <= 1e-12, "a melanin colour is off by %.3g", worst[0]);
+    CHECK(t, worst[1] <= 1e-12, "a dyed colour is off by %.3g", worst[1]);
+    hb_absorption_spectrum spectrum;
+    double s;
+    CHECK(t, hb_absorption_from_colour_spectral((double[3]){ 0.5, 0.0, 0.5 }, 0.3, &spectrum, NULL) == HB_ERR_PARAM &&
+                 strstr(hb_last_error()->message, "rgb.g"),
+          "a channel of 0: %s", hb_last_error()->message);
+    hb_absorption_from_colour_spectral((double[3]){ 0.5, 0.4, 0.3 }, 0.3, &spectrum, NULL);
+    CHECK(t, hb_absorption_spectrum_at(&spectrum, 200.0, &s) == HB_ERR_PARAM, "200 nm: %s", hb_last_error()->message);
+    CHECK(t, hb_absorption_spectrum_at(&spectrum, 500.0, NULL) == HB_ERR_NULL, "NULL");
+}
+
 /* The power laws and the mix: sigma_a(450) / sigma_a(650) is (450 / 650)^-3.33 for eumelanin and
  * ^-4.75 for pheomelanin, concentrations add, and the refusals name what is wrong. */
 static void test_power_laws(hb_test_ctx *t)
@@ -179,6 +245,7 @@ static void test_power_laws(hb_test_ctx *t)
 
 const hb_test hb_tests_spectral[] = {
     { "spectral_colour_modes", test_colour_modes, 0 },
+    { "spectral_absorption_modes", test_absorption_modes, 0 },
     { "spectral_srgb_reduction", test_srgb_reduction, 0 },
     { "spectral_power_laws", test_power_laws, 0 },
     { NULL, NULL, 0 },

@@ -2,16 +2,10 @@
  * spectral renderer shows it, comes closest to a hair colour. */
 #include <math.h>
 
+#include "colour_fit.h"
 #include "models/interface/plan.h"
 #include "models/text/text.h"
 #include "srgb.h"
-
-/* CBTB16 eq. 9's colour of absorption sigma_a under azimuthal roughness beta_n: exp(-d sqrt(sigma_a))
- * with d its fit in beta_n (hb_absorption_from_colour inverts it). */
-static double fit_depth(double b)
-{
-    return 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * pow(b, 3) + 5.574 * pow(b, 4) + 0.245 * pow(b, 5);
-}
 
 /* log of the linear sRGB of eq. 9's colour at every band's melanin absorption. */
 static void log_colour(double eumelanin, double pheomelanin, double depth, double out[3])
@@ -36,7 +30,7 @@ hb_status hb_melanin_from_colour_spectral(const double rgb[3], double beta_n, do
     hb_status st = hb_melanin_from_colour(rgb, beta_n, &x[0], &x[1], error); /* the start, and the checks */
     if (st != HB_OK)
         return st;
-    double depth = fit_depth(beta_n), want[3];
+    double depth = hb_colour_fit_depth(beta_n), want[3];
     for (int k = 0; k < 3; k++)
         want[k] = log(rgb[k]);
     /* least squares of the log colour over (eumelanin, pheomelanin) >= 0: damped Gauss-Newton, the

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "colour_fit.h"
 #include "models/interface/plan.h"
 #include "models/text/text.h"
 
@@ -41,6 +42,11 @@ void hb_material_absorption(const hb_material *m, double out[3])
         out[c] += m->sigma_a[c];
 }
 
+double hb_colour_fit_depth(double b)
+{
+    return 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * pow(b, 3) + 5.574 * pow(b, 4) + 0.245 * pow(b, 5);
+}
+
 hb_status hb_absorption_from_colour(const double rgb[3], double beta_n, double sigma_a[3], hb_error *error)
 {
     if (!rgb || !sigma_a)
@@ -51,10 +57,8 @@ hb_status hb_absorption_from_colour(const double rgb[3], double beta_n, double s
     for (int c = 0; c < 3; c++)
         if (!(rgb[c] > 0.0 && rgb[c] <= 1.0))
             return hb_plan_fail(error, HB_ERR_PARAM, "rgb.%s = %s must be in (0, 1]", channel[c], HB_NUM(rgb[c]));
-    /* CBTB16's fit of the multiple-scattering colour of a fibre under its azimuthal roughness:
-     * sigma_a = (log(C) / (5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5))^2 */
-    double b = beta_n;
-    double d = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * pow(b, 3) + 5.574 * pow(b, 4) + 0.245 * pow(b, 5);
+    /* CBTB16 eq. 9 inverted: sigma_a = (log(C) / d(beta_n))^2 */
+    double d = hb_colour_fit_depth(beta_n);
     for (int c = 0; c < 3; c++)
         sigma_a[c] = (log(rgb[c]) / d) * (log(rgb[c]) / d);
     return HB_OK;
