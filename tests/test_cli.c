@@ -621,8 +621,8 @@ static void test_dual_engine_save(hb_test_ctx *t)
 }
 
 /* eval --wavelengths prints f at each wavelength as hb_eval_near_spectral gives it at the material's
- * melanin absorption there (the far field without h), and refuses sigma_a, HHH22 (no spectral
- * call) and a malformed list. */
+ * melanin absorption there (the far field without h), with --colour at its absorption spectrum, and
+ * refuses sigma_a, HHH22 (no spectral call) and a malformed list. */
 static void test_eval_wavelengths(hb_test_ctx *t)
 {
     hb_tool_run r;
@@ -652,6 +652,22 @@ static void test_eval_wavelengths(hb_test_ctx *t)
     snprintf(want, sizeof want, "%.9g,%.9g,%.9g,%.9g\n0,0,0,0\n", f[0][0], f[1][0], f[2][0], f[3][0]);
     CHECK(t, r.status == 0 && strcmp(r.out, want) == 0 && strstr(r.err, "1 invalid sample") && f[0][0] > 0.0f,
           "eval --wavelengths:\n%s%s, the library:\n%s", r.out, r.err, want);
+    /* --colour: the colour's absorption spectrum at each wavelength */
+    if (!run_tool(t, "eval --model chiang --colour 0.2,0.35,0.5 --wavelengths 450,650", "0.3,0,-0.35,2.9,0.2\n", &r))
+        return;
+    hb_absorption_spectrum spectrum;
+    hb_absorption_from_colour_spectral((double[3]){ 0.2, 0.35, 0.5 }, m.beta_n, &spectrum, NULL);
+    for (int j = 0; j < 2; j++) {
+        double s;
+        hb_absorption_spectrum_at(&spectrum, j ? 650.0 : 450.0, &s);
+        sigma[j][0] = (float)s;
+    }
+    hb_eval_near_spectral(plan, 1, (hb_near_soa){ ti, pi, to, po, h },
+                          (hb_spectral_absorption){ 2, (const float *const[]){ sigma[0], sigma[1] } },
+                          (float *const[]){ f[0], f[1] }, NULL);
+    snprintf(want, sizeof want, "%.9g,%.9g\n", f[0][0], f[1][0]);
+    CHECK(t, r.status == 0 && strcmp(r.out, want) == 0 && f[0][0] != f[1][0],
+          "eval --colour --wavelengths:\n%s%s, the library:\n%s", r.out, r.err, want);
     hb_plan_destroy(plan);
     run_tool(t, "eval --model chiang --sigma-a 0.1,0.2,0.3 --wavelengths 500", "", &r);
     CHECK(t, r.status == 2 && strstr(r.err, "no spectrum"), "sigma_a: %d %s", r.status, r.err);

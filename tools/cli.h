@@ -23,6 +23,10 @@ void cli_model_args_default(cli_model_args *args);
 /* The material the options describe: args->material with a colour option resolved. */
 hb_status cli_material(const cli_model_args *args, hb_material *material, hb_error *error);
 
+/* --colour's absorption spectrum, for a spectral evaluation (hb_absorption_from_colour_spectral at the
+ * colour fit's beta_n). */
+hb_status cli_colour_spectrum(const cli_model_args *args, hb_absorption_spectrum *spectrum, hb_error *error);
+
 /* --threads and --progress into the options of a table build (their parallel and progress). */
 void cli_build_hooks(const cli_model_args *args, hb_options *options);
 

@@ -104,6 +104,11 @@ hb_status cli_material(const cli_model_args *args, hb_material *material, hb_err
     return HB_OK;
 }
 
+hb_status cli_colour_spectrum(const cli_model_args *args, hb_absorption_spectrum *spectrum, hb_error *error)
+{
+    return hb_absorption_from_colour_spectral(args->colour, colour_fit_beta_n(args), spectrum, error);
+}
+
 void cli_build_hooks(const cli_model_args *args, hb_options *options)
 {
     if (args->threads > 1)

@@ -139,7 +139,8 @@ static void eval_usage(FILE *to, int pdf)
             pdf ? "0" : "0,0,0",
             pdf ? "" : "With --wavelengths L1,L2,... (nm, at most 8, in [300, 1000]; chiang, deon, marschner) eval writes f at each\n"
                        "wavelength per line instead, at the absorption the material's eumelanin and pheomelanin give\n"
-                       "there (hb_melanin_absorption_spectral); the rows are the angles, or the angles and h.\n",
+                       "there (hb_melanin_absorption_spectral) plus, with --colour R,G,B, that colour's absorption\n"
+                       "spectrum (hb_absorption_from_colour_spectral); the rows are the angles, or the angles and h.\n",
             cli_model_options_help);
 }
 
@@ -215,9 +216,15 @@ static int spectral_setup(const char *name, const char *list, const cli_model_ar
         fprintf(stderr, "%s: --wavelengths: %s\n", name, k ? error.message : "no wavelength given");
         return 2;
     }
-    if (m.sigma_a[0] != 0.0 || m.sigma_a[1] != 0.0 || m.sigma_a[2] != 0.0) {
-        fprintf(stderr, "%s: --wavelengths takes the absorption from eumelanin and pheomelanin: sigma_a is RGB, "
-                        "with no spectrum\n", name);
+    int from_colour = args->colour_to == CLI_COLOUR_SIGMA_A; /* --colour: its absorption spectrum */
+    hb_absorption_spectrum spectrum;
+    if (from_colour && cli_colour_spectrum(args, &spectrum, &error) != HB_OK) {
+        fprintf(stderr, "%s: --wavelengths: %s\n", name, error.message);
+        return 2;
+    }
+    if (!from_colour && (m.sigma_a[0] != 0.0 || m.sigma_a[1] != 0.0 || m.sigma_a[2] != 0.0)) {
+        fprintf(stderr, "%s: --wavelengths takes the absorption from eumelanin and pheomelanin or --colour's "
+                        "spectrum: sigma_a is RGB, with no spectrum\n", name);
         return 2;
     }
     const float *none[HB_WAVELENGTHS_MAX] = { NULL };
@@ -227,11 +234,13 @@ static int spectral_setup(const char *name, const char *list, const cli_model_ar
         return 2;
     }
     for (int j = 0; j < k; j++) {
-        double sigma_a;
-        if (hb_melanin_absorption_spectral(m.eumelanin, m.pheomelanin, lambda[j], &sigma_a) != HB_OK) {
+        double sigma_a, dye = 0.0;
+        if (hb_melanin_absorption_spectral(m.eumelanin, m.pheomelanin, lambda[j], &sigma_a) != HB_OK ||
+            (from_colour && hb_absorption_spectrum_at(&spectrum, lambda[j], &dye) != HB_OK)) {
             fprintf(stderr, "%s: --wavelengths: %s\n", name, hb_last_error()->message);
             return 2;
         }
+        sigma_a += dye;
         for (size_t s = 0; s < BATCH; s++)
             batch->sigma_a[j][s] = (float)sigma_a;
     }
