@@ -168,6 +168,53 @@ static void test_engine_nodes(hb_test_ctx *t)
     hb_dual_engine_destroy(e);
 }
 
+/* The engine of another model's family: a CBTB16 base at 4 thetas x 2 roughnesses x 3 absorptions, on
+ * its nodes, against hb_dual_terms_at of the base with the node's R width (the beta_m
+ * hb_material_convert gives a dFH11 material of that beta_m) and the nodes' absorptions as its
+ * channels. */
+static void test_engine_other_model(hb_test_ctx *t)
+{
+    hb_dual_engine_axes a;
+    hb_dual_engine_axes_default(&a);
+    a.thetas = 4, a.roughnesses = 2, a.absorptions = 3, a.roughness_min = 0.15, a.roughness_max = 0.3;
+    hb_material base, look, m;
+    hb_options o;
+    hb_material_default(&base);
+    hb_options_default(&o);
+    o.model = HB_MODEL_CHIANG;
+    hb_dual_engine *e = NULL;
+    hb_error error;
+    CHECK(t, hb_dual_engine_create(&base, &o, &a, HB_DUAL_DENSITY, &e, &error) == HB_OK, "%s", error.message);
+    hb_material_default(&look);
+    look.beta_m = 0.3;
+    CHECK(t, hb_material_convert(&look, HB_MODEL_DEON, HB_MODEL_CHIANG, &m, &error) == HB_OK, "%s", error.message);
+    double beta_m = m.beta_m; /* the look's R width alone: every other field is the base's */
+    m = base;
+    m.beta_m = beta_m;
+    m.eumelanin = m.pheomelanin = 0.0;
+    for (int c = 0; c < 3; c++)
+        m.sigma_a[c] = node_absorption(&a, c);
+    hb_plan *plan = NULL;
+    CHECK(t, hb_plan_create(&m, &o, &plan, &error) == HB_OK, "%s", error.message);
+    if (!e || !plan)
+        return;
+    double worst = 0.0;
+    for (int k = 0; k < a.thetas; k++) {
+        double theta = -M_PI_2 + M_PI * (k + 0.5) / a.thetas;
+        hb_dual_terms exact = { .struct_size = sizeof exact }, table = { .struct_size = sizeof table };
+        CHECK(t, hb_dual_terms_at(plan, theta, HB_DUAL_DENSITY, &exact) == HB_OK &&
+                     hb_dual_engine_terms(e, theta, 0.3, m.sigma_a, &table) == HB_OK,
+              "%s", hb_last_error()->message);
+        const double *x = &exact.a_f[0], *y = &table.a_f[0];
+        for (int q = 0; q < 27; q++)
+            worst = fmax(worst, fabs(x[q] - y[q]) / fmax(1e-3, fabs(x[q])));
+    }
+    hb_test_note(t, "CBTB16: on its nodes the engine table gives the quadrature's terms within %.1e", worst);
+    CHECK(t, worst <= 1e-12, "CBTB16: the table's nodes differ from the quadrature by %.3g", worst);
+    hb_plan_destroy(plan);
+    hb_dual_engine_destroy(e);
+}
+
 /* Between its nodes: the default axes (64 theta x 16 roughnesses in [0.05, 0.6] x 16 absorptions),
  * converged and by HDRP's estimate, against each fibre's own terms at the 64 theta, for dFH11 fibres
  * lossless, blond, brown, black and red at roughnesses between the nodes. */
@@ -319,6 +366,7 @@ const hb_test hb_tests_dual_engine[] = {
     { "dual_sampled_converges", test_sampled_converges, 0 },
     { "dual_engine_nodes", test_engine_nodes, 0 },
     { "dual_engine_file", test_engine_file, 0 },
+    { "dual_engine_other_model", test_engine_other_model, 0 },
     { "dual_engine_between_nodes", test_engine_between_nodes, 0 },
     { NULL, NULL, 0 },
 };
