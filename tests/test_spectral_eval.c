@@ -551,6 +551,64 @@ static void test_spectral_reference_sampler(hb_test_ctx *t)
     }
 }
 
+/* Hard cases at 8 wavelengths, CBTB16 and dFH11, on every ISA: the smoothest and roughest fibres, eta
+ * near 1 and 10, poles, h = +-1, u at 0 and just below 1, absorptions 0, 1e-30, 1e4 and 1e30 among the
+ * wavelengths: the sampler's directions, pdfs and weights and f at the sampled directions finite and
+ * >= 0, and the same samples invalid as for the RGB sampler. */
+static void test_spectral_hard_cases(hb_test_ctx *t)
+{
+    enum { S = 64 };
+    static const double roughness[] = { 0.02, 0.3, 1.0 }, eta[] = { 1.0001, 1.55, 10.0 };
+    static const float absorption[] = { 0.0f, 1e-30f, 1e4f, 1e30f, 0.5f };
+    static const hb_model models[] = { HB_MODEL_CHIANG, HB_MODEL_DEON };
+    static float so[S], sph[S], sh[S], u[4][S], sa[K][S], sti[S], spi[S], p2[S], w2[K][S], sf[K][S], rw[3][S];
+    for (int k = 0; k < S; k++) {
+        so[k] = k % 4 == 0 ? 1.5707964f : k % 4 == 1 ? -1.5707964f : (float)(0.05 * k - 1.5);
+        sph[k] = (float)(0.3 * k - 3.0), sh[k] = k % 3 == 0 ? 1.0f : k % 3 == 1 ? -1.0f : (float)(0.03 * k - 0.9);
+        for (int d = 0; d < 4; d++)
+            u[d][k] = k % 5 == 0 ? 0.0f : k % 5 == 1 ? 0.99999994f : (float)((7 * k + 13 * d) % 97) / 97.0f;
+        for (int j = 0; j < K; j++)
+            sa[j][k] = absorption[(k + j) % 5];
+    }
+    const float *sp[K];
+    float *wp[K], *fp[K];
+    for (int j = 0; j < K; j++)
+        sp[j] = sa[j], wp[j] = w2[j], fp[j] = sf[j];
+    int bad = 0, counts_differ = 0;
+    for (int mc = 0; mc < 2; mc++)
+        for (int r = 0; r < 3; r++)
+            for (int e = 0; e < 3; e++) {
+                hb_material m;
+                hb_options o;
+                hb_material_default(&m);
+                hb_options_default(&o);
+                o.model = models[mc], o.isa = t->isa;
+                m.beta_m = m.beta_n = roughness[r], m.eta = eta[e];
+                hb_plan *plan = NULL;
+                hb_error err;
+                CHECK(t, hb_plan_create(&m, &o, &plan, &err) == HB_OK, "%s", err.message);
+                if (!plan)
+                    return;
+                hb_sample_near_in in = { so, sph, sh, (const float *const[]){ u[0], u[1], u[2], u[3] } };
+                hb_eval_report spectral, rgb;
+                hb_sample_near_spectral(plan, S, &in, (hb_spectral_absorption){ K, sp },
+                                        &(hb_sample_spectral_out){ sti, spi, p2, wp }, &spectral);
+                hb_eval_near_spectral(plan, S, (hb_near_soa){ sti, spi, so, sph, sh }, (hb_spectral_absorption){ K, sp },
+                                      fp, NULL);
+                for (int k = 0; k < S; k++) {
+                    int ok = isfinite(sti[k]) && isfinite(spi[k]) && isfinite(p2[k]) && p2[k] >= 0.0f;
+                    for (int j = 0; j < K; j++)
+                        ok = ok && isfinite(w2[j][k]) && w2[j][k] >= 0.0f && isfinite(sf[j][k]) && sf[j][k] >= 0.0f;
+                    bad += !ok;
+                }
+                hb_sample_near(plan, S, &in, &(hb_sample_out){ sti, spi, p2, { rw[0], rw[1], rw[2] } }, &rgb);
+                counts_differ += spectral.invalid != rgb.invalid;
+                hb_plan_destroy(plan);
+            }
+    CHECK(t, bad == 0, "%d samples not finite and >= 0", bad);
+    CHECK(t, counts_differ == 0, "%d plans count other invalid samples than their RGB sampler", counts_differ);
+}
+
 /* Refusals name the problem; an invalid absorption makes an invalid sample with zeros. */
 static void test_spectral_api(hb_test_ctx *t)
 {
@@ -623,6 +681,7 @@ const hb_test hb_tests_spectral_eval[] = {
     { "spectral_sampling", test_spectral_sampling, 1 },
     { "spectral_chi_square", test_spectral_chi_square, 0 },
     { "spectral_reference_sampler", test_spectral_reference_sampler, 1 },
+    { "spectral_hard_cases", test_spectral_hard_cases, 1 },
     { "spectral_other_models", test_spectral_other_models, 1 },
     { "spectral_api", test_spectral_api, 0 },
     { NULL, NULL, 0 },
