@@ -90,6 +90,25 @@ static double node_absorption(const hb_dual_engine_axes *a, int j)
     return -log(1.0 - (1.0 - exp(-a->absorption_max)) * j / (a->absorptions - 1));
 }
 
+/* The largest relative difference (floor 1e-3) between the plan's hb_dual_terms_at and the engine's
+ * lookup at roughness and the plan's absorptions sigma_a, over the engine's theta nodes. */
+static double node_error(hb_test_ctx *t, const hb_plan *plan, const hb_dual_engine *e, int thetas, double roughness,
+                         const double sigma_a[3])
+{
+    double worst = 0.0;
+    for (int k = 0; k < thetas; k++) {
+        double theta = -M_PI_2 + M_PI * (k + 0.5) / thetas;
+        hb_dual_terms exact = { .struct_size = sizeof exact }, table = { .struct_size = sizeof table };
+        CHECK(t, hb_dual_terms_at(plan, theta, HB_DUAL_DENSITY, &exact) == HB_OK &&
+                     hb_dual_engine_terms(e, theta, roughness, sigma_a, &table) == HB_OK,
+              "%s", hb_last_error()->message);
+        const double *x = &exact.a_f[0], *y = &table.a_f[0];
+        for (int q = 0; q < 27; q++)
+            worst = fmax(worst, fabs(x[q] - y[q]) / fmax(1e-3, fabs(x[q])));
+    }
+    return worst;
+}
+
 /* On its nodes the table is the quadrature: a fibre at roughness node 1 with absorption nodes 0, 2
  * and 3 as its channels, at the theta nodes, gives hb_dual_terms_at's terms. */
 static void test_engine_nodes(hb_test_ctx *t)
@@ -102,17 +121,7 @@ static void test_engine_nodes(hb_test_ctx *t)
     hb_plan *plan = deon_plan(t, 0.2, 0.0, 0.0, sigma_a);
     if (!e || !plan)
         return;
-    double worst = 0.0;
-    for (int k = 0; k < a.thetas; k++) {
-        double theta = -M_PI_2 + M_PI * (k + 0.5) / a.thetas;
-        hb_dual_terms exact = { .struct_size = sizeof exact }, table = { .struct_size = sizeof table };
-        CHECK(t, hb_dual_terms_at(plan, theta, HB_DUAL_DENSITY, &exact) == HB_OK &&
-                     hb_dual_engine_terms(e, theta, 0.2, sigma_a, &table) == HB_OK,
-              "%s", hb_last_error()->message);
-        const double *x = &exact.a_f[0], *y = &table.a_f[0];
-        for (int q = 0; q < 27; q++)
-            worst = fmax(worst, fabs(x[q] - y[q]) / fmax(1e-3, fabs(x[q])));
-    }
+    double worst = node_error(t, plan, e, a.thetas, 0.2, sigma_a);
     hb_test_note(t, "on its nodes the engine table gives the quadrature's terms within %.1e", worst);
     CHECK(t, worst <= 1e-12, "the table's nodes differ from the quadrature by %.3g", worst);
 
@@ -198,17 +207,7 @@ static void test_engine_other_model(hb_test_ctx *t)
     CHECK(t, hb_plan_create(&m, &o, &plan, &error) == HB_OK, "%s", error.message);
     if (!e || !plan)
         return;
-    double worst = 0.0;
-    for (int k = 0; k < a.thetas; k++) {
-        double theta = -M_PI_2 + M_PI * (k + 0.5) / a.thetas;
-        hb_dual_terms exact = { .struct_size = sizeof exact }, table = { .struct_size = sizeof table };
-        CHECK(t, hb_dual_terms_at(plan, theta, HB_DUAL_DENSITY, &exact) == HB_OK &&
-                     hb_dual_engine_terms(e, theta, 0.3, m.sigma_a, &table) == HB_OK,
-              "%s", hb_last_error()->message);
-        const double *x = &exact.a_f[0], *y = &table.a_f[0];
-        for (int q = 0; q < 27; q++)
-            worst = fmax(worst, fabs(x[q] - y[q]) / fmax(1e-3, fabs(x[q])));
-    }
+    double worst = node_error(t, plan, e, a.thetas, 0.3, m.sigma_a);
     hb_test_note(t, "CBTB16: on its nodes the engine table gives the quadrature's terms within %.1e", worst);
     CHECK(t, worst <= 1e-12, "CBTB16: the table's nodes differ from the quadrature by %.3g", worst);
     hb_plan_destroy(plan);
